@@ -1,0 +1,138 @@
+#pragma once
+// The symbolic model: what a user wrote, as GiNaC expressions, before any derivation.
+
+#include <ginac/ginac.h>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lagrange/error.hpp"
+
+namespace lagrange {
+
+/// A 3-vector of symbolic expressions (world frame).
+using Vec3 = std::array<GiNaC::ex, 3>;
+
+/// A named symbolic constant whose value can change without a new derivation.
+struct Parameter {
+  std::string name;
+  GiNaC::symbol sym;
+  double value = 0.0;
+  SourceLoc loc;
+};
+
+/// A generalised coordinate q with its velocity v = q̇ and acceleration a = q̈ symbols.
+struct Coordinate {
+  std::string name;
+  GiNaC::symbol q, v, a;
+  double initial = 0.0;
+  double rate = 0.0;
+  bool fixed = false;  ///< kept unchanged when an inconsistent initial state is projected
+  SourceLoc loc;
+};
+
+/// A prescribed signal u(t) with symbols for u, u̇ and ü; `expr` is a function of t and parameters.
+struct Input {
+  std::string name;
+  GiNaC::symbol u, ud, udd;
+  GiNaC::ex expr;
+  SourceLoc loc;
+};
+
+/// A named point (position vector in the world frame as a function of q, t, u, p).
+struct Point {
+  std::string name;
+  Vec3 pos;
+  SourceLoc loc;
+};
+
+/// A point mass m at a named point: adds ½ m |vel|² (and m g·x when gravity is set).
+struct Particle {
+  std::string point;
+  GiNaC::ex mass;
+  SourceLoc loc;
+};
+
+/// A world-frame force applied at a point; turned into Q by virtual work (DESIGN.md §4.2).
+struct PointForce {
+  std::string point;
+  Vec3 force;
+  SourceLoc loc;
+};
+
+/// A linear spring between two points: U = ½ k (|b − a| − l0)².
+struct Spring {
+  std::string a, b;
+  GiNaC::ex k, l0;
+  SourceLoc loc;
+};
+
+/// A linear damper between two points: Rayleigh D = ½ c ḋ², Q = −∂D/∂q̇, d = |b − a|.
+struct Damper {
+  std::string a, b;
+  GiNaC::ex c;
+  SourceLoc loc;
+};
+
+/// A named scalar expression (constraint C = 0, or an output to record).
+struct NamedExpr {
+  std::string name;
+  GiNaC::ex expr;
+  SourceLoc loc;
+};
+
+/// Constraint stabilisation settings (DESIGN.md §4.3).
+struct Stabilization {
+  double alpha = 20.0;   ///< Baumgarte: both eigenvalues of the constraint error at −α
+  bool project = true;   ///< project onto C = 0, Ċ = 0 after each output step
+  double gamma = 1.0;    ///< SO(3) orthonormality drift correction rate (DESIGN.md §4.4)
+  SourceLoc loc;
+};
+
+/// Integration settings from the `simulate:` key (CLI flags override them).
+struct SimulateOptions {
+  double t_end = 10.0;
+  double output_step = 0.01;
+  std::string integrator = "arkode";  ///< arkode | cvode | rk4 | ida
+  double rtol = 1e-8;
+  double atol = 1e-10;
+  double step = 0.0;  ///< fixed step for rk4; 0 means output_step / 10
+  SourceLoc loc;
+};
+
+/// Everything a user described; immutable once read. Symbols are owned here.
+struct Model {
+  std::string name;
+  std::string file;
+  GiNaC::symbol t{"t"};
+  std::vector<Parameter> parameters;
+  std::vector<Coordinate> coordinates;
+  std::vector<Input> inputs;
+  std::vector<Point> points;
+  GiNaC::ex kinetic = 0;    ///< user-written kinetic energy (added to the particles')
+  GiNaC::ex potential = 0;  ///< user-written potential energy (added to gravity's and springs')
+  std::vector<GiNaC::ex> generalized_forces;  ///< one per coordinate (0 when absent)
+  std::vector<Particle> particles;
+  std::optional<Vec3> gravity;
+  std::vector<PointForce> forces;
+  std::vector<Spring> springs;
+  std::vector<Damper> dampers;
+  std::vector<NamedExpr> constraints;
+  std::vector<NamedExpr> outputs;
+  Stabilization stabilization;
+  SimulateOptions simulate;
+
+  /// Index of a named entity, or -1.
+  int coordinate_index(const std::string& name) const;
+  int parameter_index(const std::string& name) const;
+  int input_index(const std::string& name) const;
+  const Point* find_point(const std::string& name) const;
+
+  /// Total time derivative d/dt of an expression in (t, q, v, u, u̇, p):
+  /// Σ ∂e/∂q v + ∂e/∂v a + ∂e/∂u u̇ + ∂e/∂u̇ ü + ∂e/∂t. Fails (std::logic_error) on ü.
+  GiNaC::ex time_derivative(const GiNaC::ex& e) const;
+};
+
+}  // namespace lagrange

@@ -1,0 +1,61 @@
+#pragma once
+// The one compiled representation: a common-subexpression-eliminated instruction tape.
+// It is interpreted in C++ (no allocation per call) and emitted as C99 by `export`.
+
+#include <ginac/ginac.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lagrange {
+
+/// An immutable straight-line program mapping a flat input array to a flat output array.
+class Tape {
+ public:
+  /// Compile `outputs` (expressions in `inputs` only) into a tape with shared subexpressions
+  /// evaluated once. Throws std::invalid_argument naming any symbol that is not an input.
+  static Tape compile(const std::vector<GiNaC::ex>& outputs,
+                      const std::vector<GiNaC::symbol>& inputs);
+
+  size_t num_inputs() const { return num_inputs_; }
+  size_t num_outputs() const { return outputs_.size(); }
+  /// Number of scratch doubles `eval` needs.
+  size_t work_size() const { return num_registers_; }
+  size_t num_instructions() const { return code_.size(); }
+
+  /// out[i] = output i at `in`; `work` has work_size() doubles. Never allocates.
+  void eval(const double* in, double* out, double* work) const;
+
+  /// The same tape with inputs [first, first + values.size()) fixed to `values` and constant
+  /// folded (linear in tape size). The input layout is unchanged; fixed inputs are ignored.
+  Tape specialize(size_t first, const std::vector<double>& values) const;
+
+  /// C99 source of `void NAME(const double* in, double* out)`, self-contained (<math.h> only),
+  /// computing exactly what eval computes.
+  std::string to_c(const std::string& function_name) const;
+
+  /// Instruction set (public so tests and the emitter can inspect it).
+  enum class Op : std::uint8_t {
+    Const, Input, Sum, Prod, Neg, Inv, Div, PowInt, Pow, Sqrt, Sin, Cos, Tan, Asin, Acos,
+    Atan, Atan2, Sinh, Cosh, Tanh, Exp, Log, Abs
+  };
+  struct Instr {
+    Op op;
+    std::uint32_t dst;       ///< register written
+    std::uint32_t a = 0;     ///< first operand register, input index, or start in `args_`
+    std::uint32_t b = 0;     ///< second operand register, or argument count
+    double c = 0.0;          ///< constant, integer exponent, or leading coefficient
+  };
+
+ private:
+  size_t num_inputs_ = 0;
+  size_t num_registers_ = 0;
+  std::vector<Instr> code_;
+  std::vector<std::uint32_t> args_;  ///< operand lists of Sum/Prod
+  std::vector<double> coeffs_;       ///< per-operand coefficients of Sum
+  std::vector<std::uint32_t> outputs_;  ///< register of each output
+};
+
+}  // namespace lagrange

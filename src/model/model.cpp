@@ -1,0 +1,40 @@
+#include "lagrange/model.hpp"
+
+#include <stdexcept>
+
+namespace lagrange {
+
+namespace {
+template <class Seq>
+int index_by_name(const Seq& seq, const std::string& name) {
+  for (size_t i = 0; i < seq.size(); ++i)
+    if (seq[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+}  // namespace
+
+int Model::coordinate_index(const std::string& name) const { return index_by_name(coordinates, name); }
+int Model::parameter_index(const std::string& name) const { return index_by_name(parameters, name); }
+int Model::input_index(const std::string& name) const { return index_by_name(inputs, name); }
+
+const Point* Model::find_point(const std::string& name) const {
+  int i = index_by_name(points, name);
+  return i < 0 ? nullptr : &points[static_cast<size_t>(i)];
+}
+
+GiNaC::ex Model::time_derivative(const GiNaC::ex& e) const {
+  GiNaC::ex d = e.diff(t);
+  for (const auto& c : coordinates) {
+    if (e.has(c.a)) throw std::logic_error("time derivative of an acceleration is not supported");
+    d += e.diff(c.q) * c.v + e.diff(c.v) * c.a;
+  }
+  for (const auto& in : inputs) {
+    if (e.has(in.udd))
+      throw std::logic_error("time derivative of the second derivative of input '" + in.name +
+                             "' is not supported");
+    d += e.diff(in.u) * in.ud + e.diff(in.ud) * in.udd;
+  }
+  return d;
+}
+
+}  // namespace lagrange
