@@ -1,1 +1,85 @@
-int main() { return 0; }
+// The `lagrange` command (DESIGN.md §6): derive, simulate, export, check.
+// Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+#include "cli/commands.hpp"
+#include "lagrange/error.hpp"
+
+namespace {
+std::atomic<bool> g_interrupt{false};
+extern "C" void on_sigint(int) { g_interrupt.store(true); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lagrange::cli;
+  CLI::App app{"lagrange: Lagrangian modelling and simulation of mechanical systems"};
+  app.require_subcommand(1);
+  Options opt;
+
+  auto* derive = app.add_subcommand("derive", "print T, U, L, the Euler-Lagrange equations, M and h + Q");
+  derive->add_option("model", opt.model, "model file (YAML)")->required();
+  derive->add_option("--format", opt.format, "text | latex | json")
+      ->check(CLI::IsMember({"text", "latex", "json"}));
+
+  auto* sim = app.add_subcommand("simulate", "integrate the model and write the trajectory");
+  sim->add_option("model", opt.model, "model file (YAML)")->required();
+  sim->add_option("--t-end", opt.t_end, "end time (overrides simulate.t_end)");
+  sim->add_option("--output-step", opt.output_step, "output grid step");
+  sim->add_option("-o,--output", opt.csv, "CSV file to write (default: print a summary only)");
+  sim->add_option("--plot", opt.plot, "SVG plot of the coordinates (through gnuplot)");
+  sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
+      ->delimiter(',');
+  sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  sim->add_option("--integrator", opt.integrator, "arkode | cvode | rk4 | ida")
+      ->check(CLI::IsMember({"arkode", "cvode", "rk4", "ida"}));
+  sim->add_option("--rtol", opt.rtol, "relative tolerance");
+  sim->add_option("--atol", opt.atol, "absolute tolerance");
+  sim->add_option("--step", opt.step, "fixed step of rk4");
+  sim->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
+
+  auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");
+  exp->add_option("model", opt.model, "model file (YAML)")->required();
+  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->required();
+
+  auto* check = app.add_subcommand("check", "validate the model and the consistency of its initial state");
+  check->add_option("model", opt.model, "model file (YAML)")->required();
+  check->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  std::signal(SIGINT, on_sigint);
+  opt.interrupt = &g_interrupt;
+  opt.terminal = isatty(fileno(stderr)) != 0;
+  try {
+    if (*derive) return run_derive(opt);
+    if (*sim) return run_simulate(opt);
+    if (*exp) return run_export(opt);
+    if (*check) return run_check(opt);
+  } catch (const lagrange::ModelError& e) {
+    fmt::print(stderr, "{}\n", e.what());
+    return 1;
+  } catch (const UsageError& e) {
+    fmt::print(stderr, "lagrange: {}\n", e.what());
+    return 2;
+  } catch (const lagrange::SimulationError& e) {
+    fmt::print(stderr, "lagrange: {}\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "lagrange: error: {}\n", e.what());
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,70 @@
+#pragma once
+// Numeric forward dynamics: one KKT path for constrained and unconstrained systems.
+
+#include <Eigen/Dense>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+
+namespace lagrange {
+
+/// Result of projecting a state onto the constraint manifold.
+struct ProjectionResult {
+  double position_change = 0.0;  ///< ‖Δq‖₂
+  double velocity_change = 0.0;  ///< ‖Δv‖₂
+  double residual = 0.0;         ///< max |C| after projection
+  double rate_residual = 0.0;    ///< max |Ċ| after projection
+  int iterations = 0;
+};
+
+/// Mutable workspace over a CompiledModel: tapes specialised to the current parameter values
+/// and all scratch memory, so that forward() never allocates. Not thread-safe; make one per thread.
+class Dynamics {
+ public:
+  Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters);
+
+  const CompiledModel& model() const { return *model_; }
+  const std::vector<double>& parameters() const { return params_; }
+  /// Change parameter values: re-specialises the tapes (no new derivation).
+  void set_parameters(const std::vector<double>& values);
+  /// Baumgarte rate α (DESIGN.md §4.3): constraint errors decay like exp(−α t).
+  void set_baumgarte(double alpha) { alpha_ = alpha; }
+  double baumgarte() const { return alpha_; }
+
+  /// Forward dynamics at (t, q, v): q̇, accelerations a and multipliers λ (m of them) from
+  ///   [M Gᵀ; G 0][a; λ] = [h + Q; −c − 2αĊ − α²C]   (DESIGN.md §4.3).
+  /// Throws SimulationError naming t and the state when M or G M⁻¹Gᵀ is singular.
+  void forward(double t, const double* q, const double* v, double* qdot, double* a, double* lambda);
+
+  /// T, U and the model's outputs at (t, q, v), written to `out` (2 + outputs values).
+  void observe(double t, const double* q, const double* v, double* out);
+  /// Constraint values C and Ċ at (t, q, v).
+  void constraints(double t, const double* q, const double* v, double* C, double* Cdot);
+
+  /// Project (q, v) onto C = 0 (Gauss–Newton, least-squares change of the non-fixed
+  /// coordinates) and then Ċ = 0. Throws SimulationError when it does not converge.
+  ProjectionResult project(double t, double* q, double* v, const std::vector<bool>& fixed,
+                           double tol = 1e-12, int max_iterations = 50);
+
+  /// The dynamics tape input vector after the last evaluation (t, q, v, u, p).
+  const std::vector<double>& last_inputs() const { return in_; }
+
+ private:
+  void load_inputs(double t, const double* q, const double* v);
+  void eval_dynamics(double t, const double* q, const double* v);
+  void assemble_G();
+  [[noreturn]] void fail_singular(double t, const std::string& what) const;
+
+  std::shared_ptr<const CompiledModel> model_;
+  std::vector<double> params_;
+  double alpha_ = 0.0;
+  Tape dyn_, obs_, sig_;
+  std::vector<double> in_, out_, obs_out_, sig_out_, work_;
+  Eigen::MatrixXd M_, G_, Y_, S_;
+  Eigen::VectorXd rhs_, a_, gamma_, lambda_;
+  Eigen::LLT<Eigen::MatrixXd> llt_M_, llt_S_;
+};
+
+}  // namespace lagrange

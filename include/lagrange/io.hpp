@@ -1,0 +1,33 @@
+#pragma once
+// Output of results: trajectories (CSV + status sidecar), plots, equations, C source.
+
+#include <string>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange {
+
+/// CSV with a header row and 17 significant digits, written to a temporary name and renamed
+/// when complete; beside it `path.json` records status ("complete", "failed", "interrupted"),
+/// the reason and run statistics.
+void write_trajectory_csv(const Trajectory& traj, const std::string& path);
+
+/// An SVG plot of the chosen columns against t through gnuplot (throws std::runtime_error
+/// when gnuplot is missing or fails).
+void plot_trajectory_svg(const Trajectory& traj, const std::vector<std::string>& columns,
+                         const std::string& path, const std::string& title);
+
+/// Equations as human-readable text, LaTeX, or JSON (`format`: text | latex | json).
+std::string format_equations(const Equations& eq, const std::string& format);
+
+/// Standalone C99 source (header + implementation) evaluating the dynamics
+/// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.
+void export_c(const CompiledModel& model, const std::string& dir);
+
+/// Write `text` to `path` through a temporary file and an atomic rename.
+void write_file_atomically(const std::string& path, const std::string& text);
+
+}  // namespace lagrange

@@ -1,0 +1,51 @@
+#pragma once
+// Runs a model's dynamics through an integrator into a trajectory on a uniform grid.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "lagrange/dynamics.hpp"
+#include "lagrange/integrator.hpp"
+
+namespace lagrange {
+
+/// A sampled trajectory; `status` says whether it is complete.
+struct Trajectory {
+  std::vector<std::string> columns;  ///< t, q…, q_dot…, kinetic, potential, energy, outputs…, λ…, residuals
+  std::vector<double> data;          ///< row-major samples
+  enum class Status { Complete, Failed, Interrupted } status = Status::Complete;
+  std::string message;               ///< failure reason (empty when complete)
+  double failure_time = 0.0;
+  std::vector<std::string> notes;    ///< e.g. what the initial-state projection changed
+  IntegratorStats stats;
+
+  size_t rows() const { return columns.empty() ? 0 : data.size() / columns.size(); }
+  /// Value at row r of the named column; throws std::out_of_range for an unknown name.
+  double at(size_t r, const std::string& column) const;
+  size_t column_index(const std::string& column) const;
+  const char* status_name() const;
+};
+
+struct SimulationOptions {
+  double t0 = 0.0;
+  double t_end = 10.0;
+  double output_step = 0.01;
+  IntegratorOptions integrator;
+  bool project = true;  ///< project onto C = 0, Ċ = 0 at output samples when the error exceeds tol
+  double projection_tol = 1e-11;
+  bool project_initial = true;  ///< false: fail when the initial state is inconsistent
+  const std::atomic<bool>* interrupt = nullptr;  ///< set asynchronously to stop cleanly
+  std::function<void(double t)> progress;        ///< called at each output sample
+};
+
+/// Simulate from (q0, v0). Never throws for numerical failures: the trajectory computed so far
+/// is returned with status Failed and the reason (SimulationError message).
+Trajectory simulate(Dynamics& dynamics, const SimulationOptions& options, std::vector<double> q0,
+                    std::vector<double> v0);
+
+/// The column names simulate() produces for a compiled model.
+std::vector<std::string> trajectory_columns(const CompiledModel& model);
+
+}  // namespace lagrange

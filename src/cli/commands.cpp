@@ -1,0 +1,205 @@
+#include "cli/commands.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/error.hpp"
+#include "lagrange/io.hpp"
+#include "lagrange/reader.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Parameter values: the model's, overridden by --set NAME=VALUE.
+std::vector<double> parameter_values(const CompiledModel& cm, const std::vector<std::string>& sets) {
+  std::vector<double> p = cm.parameter_defaults;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos) throw UsageError("--set expects NAME=VALUE, got '" + s + "'");
+    const std::string name = s.substr(0, eq);
+    auto it = std::find(cm.parameter_names.begin(), cm.parameter_names.end(), name);
+    if (it == cm.parameter_names.end()) {
+      std::string known;
+      for (const auto& n : cm.parameter_names) known += (known.empty() ? "" : ", ") + n;
+      throw UsageError(fmt::format("--set: unknown parameter '{}' (parameters: {})", name,
+                                   known.empty() ? "none" : known));
+    }
+    try {
+      size_t used = 0;
+      const double value = std::stod(s.substr(eq + 1), &used);
+      if (used != s.size() - eq - 1 || !std::isfinite(value)) throw std::invalid_argument(s);
+      p[static_cast<size_t>(it - cm.parameter_names.begin())] = value;
+    } catch (const std::exception&) {
+      throw UsageError("--set: expected a finite number after '" + name + "=', got '" +
+                       s.substr(eq + 1) + "'");
+    }
+  }
+  return p;
+}
+
+SimulationOptions simulation_options(const Model& model, const Options& opt) {
+  SimulationOptions so;
+  so.t_end = opt.t_end.value_or(model.simulate.t_end);
+  so.output_step = opt.output_step.value_or(model.simulate.output_step);
+  so.integrator.method = opt.integrator.value_or(model.simulate.integrator);
+  so.integrator.rtol = opt.rtol.value_or(model.simulate.rtol);
+  so.integrator.atol = opt.atol.value_or(model.simulate.atol);
+  so.integrator.step = opt.step.value_or(model.simulate.step);
+  so.project = model.stabilization.project;
+  if (!(so.t_end > 0)) throw UsageError("--t-end must be positive");
+  if (!(so.output_step > 0)) throw UsageError("--output-step must be positive");
+  if (!(so.integrator.rtol > 0) || !(so.integrator.atol > 0))
+    throw UsageError("tolerances must be positive");
+  return so;
+}
+
+// Progress line on a terminal for runs longer than about a second.
+std::function<void(double)> progress_line(const Options& opt, double t_end) {
+  if (opt.quiet || !opt.terminal) return {};
+  auto start = Clock::now();
+  auto last = start;
+  return [start, last, t_end](double t) mutable {
+    const auto now = Clock::now();
+    if (seconds_since(start) < 1.0 || std::chrono::duration<double>(now - last).count() < 0.2) return;
+    last = now;
+    fmt::print(stderr, "\r  t = {:.4g} / {:.4g} ({:.0f} %)   ", t, t_end, 100.0 * t / t_end);
+  };
+}
+
+}  // namespace
+
+int run_derive(const Options& opt) {
+  const Model model = read_model_file(opt.model);
+  const Equations eq = derive(model);
+  fmt::print("{}", format_equations(eq, opt.format));
+  return 0;
+}
+
+int run_export(const Options& opt) {
+  const Model model = read_model_file(opt.model);
+  const auto cm = compile(derive(model));
+  export_c(*cm, opt.c_dir);
+  fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions)\n",
+             opt.c_dir, cm->dynamics.num_instructions());
+  return 0;
+}
+
+int run_check(const Options& opt) {
+  const Model model = read_model_file(opt.model);
+  const auto cm = compile(derive(model));
+  Dynamics dyn(cm, parameter_values(*cm, opt.sets));
+  dyn.set_baumgarte(model.stabilization.alpha);
+  fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
+             model.name, cm->n, cm->m, cm->np, cm->k);
+  std::vector<double> q = cm->q0, v = cm->v0;
+  if (cm->m > 0) {
+    std::vector<double> C(cm->m), Cdot(cm->m);
+    dyn.constraints(0.0, q.data(), v.data(), C.data(), Cdot.data());
+    for (size_t r = 0; r < cm->m; ++r)
+      fmt::print("  constraint {:<16} C = {:+.3e}   Cdot = {:+.3e}\n", cm->constraint_names[r],
+                 C[r], Cdot[r]);
+    double worst = 0;
+    for (size_t r = 0; r < cm->m; ++r) worst = std::max({worst, std::abs(C[r]), std::abs(Cdot[r])});
+    if (worst > 1e-11) {
+      const ProjectionResult pr = dyn.project(0.0, q.data(), v.data(), cm->fixed, 1e-13);
+      fmt::print("initial state is inconsistent (max residual {:.3e}); simulate will project it:\n",
+                 worst);
+      for (size_t i = 0; i < cm->n; ++i) {
+        if (q[i] != cm->q0[i])
+          fmt::print("  {}: {:.10g} -> {:.10g}\n", cm->coordinate_names[i], cm->q0[i], q[i]);
+        if (v[i] != cm->v0[i])
+          fmt::print("  {}_dot: {:.10g} -> {:.10g}\n", cm->coordinate_names[i], cm->v0[i], v[i]);
+      }
+      fmt::print("  |dq| = {:.3e}, |dv| = {:.3e}\n", pr.position_change, pr.velocity_change);
+      return 1;
+    }
+    fmt::print("initial state is consistent (max residual {:.3e})\n", worst);
+  }
+  std::vector<double> qdot(cm->n), a(cm->n), lambda(cm->m);
+  dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+  fmt::print("mass matrix positive definite at the initial state\n");
+  return 0;
+}
+
+int run_simulate(const Options& opt) {
+  const auto t0 = Clock::now();
+  const Model model = read_model_file(opt.model);
+  const Equations eq = derive(model);
+  const double t_derive = seconds_since(t0);
+  const auto t1 = Clock::now();
+  const auto cm = compile(eq);
+  Dynamics dyn(cm, parameter_values(*cm, opt.sets));
+  dyn.set_baumgarte(model.stabilization.alpha);
+  const double t_compile = seconds_since(t1);
+
+  SimulationOptions so = simulation_options(model, opt);
+  so.interrupt = opt.interrupt;
+  so.progress = progress_line(opt, so.t_end);
+  const auto t2 = Clock::now();
+  Trajectory traj = simulate(dyn, so, cm->q0, cm->v0);
+  const double t_sim = seconds_since(t2);
+  if (so.progress) fmt::print(stderr, "\r{:60}\r", "");
+  for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
+
+  if (!opt.csv.empty()) write_trajectory_csv(traj, opt.csv);
+  if (!opt.plot.empty() && traj.rows() > 1) {
+    std::vector<std::string> cols = opt.plot_columns;
+    if (cols.empty()) cols = cm->coordinate_names;
+    for (const auto& c : cols)
+      if (std::find(traj.columns.begin(), traj.columns.end(), c) == traj.columns.end())
+        throw UsageError("--plot-columns: no column '" + c + "' in the trajectory");
+    plot_trajectory_svg(traj, cols, opt.plot, model.name);
+  }
+  if (!opt.quiet) {
+    const size_t rows = traj.rows();
+    fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->n,
+               cm->m, cm->dynamics.num_instructions());
+    fmt::print("  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, {})\n",
+               t_derive, t_compile, t_sim, traj.stats.steps, traj.stats.rhs_evals, so.integrator.method);
+    if (rows > 0) {
+      const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
+      fmt::print("  t = {:.6g} .. {:.6g}, {} samples; energy {:.10g} -> {:.10g} (relative change {:.2e})\n",
+                 traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1,
+                 std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300));
+      std::string last;
+      for (const auto& name : cm->coordinate_names)
+        last += fmt::format("{}{} = {:.6g}", last.empty() ? "" : ", ", name, traj.at(rows - 1, name));
+      fmt::print("  final state: {}\n", last);
+      if (cm->m > 0) {
+        double worst = 0;
+        for (size_t r = 0; r < rows; ++r) worst = std::max(worst, traj.at(r, "constraint_residual"));
+        fmt::print("  max constraint residual {:.2e}\n", worst);
+      }
+    }
+    if (!opt.csv.empty()) fmt::print("  wrote {} (+ .json status)\n", opt.csv);
+    if (!opt.plot.empty()) fmt::print("  wrote {}\n", opt.plot);
+  }
+  if (traj.status == Trajectory::Status::Failed) {
+    fmt::print(stderr, "lagrange: {}\n", traj.message);
+    if (!opt.csv.empty())
+      fmt::print(stderr, "lagrange: the trajectory up to t = {:.6g} was kept in {} (marked failed in {}.json)\n",
+                 traj.rows() ? traj.data[(traj.rows() - 1) * traj.columns.size()] : 0.0, opt.csv, opt.csv);
+    return 3;
+  }
+  if (traj.status == Trajectory::Status::Interrupted) {
+    fmt::print(stderr, "lagrange: {}; partial trajectory kept\n", traj.message);
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace lagrange::cli

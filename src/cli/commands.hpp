@@ -1,0 +1,35 @@
+#pragma once
+// The subcommands of the `lagrange` CLI, each returning the process exit code.
+
+#include <atomic>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lagrange::cli {
+
+/// A mistake in the command line (exit code 2).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Everything the command line can set; unset optionals leave the model file's values.
+struct Options {
+  std::string model;
+  std::string format = "text";
+  std::optional<double> t_end, output_step, rtol, atol, step;
+  std::optional<std::string> integrator;
+  std::string csv, plot, c_dir;
+  std::vector<std::string> plot_columns, sets;
+  bool quiet = false;
+  bool terminal = false;
+  const std::atomic<bool>* interrupt = nullptr;
+};
+
+int run_derive(const Options& opt);
+int run_simulate(const Options& opt);
+int run_export(const Options& opt);
+int run_check(const Options& opt);
+
+}  // namespace lagrange::cli

@@ -1,0 +1,148 @@
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "lagrange/io.hpp"
+
+namespace lagrange {
+
+namespace {
+
+enum class Style { Text, Latex };
+
+// Small expressions are normalised for display; large ones are printed as derived.
+GiNaC::ex tidy(const GiNaC::ex& e) {
+  std::ostringstream probe;
+  probe << e;
+  if (probe.str().size() > 400) return e;
+  GiNaC::ex x = e.expand();
+  GiNaC::ex n = e.normal();
+  std::ostringstream sx, sn;
+  sx << x;
+  sn << n;
+  return sn.str().size() < sx.str().size() ? n : x;
+}
+
+std::string str(const GiNaC::ex& e, Style style) {
+  std::ostringstream os;
+  if (style == Style::Latex) os << GiNaC::latex;
+  os << tidy(e);
+  return os.str();
+}
+
+std::string symbol_str(const GiNaC::symbol& s, Style style) {
+  std::ostringstream os;
+  if (style == Style::Latex) os << GiNaC::latex;
+  os << s;
+  return os.str();
+}
+
+std::string format_text(const Equations& eq, Style style) {
+  const Model& model = *eq.model;
+  const bool tex = style == Style::Latex;
+  std::string out;
+  auto line = [&](const std::string& lhs, const std::string& rhs) {
+    out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
+  };
+  auto heading = [&](const std::string& h) {
+    out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h) : fmt::format("\n{}\n", h);
+  };
+  if (tex) out += "\\begin{align*}\n";
+  else out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.n, eq.m);
+  heading("Energies");
+  line("T", str(eq.T, style));
+  line("U", str(eq.U, style));
+  line(tex ? "L" : "L", eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C")
+                             : str(eq.L, style));
+  heading(tex ? "Euler--Lagrange equations" : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
+  for (size_t i = 0; i < eq.n; ++i) {
+    GiNaC::ex rhs = eq.Q[i];
+    std::string extra;
+    for (size_t r = 0; r < eq.m; ++r)
+      if (!eq.G(r, i).is_zero())
+        extra += fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
+    line(str(eq.euler_lagrange_lhs(i), style), str(rhs, style) + extra);
+  }
+  heading("Mass matrix M(q)");
+  for (size_t i = 0; i < eq.n; ++i)
+    for (size_t j = 0; j <= i; ++j)
+      if (!eq.M(i, j).is_zero()) line(fmt::format("M_{{{}{}}}", i + 1, j + 1), str(eq.M(i, j), style));
+  heading("Forcing h(q, v) + Q");
+  for (size_t i = 0; i < eq.n; ++i)
+    line(fmt::format("(h+Q)_{{{}}}", model.coordinates[i].name), str(eq.h[i] + eq.Q[i], style));
+  if (eq.m > 0) {
+    heading(tex ? "Constraints, index-3: C = 0" : "Constraints (index-3 DAE: C = 0)");
+    for (size_t r = 0; r < eq.m; ++r) line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
+    heading("Constraint Jacobian G = dC/dq");
+    for (size_t r = 0; r < eq.m; ++r)
+      for (size_t j = 0; j < eq.n; ++j)
+        if (!eq.G(r, j).is_zero())
+          line(fmt::format("G_{{{},{}}}", model.constraints[r].name, model.coordinates[j].name),
+               str(eq.G(r, j), style));
+    heading(tex ? "Index-1 form: G a + c = 0" : "Index-1 form (C'' = G a + c = 0)");
+    for (size_t r = 0; r < eq.m; ++r) {
+      std::string lhs;
+      for (size_t j = 0; j < eq.n; ++j)
+        if (!eq.G(r, j).is_zero())
+          lhs += fmt::format("{}({})*{}", lhs.empty() ? "" : " + ", str(eq.G(r, j), style),
+                             symbol_str(model.coordinates[j].a, style));
+      line(lhs + " + " + str(eq.c[r], style), "0");
+    }
+    heading(tex ? "Baumgarte: G a + c + 2 alpha Cdot + alpha^2 C = 0"
+                : "Baumgarte-stabilised (C'' + 2 alpha C' + alpha^2 C = 0), with");
+    for (size_t r = 0; r < eq.m; ++r)
+      line("Cdot_{" + model.constraints[r].name + "}", str(eq.Cdot[r], style));
+  }
+  if (eq.m == 0 && eq.n <= 3) {
+    heading("Accelerations a = M^-1 (h + Q)");
+    const auto acc = solve_accelerations(eq);
+    for (size_t i = 0; i < eq.n; ++i) line(symbol_str(model.coordinates[i].a, style), str(acc[i], style));
+  }
+  if (tex) out += "\\end{align*}\n";
+  return out;
+}
+
+std::string format_json(const Equations& eq) {
+  const Model& model = *eq.model;
+  auto s = [](const GiNaC::ex& e) { return str(e, Style::Text); };
+  auto l = [](const GiNaC::ex& e) { return str(e, Style::Latex); };
+  nlohmann::json j;
+  j["name"] = model.name;
+  for (const auto& c : model.coordinates) j["coordinates"].push_back(c.name);
+  j["T"] = s(eq.T);
+  j["U"] = s(eq.U);
+  j["L"] = s(eq.L);
+  j["latex"]["T"] = l(eq.T);
+  j["latex"]["U"] = l(eq.U);
+  for (size_t i = 0; i < eq.n; ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (size_t k = 0; k < eq.n; ++k) row.push_back(s(eq.M(i, k)));
+    j["M"].push_back(row);
+    j["h"].push_back(s(eq.h[i]));
+    j["Q"].push_back(s(eq.Q[i]));
+    j["euler_lagrange"].push_back(s(eq.euler_lagrange_lhs(i)));
+  }
+  for (size_t r = 0; r < eq.m; ++r) {
+    nlohmann::json row = nlohmann::json::array();
+    for (size_t k = 0; k < eq.n; ++k) row.push_back(s(eq.G(r, k)));
+    j["constraints"].push_back({{"name", model.constraints[r].name},
+                                {"C", s(eq.C[r])},
+                                {"Cdot", s(eq.Cdot[r])},
+                                {"c", s(eq.c[r])},
+                                {"G", row}});
+  }
+  return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+std::string format_equations(const Equations& eq, const std::string& format) {
+  if (format == "text") return format_text(eq, Style::Text);
+  if (format == "latex") return format_text(eq, Style::Latex);
+  if (format == "json") return format_json(eq);
+  throw std::invalid_argument("unknown format '" + format + "'; expected text, latex or json");
+}
+
+}  // namespace lagrange

@@ -1,0 +1,36 @@
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "lagrange/io.hpp"
+
+namespace lagrange {
+
+void write_trajectory_csv(const Trajectory& traj, const std::string& path) {
+  std::string text;
+  const size_t nc = traj.columns.size();
+  for (size_t c = 0; c < nc; ++c) text += (c ? "," : "") + traj.columns[c];
+  text += '\n';
+  for (size_t r = 0; r < traj.rows(); ++r) {
+    for (size_t c = 0; c < nc; ++c) {
+      if (c) text += ',';
+      fmt::format_to(std::back_inserter(text), "{:.17g}", traj.data[r * nc + c]);
+    }
+    text += '\n';
+  }
+  nlohmann::json side;
+  side["status"] = traj.status_name();
+  if (!traj.message.empty()) side["reason"] = traj.message;
+  if (traj.status == Trajectory::Status::Failed) side["failure_time"] = traj.failure_time;
+  side["rows"] = traj.rows();
+  if (traj.rows() > 0) side["t_last"] = traj.data[(traj.rows() - 1) * nc];
+  side["steps"] = traj.stats.steps;
+  side["rhs_evaluations"] = traj.stats.rhs_evals;
+  side["failed_steps"] = traj.stats.failed_steps;
+  if (!traj.notes.empty()) side["notes"] = traj.notes;
+  // The sidecar goes first: a CSV under the final name always has a truthful sidecar.
+  write_file_atomically(path + ".json", side.dump(2) + "\n");
+  write_file_atomically(path, text);
+}
+
+}  // namespace lagrange

@@ -1,0 +1,159 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "lagrange/error.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange {
+
+std::vector<std::string> trajectory_columns(const CompiledModel& cm) {
+  std::vector<std::string> cols{"t"};
+  for (const auto& q : cm.coordinate_names) cols.push_back(q);
+  for (const auto& q : cm.coordinate_names) cols.push_back(q + "_dot");
+  cols.insert(cols.end(), {"kinetic", "potential", "energy"});
+  for (const auto& o : cm.output_names) cols.push_back(o);
+  if (cm.m > 0) {
+    for (const auto& c : cm.constraint_names) cols.push_back(c);
+    cols.insert(cols.end(), {"constraint_residual", "constraint_rate_residual"});
+  }
+  return cols;
+}
+
+size_t Trajectory::column_index(const std::string& column) const {
+  auto it = std::find(columns.begin(), columns.end(), column);
+  if (it == columns.end()) throw std::out_of_range("no column '" + column + "' in the trajectory");
+  return static_cast<size_t>(it - columns.begin());
+}
+
+double Trajectory::at(size_t r, const std::string& column) const {
+  return data.at(r * columns.size() + column_index(column));
+}
+
+const char* Trajectory::status_name() const {
+  switch (status) {
+    case Status::Complete: return "complete";
+    case Status::Failed: return "failed";
+    case Status::Interrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+namespace {
+
+double max_abs(const std::vector<double>& x) {
+  double r = 0.0;
+  for (double v : x) r = std::max(r, std::abs(v));
+  return r;
+}
+
+// One output row: t, q, v, T, U, T + U, outputs, λ, max|C|, max|Ċ|.
+void append_row(Dynamics& dyn, double t, const double* q, const double* v,
+                std::vector<double>& scratch, Trajectory& traj) {
+  const CompiledModel& cm = dyn.model();
+  const size_t n = cm.n, m = cm.m;
+  std::vector<double>& row = scratch;
+  row.clear();
+  row.push_back(t);
+  row.insert(row.end(), q, q + n);
+  row.insert(row.end(), v, v + n);
+  std::vector<double> obs(cm.observables.num_outputs());
+  dyn.observe(t, q, v, obs.data());
+  row.insert(row.end(), {obs[0], obs[1], obs[0] + obs[1]});
+  row.insert(row.end(), obs.begin() + 2, obs.end());
+  if (m > 0) {
+    std::vector<double> qdot(n), a(n), lambda(m), C(m), Cdot(m);
+    dyn.forward(t, q, v, qdot.data(), a.data(), lambda.data());
+    dyn.constraints(t, q, v, C.data(), Cdot.data());
+    row.insert(row.end(), lambda.begin(), lambda.end());
+    row.push_back(max_abs(C));
+    row.push_back(max_abs(Cdot));
+  }
+  traj.data.insert(traj.data.end(), row.begin(), row.end());
+}
+
+// Initial state: check C = 0 and Ċ = 0, project if needed (DESIGN.md §4.3) and say what moved.
+void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<double>& q,
+                     std::vector<double>& v, Trajectory& traj) {
+  const CompiledModel& cm = dyn.model();
+  if (cm.m == 0) return;
+  std::vector<double> C(cm.m), Cdot(cm.m);
+  dyn.constraints(opt.t0, q.data(), v.data(), C.data(), Cdot.data());
+  const double err = max_abs(C), rate_err = max_abs(Cdot);
+  if (err <= opt.projection_tol && rate_err <= opt.projection_tol) return;
+  if (!opt.project_initial)
+    throw SimulationError(opt.t0, fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
+                                              "max |Ċ| = {:.3g}",
+                                              err, rate_err));
+  const std::vector<double> q_old = q, v_old = v;
+  ProjectionResult pr = dyn.project(opt.t0, q.data(), v.data(), cm.fixed, 1e-13);
+  std::string changes;
+  for (size_t i = 0; i < cm.n; ++i) {
+    if (q[i] != q_old[i])
+      changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.coordinate_names[i], q_old[i], q[i]);
+    if (v[i] != v_old[i])
+      changes += fmt::format("\n  {}_dot: {:.10g} -> {:.10g}", cm.coordinate_names[i], v_old[i], v[i]);
+  }
+  traj.notes.push_back(fmt::format(
+      "initial state was inconsistent (max |C| = {:.3g}, max |Ċ| = {:.3g}); projected onto the "
+      "constraints (|Δq| = {:.3g}, |Δv| = {:.3g}):{}",
+      err, rate_err, pr.position_change, pr.velocity_change, changes));
+}
+
+}  // namespace
+
+Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<double> q0,
+                    std::vector<double> v0) {
+  const CompiledModel& cm = dyn.model();
+  const size_t n = cm.n, m = cm.m;
+  Trajectory traj;
+  traj.columns = trajectory_columns(cm);
+  std::vector<double> row;
+  try {
+    make_consistent(dyn, opt, q0, v0, traj);
+    std::vector<double> y(2 * n);
+    std::copy(q0.begin(), q0.end(), y.begin());
+    std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
+    std::vector<double> lambda(m);
+    OdeProblem ode;
+    ode.size = 2 * n;
+    ode.rhs = [&dyn, n, &lambda](double t, const double* yy, double* yd) {
+      dyn.forward(t, yy, yy + n, yd, yd + n, lambda.data());
+    };
+    std::vector<double> C(m), Cdot(m);
+    Observer observer = [&](double t, double* yy, double*) {
+      ObserverAction action = ObserverAction::Continue;
+      for (size_t i = 0; i < 2 * n; ++i)
+        if (!std::isfinite(yy[i]))
+          throw SimulationError(t, fmt::format("the state is not finite ({} = {})",
+                                               i < n ? cm.coordinate_names[i]
+                                                     : cm.coordinate_names[i - n] + "_dot",
+                                               yy[i]));
+      if (m > 0 && opt.project) {
+        dyn.constraints(t, yy, yy + n, C.data(), Cdot.data());
+        if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
+          dyn.project(t, yy, yy + n, std::vector<bool>(n, false), 1e-13);
+          action = ObserverAction::StateChanged;
+        }
+      }
+      append_row(dyn, t, yy, yy + n, row, traj);
+      if (opt.progress) opt.progress(t);
+      if (opt.interrupt != nullptr && opt.interrupt->load()) {
+        traj.status = Trajectory::Status::Interrupted;
+        traj.message = fmt::format("interrupted at t = {:.6g}", t);
+        return ObserverAction::Stop;
+      }
+      return action;
+    };
+    traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
+  } catch (const SimulationError& e) {
+    traj.status = Trajectory::Status::Failed;
+    traj.message = e.what();
+    traj.failure_time = e.time();
+  }
+  return traj;
+}
+
+}  // namespace lagrange

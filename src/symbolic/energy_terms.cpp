@@ -1,0 +1,51 @@
+#include "lagrange/error.hpp"
+#include "symbolic/mechanical_terms.hpp"
+#include "symbolic/time_partials.hpp"
+
+namespace lagrange::symbolic {
+
+namespace {
+
+// U = ½ k (|b − a| − l0)² for each spring.
+GiNaC::ex spring_potential(const Model& model) {
+  GiNaC::ex U = 0;
+  for (const auto& s : model.springs) {
+    const Point* a = model.find_point(s.a);
+    const Point* b = model.find_point(s.b);
+    if (a == nullptr || b == nullptr)
+      throw ModelError(s.loc, "unknown point '" + (a == nullptr ? s.a : s.b) + "' in spring");
+    Vec3 d{b->pos[0] - a->pos[0], b->pos[1] - a->pos[1], b->pos[2] - a->pos[2]};
+    GiNaC::ex stretch = GiNaC::sqrt(dot(d, d)) - s.l0;
+    U += s.k / 2 * stretch * stretch;
+  }
+  return U;
+}
+
+}  // namespace
+
+// DESIGN.md §4.1: M = ∂²L/∂v∂vᵀ, h = ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂ₜ(∂L/∂v).
+void add_energy_terms(const Model& model, MechanicalTerms& terms) {
+  const size_t n = model.coordinates.size();
+  if (depends_on_accelerations(model, model.kinetic))
+    throw ModelError({model.file, 0, 0}, "the kinetic energy depends on accelerations");
+  if (depends_on_accelerations(model, model.potential))
+    throw ModelError({model.file, 0, 0}, "the potential energy depends on accelerations");
+  const GiNaC::ex U = model.potential + spring_potential(model);
+  const GiNaC::ex L = model.kinetic - U;
+  terms.T += model.kinetic;
+  terms.U += U;
+  for (size_t i = 0; i < n; ++i) {
+    const auto& ci = model.coordinates[i];
+    if (L.has(ci.q)) terms.h[i] += L.diff(ci.q);
+    if (!L.has(ci.v)) continue;
+    const GiNaC::ex p = L.diff(ci.v);  // generalised momentum of coordinate i
+    for (size_t j = 0; j < n; ++j) {
+      const auto& cj = model.coordinates[j];
+      if (p.has(cj.v)) terms.M(i, j) += p.diff(cj.v);
+      if (p.has(cj.q)) terms.h[i] -= p.diff(cj.q) * cj.v;
+    }
+    terms.h[i] -= partial_t(model, p);
+  }
+}
+
+}  // namespace lagrange::symbolic
