@@ -1,0 +1,29 @@
+#pragma once
+// C callbacks handed to SUNDIALS. user_data points at one of these structs; exceptions (including
+// the SimulationError raised for a NaN/Inf result) are caught by `guard` and rethrown by the
+// driver.
+
+#include <sundials/sundials_nvector.h>
+
+#include "integrate/callback_guard.hpp"
+#include "lagrange/integrator.hpp"
+
+namespace lagrange::integration {
+
+/// y' = f(t, y) for ARKODE and CVODE.
+struct OdeCallback {
+  const OdeProblem& problem;
+  CallbackGuard guard;
+  /// ARKRhsFn / CVRhsFn: ydot = f(t, y); returns -1 after storing an exception.
+  static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self);
+};
+
+/// F(t, y, y') for IDA.
+struct DaeCallback {
+  const DaeProblem& problem;
+  CallbackGuard guard;
+  /// IDAResFn: r = F(t, y, y'); returns -1 after storing an exception.
+  static int residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* self);
+};
+
+}  // namespace lagrange::integration

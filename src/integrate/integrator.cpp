@@ -1,0 +1,81 @@
+// Front-end of include/lagrange/integrator.hpp: validates inputs and dispatches on the method.
+
+#include "lagrange/integrator.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "integrate/methods.hpp"
+#include "integrate/output_grid.hpp"
+
+namespace lagrange {
+
+namespace {
+
+/// Throws std::invalid_argument unless the tolerances, step and step limit make sense.
+void validate_options(const IntegratorOptions& options) {
+  if (!std::isfinite(options.rtol) || !std::isfinite(options.atol) || options.rtol < 0.0 ||
+      options.atol < 0.0 || options.rtol + options.atol <= 0.0) {
+    throw std::invalid_argument(fmt::format(
+        "integrator: expected rtol >= 0, atol >= 0, not both 0, got rtol = {}, atol = {}",
+        options.rtol, options.atol));
+  }
+  if (!std::isfinite(options.step) || options.step < 0.0) {
+    throw std::invalid_argument(
+        fmt::format("integrator: expected step >= 0 (0 = output step / 10), got {}", options.step));
+  }
+  if (options.max_steps <= 0) {
+    throw std::invalid_argument(
+        fmt::format("integrator: expected max_steps > 0, got {}", options.max_steps));
+  }
+}
+
+/// Throws std::invalid_argument unless a state vector has the problem's (non-zero) size.
+void validate_size(size_t size, size_t got, const char* what) {
+  if (size == 0) throw std::invalid_argument("integrator: expected a problem size > 0, got 0");
+  if (got != size) {
+    throw std::invalid_argument(
+        fmt::format("integrator: {} has the wrong size, expected {}, got {}", what, size, got));
+  }
+}
+
+}  // namespace
+
+IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& options, double t0,
+                          std::vector<double> y0, double t_end, double dt,
+                          const Observer& observer) {
+  const std::string& method = options.method;
+  if (method != "arkode" && method != "cvode" && method != "rk4") {
+    throw std::invalid_argument(
+        fmt::format("integrator: unknown ODE method '{}', expected one of arkode, cvode, rk4{}",
+                    method, method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
+  }
+  validate_options(options);
+  validate_size(problem.size, y0.size(), "y0");
+  if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
+  const integration::OutputGrid grid(t0, t_end, dt);
+  if (method == "arkode")
+    return integration::integrate_arkode(problem, options, grid, y0, observer);
+  if (method == "cvode") return integration::integrate_cvode(problem, options, grid, y0, observer);
+  return integration::integrate_rk4(problem, options, grid, y0, observer);
+}
+
+IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
+                              double t0, std::vector<double> y0, std::vector<double> yp0,
+                              double t_end, double dt, const Observer& observer) {
+  if (options.method != "ida") {
+    throw std::invalid_argument(
+        fmt::format("integrator: unknown DAE method '{}', expected ida", options.method));
+  }
+  validate_options(options);
+  validate_size(problem.size, y0.size(), "y0");
+  validate_size(problem.size, yp0.size(), "yp0");
+  validate_size(problem.size, problem.differential.size(), "differential");
+  if (!problem.residual) throw std::invalid_argument("integrator: the DAE has no residual");
+  const integration::OutputGrid grid(t0, t_end, dt);
+  return integration::integrate_ida(problem, options, grid, y0, yp0, observer);
+}
+
+}  // namespace lagrange

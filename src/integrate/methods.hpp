@@ -1,0 +1,32 @@
+#pragma once
+// One function per integration method; inputs are validated by the front-end (integrator.cpp).
+// Each integrates `y` (and `yp`) in place along `grid`, calling `observer` at every sample.
+
+#include <vector>
+
+#include "integrate/output_grid.hpp"
+#include "lagrange/integrator.hpp"
+
+namespace lagrange::integration {
+
+/// ARKODE ERKStep, explicit adaptive Runge–Kutta of the default order (4).
+IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOptions& options,
+                                 const OutputGrid& grid, std::vector<double>& y,
+                                 const Observer& observer);
+
+/// CVODE BDF (orders 1–5) with Newton iteration and a dense direct linear solver.
+IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptions& options,
+                                const OutputGrid& grid, std::vector<double>& y,
+                                const Observer& observer);
+
+/// Classical fixed-step RK4, an integer number of equal steps per output interval.
+IntegratorStats integrate_rk4(const OdeProblem& problem, const IntegratorOptions& options,
+                              const OutputGrid& grid, std::vector<double>& y,
+                              const Observer& observer);
+
+/// IDA (variable-order BDF for F(t, y, y') = 0) with a dense linear solver and IDACalcIC.
+IntegratorStats integrate_ida(const DaeProblem& problem, const IntegratorOptions& options,
+                              const OutputGrid& grid, std::vector<double>& y,
+                              std::vector<double>& yp, const Observer& observer);
+
+}  // namespace lagrange::integration
