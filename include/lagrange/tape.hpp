@@ -36,25 +36,33 @@ class Tape {
   /// computing exactly what eval computes.
   std::string to_c(const std::string& function_name) const;
 
-  /// Instruction set (public so tests and the emitter can inspect it).
+  /// Instruction set (public so tests and the emitter can inspect it). Operand layouts:
+  /// Const c; Input in[a]; Sum Σᵢ coeffs_[a+i]·r[args_[a+i]] (i < b), then + c if c ≠ 0;
+  /// Prod c·Πᵢ r[args_[a+i]]; PowInt r[a]^c by repeated multiplication (1/… if c < 0);
+  /// Div, Pow, Atan2 of (r[a], r[b]); unary ops of r[a]. SumProd is the fused sum of
+  /// products of DESIGN.md §8: b terms starting at args_[a], each stored as its factor count
+  /// k = args_[p], coefficient coeffs_[p] and factor registers args_[p+1 … p+k]; the value is
+  /// Σ coeff·r[f₁]·…·r[f_k] (left to right), then + c if c ≠ 0.
+  // clang-format off
   enum class Op : std::uint8_t {
     Const, Input, Sum, Prod, Neg, Inv, Div, PowInt, Pow, Sqrt, Sin, Cos, Tan, Asin, Acos,
-    Atan, Atan2, Sinh, Cosh, Tanh, Exp, Log, Abs
+    Atan, Atan2, Sinh, Cosh, Tanh, Exp, Log, Abs, SumProd
   };
+  // clang-format on
   struct Instr {
     Op op;
-    std::uint32_t dst;       ///< register written
-    std::uint32_t a = 0;     ///< first operand register, input index, or start in `args_`
-    std::uint32_t b = 0;     ///< second operand register, or argument count
-    double c = 0.0;          ///< constant, integer exponent, or leading coefficient
+    std::uint32_t dst;    ///< register written
+    std::uint32_t a = 0;  ///< first operand register, input index, or start in `args_`
+    std::uint32_t b = 0;  ///< second operand register, or argument count
+    double c = 0.0;       ///< constant, integer exponent, or leading coefficient
   };
 
  private:
   size_t num_inputs_ = 0;
   size_t num_registers_ = 0;
   std::vector<Instr> code_;
-  std::vector<std::uint32_t> args_;  ///< operand lists of Sum/Prod
-  std::vector<double> coeffs_;       ///< per-operand coefficients of Sum
+  std::vector<std::uint32_t> args_;     ///< operand lists of Sum/Prod
+  std::vector<double> coeffs_;          ///< parallel to args_: coefficients of Sum / SumProd
   std::vector<std::uint32_t> outputs_;  ///< register of each output
 };
 

@@ -1,0 +1,21 @@
+#pragma once
+// GiNaC-level rewrite Σᵢ cᵢ·aᵢ·X → X·(Σᵢ cᵢ·aᵢ) applied before a tape is emitted (DESIGN.md §8).
+
+#include <ginac/ginac.h>
+
+#include <vector>
+
+namespace lagrange {
+
+/// Pulls common factors out of every sum in `e`: terms cᵢ·aᵢ·X whose remainder X (after
+/// removing one plain symbol factor aᵢ) is the same expression become X·(Σ cᵢ·aᵢ). Sums
+/// anywhere in the DAG are rewritten bottom-up, each distinct subexpression once; the cost is
+/// linear in the number of terms times the square of their factor count (no expand/collect).
+/// Unlike GiNaC::collect_common_factors (found by argument-dependent lookup, so qualify the
+/// call), it never computes polynomial gcds.
+GiNaC::ex collect_common_factors(const GiNaC::ex& e);
+
+/// collect_common_factors over several expressions, sharing the work on common subexpressions.
+std::vector<GiNaC::ex> collect_common_factors(const std::vector<GiNaC::ex>& es);
+
+}  // namespace lagrange
