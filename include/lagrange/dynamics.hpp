@@ -38,6 +38,11 @@ class Dynamics {
   /// Throws SimulationError naming t and the state when M or G M⁻¹Gᵀ is singular.
   void forward(double t, const double* q, const double* v, double* qdot, double* a, double* lambda);
 
+  /// Residual of the index-1 DAE in (q, v, λ) used with IDA (DESIGN.md §4.3):
+  ///   r_q = q' − q̇(q, v),  r_v = M v' + Gᵀλ − (h + Q),  r_λ = G v' + c + 2αĊ + α²C.
+  void dae_residual(double t, const double* q, const double* v, const double* qp, const double* vp,
+                    const double* lambda, double* r);
+
   /// T, U and the model's outputs at (t, q, v), written to `out` (2 + outputs values).
   void observe(double t, const double* q, const double* v, double* out);
   /// Constraint values C and Ċ at (t, q, v).
@@ -54,8 +59,11 @@ class Dynamics {
  private:
   void load_inputs(double t, const double* q, const double* v);
   void eval_dynamics(double t, const double* q, const double* v);
+  void assemble_M();
   void assemble_G();
+  void solve_full_kkt(double t);
   [[noreturn]] void fail_singular(double t, const std::string& what) const;
+  [[noreturn]] void fail_redundant(double t) const;
 
   std::shared_ptr<const CompiledModel> model_;
   std::vector<double> params_;
@@ -65,6 +73,9 @@ class Dynamics {
   Eigen::MatrixXd M_, G_, Y_, S_;
   Eigen::VectorXd rhs_, a_, gamma_, lambda_;
   Eigen::LLT<Eigen::MatrixXd> llt_M_, llt_S_;
+  Eigen::MatrixXd K_;  // full KKT matrix, used only when M is singular
+  Eigen::VectorXd kkt_rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_K_;
 };
 
 }  // namespace lagrange

@@ -46,4 +46,8 @@ Equations derive(const Model& model);
 /// and tests); normalised. Throws std::invalid_argument when constrained or n > 4.
 std::vector<GiNaC::ex> solve_accelerations(const Equations& eq);
 
+/// A canonical rational form with sin² + cos² = 1 applied (for display and for symbolic
+/// equality tests: a and b are equal when simplify(a − b) is zero).
+GiNaC::ex simplify(const GiNaC::ex& e);
+
 }  // namespace lagrange

@@ -48,6 +48,9 @@ Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<doubl
   lambda_.setZero(cm.m);
   llt_M_ = Eigen::LLT<Eigen::MatrixXd>(cm.n);
   llt_S_ = Eigen::LLT<Eigen::MatrixXd>(cm.m);
+  K_.setZero(cm.n + cm.m, cm.n + cm.m);
+  kkt_rhs_.setZero(cm.n + cm.m);
+  lu_K_ = Eigen::PartialPivLU<Eigen::MatrixXd>(cm.n + cm.m);
   set_parameters(parameters);
 }
 
@@ -88,6 +91,15 @@ void Dynamics::assemble_G() {
     G_(static_cast<long>(cm.G_pattern[e].first), static_cast<long>(cm.G_pattern[e].second)) = g[e];
 }
 
+void Dynamics::assemble_M() {
+  const CompiledModel& cm = *model_;
+  for (size_t e = 0; e < cm.M_pattern.size(); ++e) {
+    const long i = static_cast<long>(cm.M_pattern[e].first);
+    const long j = static_cast<long>(cm.M_pattern[e].second);
+    M_(i, j) = M_(j, i) = out_[e];
+  }
+}
+
 void Dynamics::fail_singular(double t, const std::string& what) const {
   const CompiledModel& cm = *model_;
   throw SimulationError(
@@ -96,56 +108,107 @@ void Dynamics::fail_singular(double t, const std::string& what) const {
                      format_values(cm.coordinate_names, in_.data() + cm.v_offset(), "_dot")));
 }
 
+void Dynamics::fail_redundant(double t) const {
+  const CompiledModel& cm = *model_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(G_.transpose());
+  std::string names;
+  const auto perm = qr.colsPermutation().indices();
+  for (long r = qr.rank(); r < perm.size(); ++r)
+    names += (names.empty() ? "'" : ", '") + cm.constraint_names[static_cast<size_t>(perm[r])] + "'";
+  if (names.empty())
+    fail_singular(t, "the mass matrix is singular on the constraint manifold (the KKT system "
+                     "has no unique solution)");
+  fail_singular(t, fmt::format("the constraints are redundant or singular (rank {} of {}; "
+                               "dependent: {})",
+                               qr.rank(), cm.m, names));
+}
+
 // DESIGN.md §4.3, range-space solution of the KKT system:
 //   a₀ = M⁻¹(h + Q), Y = M⁻¹Gᵀ, (G Y) λ = G a₀ − γ, a = a₀ − Y λ,  γ = −c − 2αĊ − α²C.
+// When M alone is singular (a coordinate whose inertia only the constraints supply) the
+// whole symmetric KKT matrix is factorised instead.
 void Dynamics::forward(double t, const double* q, const double* v, double* qdot, double* a,
                        double* lambda) {
   const CompiledModel& cm = *model_;
   eval_dynamics(t, q, v);
   const double* out = out_.data();
-  for (size_t e = 0; e < cm.M_pattern.size(); ++e) {
-    const auto [i, j] = cm.M_pattern[e];
-    M_(static_cast<long>(i), static_cast<long>(j)) = out[e];
-    M_(static_cast<long>(j), static_cast<long>(i)) = out[e];
-  }
+  assemble_M();
   for (size_t i = 0; i < cm.n; ++i) {
     rhs_[static_cast<long>(i)] = out[cm.rhs_out() + i];
     qdot[i] = out[cm.qdot_out() + i];
   }
-  llt_M_.compute(M_);
-  if (ill_conditioned(llt_M_, M_)) fail_singular(t, "the mass matrix is singular or indefinite");
-  a_ = rhs_;
-  llt_M_.solveInPlace(a_);
   if (cm.m > 0) {
     assemble_G();
     for (size_t r = 0; r < cm.m; ++r)
       gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] -
                                      2.0 * alpha_ * out[cm.Cdot_out() + r] -
                                      alpha_ * alpha_ * out[cm.C_out() + r];
-    Y_ = G_.transpose();
-    llt_M_.solveInPlace(Y_);
-    S_.noalias() = G_ * Y_;
-    llt_S_.compute(S_);
-    if (ill_conditioned(llt_S_, S_)) {
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(G_.transpose());
-      std::string names;
-      const auto perm = qr.colsPermutation().indices();
-      for (long r = qr.rank(); r < perm.size(); ++r)
-        names += (names.empty() ? "'" : ", '") + cm.constraint_names[static_cast<size_t>(perm[r])] + "'";
-      fail_singular(t, fmt::format("the constraints are redundant or singular (rank {} of {}; "
-                                   "dependent: {})",
-                                   qr.rank(), cm.m, names.empty() ? "ill-conditioned" : names));
-    }
-    lambda_.noalias() = G_ * a_;
-    lambda_ -= gamma_;
-    llt_S_.solveInPlace(lambda_);
-    a_.noalias() -= Y_ * lambda_;
-    for (size_t r = 0; r < cm.m; ++r) lambda[r] = lambda_[static_cast<long>(r)];
   }
+  llt_M_.compute(M_);
+  if (ill_conditioned(llt_M_, M_)) {
+    if (cm.m == 0) fail_singular(t, "the mass matrix is singular or indefinite");
+    solve_full_kkt(t);
+  } else {
+    a_ = rhs_;
+    llt_M_.solveInPlace(a_);
+    if (cm.m > 0) {
+      Y_ = G_.transpose();
+      llt_M_.solveInPlace(Y_);
+      S_.noalias() = G_ * Y_;
+      llt_S_.compute(S_);
+      if (ill_conditioned(llt_S_, S_)) fail_redundant(t);
+      lambda_.noalias() = G_ * a_;
+      lambda_ -= gamma_;
+      llt_S_.solveInPlace(lambda_);
+      a_.noalias() -= Y_ * lambda_;
+    }
+  }
+  for (size_t r = 0; r < cm.m; ++r) lambda[r] = lambda_[static_cast<long>(r)];
   for (size_t i = 0; i < cm.n; ++i) {
     a[i] = a_[static_cast<long>(i)];
     if (!std::isfinite(a[i]) || !std::isfinite(qdot[i]))
       fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
+  }
+}
+
+// [M Gᵀ; G 0][a; λ] = [h + Q; γ] by LU with partial pivoting (DESIGN.md §4.3).
+void Dynamics::solve_full_kkt(double t) {
+  const CompiledModel& cm = *model_;
+  const long n = static_cast<long>(cm.n), m = static_cast<long>(cm.m);
+  K_.topLeftCorner(n, n) = M_;
+  K_.topRightCorner(n, m) = G_.transpose();
+  K_.bottomLeftCorner(m, n) = G_;
+  K_.bottomRightCorner(m, m).setZero();
+  kkt_rhs_.head(n) = rhs_;
+  kkt_rhs_.tail(m) = gamma_;
+  lu_K_.compute(K_);
+  const auto d = lu_K_.matrixLU().diagonal().cwiseAbs();
+  if (!(d.minCoeff() > 1e-13 * d.maxCoeff())) fail_redundant(t);
+  kkt_rhs_ = lu_K_.solve(kkt_rhs_);
+  a_ = kkt_rhs_.head(n);
+  lambda_ = kkt_rhs_.tail(m);
+}
+
+void Dynamics::dae_residual(double t, const double* q, const double* v, const double* qp,
+                            const double* vp, const double* lambda, double* r) {
+  const CompiledModel& cm = *model_;
+  const long n = static_cast<long>(cm.n), m = static_cast<long>(cm.m);
+  eval_dynamics(t, q, v);
+  assemble_M();
+  assemble_G();
+  const Eigen::Map<const Eigen::VectorXd> vpv(vp, n), lam(lambda, m);
+  Eigen::Map<Eigen::VectorXd> rv(r + n, n), rl(r + 2 * n, m);
+  for (long i = 0; i < n; ++i) r[i] = qp[i] - out_[cm.qdot_out() + static_cast<size_t>(i)];
+  rv.noalias() = M_ * vpv;
+  if (m > 0) rv.noalias() += G_.transpose() * lam;
+  for (long i = 0; i < n; ++i) rv[i] -= out_[cm.rhs_out() + static_cast<size_t>(i)];
+  if (m > 0) {
+    rl.noalias() = G_ * vpv;
+    for (long k = 0; k < m; ++k) {
+      const size_t kk = static_cast<size_t>(k);
+      rl[k] += out_[cm.c_out() + kk] + 2.0 * alpha_ * out_[cm.Cdot_out() + kk] +
+               alpha_ * alpha_ * out_[cm.C_out() + kk];
+    }
   }
 }
 

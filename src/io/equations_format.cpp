@@ -12,17 +12,20 @@ namespace {
 
 enum class Style { Text, Latex };
 
-// Small expressions are normalised for display; large ones are printed as derived.
+size_t printed_size(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str().size();
+}
+
+// Small expressions are shown in their shortest form among: as derived, expanded, and
+// simplified with sin² + cos² = 1 (lagrange::simplify).
 GiNaC::ex tidy(const GiNaC::ex& e) {
-  std::ostringstream probe;
-  probe << e;
-  if (probe.str().size() > 400) return e;
-  GiNaC::ex x = e.expand();
-  GiNaC::ex n = e.normal();
-  std::ostringstream sx, sn;
-  sx << x;
-  sn << n;
-  return sn.str().size() < sx.str().size() ? n : x;
+  if (printed_size(e) > 600) return e;
+  GiNaC::ex best = e;
+  for (const GiNaC::ex& c : {e.expand(), simplify(e), simplify(e).expand()})
+    if (printed_size(c) < printed_size(best)) best = c;
+  return best;
 }
 
 std::string str(const GiNaC::ex& e, Style style) {

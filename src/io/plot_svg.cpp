@@ -11,14 +11,21 @@ namespace lagrange {
 
 namespace {
 
-std::string quoted(const std::string& s) {
-  std::string r = "\"";
+// A gnuplot single-quoted string (no escapes inside; a quote is doubled).
+std::string literal(const std::string& s) {
+  std::string r = "'";
+  for (char c : s) r += c == '\'' ? std::string("''") : std::string(1, c);
+  return r + "'";
+}
+
+// Enhanced-text label: underscores and carets shown literally, not as sub/superscripts.
+std::string label(const std::string& s) {
+  std::string r;
   for (char c : s) {
-    if (c == '"' || c == '\\') r += '\\';
-    if (c == '_') r += "\\\\";  // gnuplot enhanced text: literal underscore
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&') r += '\\';
     r += c;
   }
-  return r + "\"";
+  return literal(r);
 }
 
 }  // namespace
@@ -33,7 +40,7 @@ void plot_trajectory_svg(const Trajectory& traj, const std::vector<std::string>&
   std::string script = fmt::format(
       "set terminal svg size 900,500 dynamic enhanced font 'sans,12' background '#ffffff'\n"
       "set output {}\nset title {}\nset xlabel 't [s]'\nset grid\nset key outside right\n",
-      quoted(tmp), quoted(title));
+      literal(tmp), label(title));
   script += "$data << EOD\n";
   const size_t nc = traj.columns.size();
   for (size_t r = 0; r < traj.rows(); ++r) {
@@ -44,7 +51,7 @@ void plot_trajectory_svg(const Trajectory& traj, const std::vector<std::string>&
   script += "EOD\nplot ";
   for (size_t k = 0; k < idx.size(); ++k)
     script += fmt::format("{}$data using 1:{} with lines lw 2 title {}", k ? ", " : "", k + 2,
-                          quoted(columns[k]));
+                          label(columns[k]));
   script += "\nset output\n";
   FILE* pipe = popen("gnuplot 2>&1", "w");
   if (pipe == nullptr) throw std::runtime_error("cannot start gnuplot");

@@ -110,44 +110,66 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   const size_t n = cm.n, m = cm.m;
   Trajectory traj;
   traj.columns = trajectory_columns(cm);
-  std::vector<double> row;
+  std::vector<double> row, C(m), Cdot(m), lambda(m), qdot(n), acc(n);
+  const bool dae = opt.integrator.method == "ida";
+  // At each output sample: check the state is finite, project drift away (DESIGN.md §4.3),
+  // record the row, honour interruption.
+  Observer observer = [&](double t, double* yy, double* yp) {
+    ObserverAction action = ObserverAction::Continue;
+    for (size_t i = 0; i < 2 * n; ++i)
+      if (!std::isfinite(yy[i]))
+        throw SimulationError(t, fmt::format("the state is not finite ({} = {})",
+                                             i < n ? cm.coordinate_names[i]
+                                                   : cm.coordinate_names[i - n] + "_dot",
+                                             yy[i]));
+    if (m > 0 && opt.project) {
+      dyn.constraints(t, yy, yy + n, C.data(), Cdot.data());
+      if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
+        dyn.project(t, yy, yy + n, std::vector<bool>(n, false), 1e-13);
+        if (dae) {  // keep (λ, y') consistent with the projected state
+          dyn.forward(t, yy, yy + n, yp, yp + n, yy + 2 * n);
+          std::fill(yp + 2 * n, yp + 2 * n + m, 0.0);
+        }
+        action = ObserverAction::StateChanged;
+      }
+    }
+    append_row(dyn, t, yy, yy + n, row, traj);
+    if (opt.progress) opt.progress(t);
+    if (opt.interrupt != nullptr && opt.interrupt->load()) {
+      traj.status = Trajectory::Status::Interrupted;
+      traj.message = fmt::format("interrupted at t = {:.6g}", t);
+      return ObserverAction::Stop;
+    }
+    return action;
+  };
   try {
     make_consistent(dyn, opt, q0, v0, traj);
-    std::vector<double> y(2 * n);
-    std::copy(q0.begin(), q0.end(), y.begin());
-    std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
-    std::vector<double> lambda(m);
-    OdeProblem ode;
-    ode.size = 2 * n;
-    ode.rhs = [&dyn, n, &lambda](double t, const double* yy, double* yd) {
-      dyn.forward(t, yy, yy + n, yd, yd + n, lambda.data());
-    };
-    std::vector<double> C(m), Cdot(m);
-    Observer observer = [&](double t, double* yy, double*) {
-      ObserverAction action = ObserverAction::Continue;
-      for (size_t i = 0; i < 2 * n; ++i)
-        if (!std::isfinite(yy[i]))
-          throw SimulationError(t, fmt::format("the state is not finite ({} = {})",
-                                               i < n ? cm.coordinate_names[i]
-                                                     : cm.coordinate_names[i - n] + "_dot",
-                                               yy[i]));
-      if (m > 0 && opt.project) {
-        dyn.constraints(t, yy, yy + n, C.data(), Cdot.data());
-        if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
-          dyn.project(t, yy, yy + n, std::vector<bool>(n, false), 1e-13);
-          action = ObserverAction::StateChanged;
-        }
-      }
-      append_row(dyn, t, yy, yy + n, row, traj);
-      if (opt.progress) opt.progress(t);
-      if (opt.interrupt != nullptr && opt.interrupt->load()) {
-        traj.status = Trajectory::Status::Interrupted;
-        traj.message = fmt::format("interrupted at t = {:.6g}", t);
-        return ObserverAction::Stop;
-      }
-      return action;
-    };
-    traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
+    if (dae) {
+      // Index-1 DAE in (q, v, λ) for IDA, started from the forward-dynamics solution.
+      std::vector<double> y(2 * n + m), yp(2 * n + m, 0.0);
+      std::copy(q0.begin(), q0.end(), y.begin());
+      std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
+      dyn.forward(opt.t0, q0.data(), v0.data(), yp.data(), yp.data() + n, y.data() + 2 * n);
+      DaeProblem problem;
+      problem.size = 2 * n + m;
+      problem.differential.assign(2 * n + m, true);
+      std::fill(problem.differential.begin() + static_cast<long>(2 * n), problem.differential.end(), false);
+      problem.residual = [&dyn, n](double t, const double* yy, const double* ypp, double* r) {
+        dyn.dae_residual(t, yy, yy + n, ypp, ypp + n, yy + 2 * n, r);
+      };
+      traj.stats = integrate_dae(problem, opt.integrator, opt.t0, y, yp, opt.t_end, opt.output_step,
+                                 observer);
+    } else {
+      std::vector<double> y(2 * n);
+      std::copy(q0.begin(), q0.end(), y.begin());
+      std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
+      OdeProblem ode;
+      ode.size = 2 * n;
+      ode.rhs = [&dyn, n, &lambda](double t, const double* yy, double* yd) {
+        dyn.forward(t, yy, yy + n, yd, yd + n, lambda.data());
+      };
+      traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
+    }
   } catch (const SimulationError& e) {
     traj.status = Trajectory::Status::Failed;
     traj.message = e.what();

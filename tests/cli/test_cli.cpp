@@ -1,0 +1,155 @@
+// The `lagrange` command end to end: exit codes, messages, files written or not.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(LAGRANGE_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf{};
+  size_t got;
+  while ((got = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), got);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string example(const std::string& name) {
+  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "lagrange_cli_test";
+  fs::create_directories(dir);
+  fs::remove(dir / name);
+  fs::remove(dir / (name + ".json"));
+  return dir / name;
+}
+
+fs::path write_model(const std::string& name, const std::string& text) {
+  const fs::path p = scratch(name);
+  std::ofstream(p) << text;
+  return p;
+}
+
+TEST(Cli, SimulateWritesCsvSidecarAndPlot) {
+  const fs::path csv = scratch("dp.csv"), svg = scratch("dp.svg");
+  const Result r = run("simulate " + example("double_pendulum.yaml") + " --t-end 1 -o " +
+                       csv.string() + " --plot " + svg.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,theta1,theta2,theta1_dot,theta2_dot,kinetic,potential,energy,x2,y2");
+  EXPECT_TRUE(fs::exists(csv.string() + ".json"));
+  std::ifstream plot(svg);
+  std::string first;
+  std::getline(plot, first);
+  EXPECT_NE(first.find("<?xml"), std::string::npos);
+}
+
+TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
+  const fs::path a = scratch("a.csv"), b = scratch("b.csv");
+  ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 1 -o " + a.string()).code, 0);
+  ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 2 --set l=4 -o " + b.string()).code, 0);
+  auto last_theta = [](const fs::path& p) {
+    std::ifstream in(p);
+    std::string line, last;
+    while (std::getline(in, line)) last = line;
+    return std::stod(last.substr(last.find(',') + 1));
+  };
+  EXPECT_NEAR(last_theta(a), last_theta(b), 1e-6);  // l → 4l doubles the time scale
+  const Result bad = run("simulate " + example("pendulum.yaml") + " --set nope=1");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("unknown parameter 'nope'"), std::string::npos) << bad.output;
+}
+
+TEST(Cli, DeriveShowsSeedEquation) {
+  const Result r = run("derive " + example("pendulum.yaml"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("Mass matrix"), std::string::npos);
+  const Result tex = run("derive " + example("cartesian_pendulum.yaml") + " --format latex");
+  ASSERT_EQ(tex.code, 0) << tex.output;
+  EXPECT_NE(tex.output.find("\\begin{align*}"), std::string::npos);
+  const Result json = run("derive " + example("elastic_pendulum.yaml") + " --format json");
+  ASSERT_EQ(json.code, 0) << json.output;
+  EXPECT_NE(json.output.find("\"M\""), std::string::npos);
+}
+
+struct BadCase {
+  const char* name;
+  const char* yaml;
+  const char* location;  // expected "file:line:column" suffix after the file name
+  const char* fragment;  // expected in the message
+};
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ExitsWithOneNamesThePlaceAndWritesNothing) {
+  const BadCase& c = GetParam();
+  const fs::path model = write_model(std::string(c.name) + ".yaml", c.yaml);
+  const fs::path csv = scratch(std::string(c.name) + ".csv");
+  const Result r = run("simulate " + model.string() + " -o " + csv.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find(model.string() + ":" + c.location), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(c.fragment), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(csv));
+  EXPECT_FALSE(fs::exists(csv.string() + ".json"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadInput,
+    ::testing::Values(
+        BadCase{"yaml_syntax", "name: x\ncoordinates:\n  q: {initial: 1\n", "4:", "YAML"},
+        BadCase{"unknown_name",
+                "coordinates:\n  q: {initial: 1}\npotential: k*q^2\n", "3:12", "'k'"},
+        BadCase{"wrong_vector_size",
+                "coordinates:\n  q: {initial: 1}\npoints:\n  p: [q, 0]\n", "4:", "3"},
+        BadCase{"missing_initial",
+                "coordinates:\n  q: {rate: 1}\n", "2:", "initial"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Cli, MissingFileIsAModelError) {
+  const Result r = run("simulate /nonexistent/model.yaml");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("/nonexistent/model.yaml"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(run("simulate").code, 2);
+  EXPECT_EQ(run("frobnicate x").code, 2);
+}
+
+TEST(Cli, CheckReportsInconsistentInitialState) {
+  const fs::path model = write_model("inconsistent.yaml", R"(name: off
+parameters: {m: 1, g: 9.81, l: 1}
+coordinates:
+  x: {initial: 0.9}
+  y: {initial: -0.6}
+points: {bob: [x, y, 0]}
+particles: {bob: m}
+gravity: [0, -g, 0]
+constraints: {rod: (x^2 + y^2 - l^2)/2}
+)");
+  const Result r = run("check " + model.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("inconsistent"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("x: 0.9 ->"), std::string::npos) << r.output;
+  EXPECT_EQ(run("check " + example("cartesian_pendulum.yaml")).code, 0);
+}
+
+}  // namespace

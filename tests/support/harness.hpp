@@ -1,0 +1,79 @@
+#pragma once
+// Test helpers: load an example, look up symbols by name, run a simulation.
+
+#include <ginac/ginac.h>
+
+#include <memory>
+#include <string>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/model.hpp"
+#include "lagrange/reader.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange::testing {
+
+inline std::string example_path(const std::string& name) {
+  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
+}
+
+/// Symbol of a parameter, coordinate (q, or v with suffix "_dot", a with "_ddot") or input.
+inline GiNaC::symbol sym(const Model& m, const std::string& name) {
+  for (const auto& p : m.parameters)
+    if (p.name == name) return p.sym;
+  for (const auto& c : m.coordinates) {
+    if (c.name == name) return c.q;
+    if (c.name + "_dot" == name) return c.v;
+    if (c.name + "_ddot" == name) return c.a;
+  }
+  for (const auto& u : m.inputs)
+    if (u.name == name) return u.u;
+  throw std::invalid_argument("no symbol " + name);
+}
+
+/// True when a − b normalises to zero (symbolic equality of canonical forms).
+inline bool same(const GiNaC::ex& a, const GiNaC::ex& b) { return simplify(a - b).is_zero(); }
+
+/// A model with everything needed to simulate it.
+struct Loaded {
+  std::unique_ptr<Model> model;
+  std::shared_ptr<const CompiledModel> compiled;
+  std::unique_ptr<Dynamics> dynamics;
+
+  /// Simulation options from the model file's `simulate:` and `stabilization:` keys.
+  SimulationOptions options() const {
+    SimulationOptions so;
+    so.t_end = model->simulate.t_end;
+    so.output_step = model->simulate.output_step;
+    so.integrator.method = model->simulate.integrator;
+    so.integrator.rtol = model->simulate.rtol;
+    so.integrator.atol = model->simulate.atol;
+    so.integrator.step = model->simulate.step;
+    so.project = model->stabilization.project;
+    return so;
+  }
+  Trajectory run(const SimulationOptions& so) {
+    return simulate(*dynamics, so, compiled->q0, compiled->v0);
+  }
+};
+
+inline Loaded load_model(std::unique_ptr<Model> model) {
+  Loaded l;
+  l.model = std::move(model);
+  l.compiled = compile(derive(*l.model));
+  l.dynamics = std::make_unique<Dynamics>(l.compiled, l.compiled->parameter_defaults);
+  l.dynamics->set_baumgarte(l.model->stabilization.alpha);
+  return l;
+}
+
+inline Loaded load_example(const std::string& name) {
+  return load_model(std::make_unique<Model>(read_model_file(example_path(name))));
+}
+
+inline Loaded load_string(const std::string& yaml) {
+  return load_model(std::make_unique<Model>(read_model_string(yaml, "<test>")));
+}
+
+}  // namespace lagrange::testing
