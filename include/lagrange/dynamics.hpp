@@ -10,6 +10,10 @@
 
 namespace lagrange {
 
+namespace dynamics {
+class SparseRangeSpace;
+}
+
 /// Result of projecting a state onto the constraint manifold.
 struct ProjectionResult {
   double position_change = 0.0;  ///< ‖Δq‖₂
@@ -24,6 +28,9 @@ struct ProjectionResult {
 class Dynamics {
  public:
   Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters);
+  ~Dynamics();
+  Dynamics(Dynamics&&) noexcept;
+  Dynamics& operator=(Dynamics&&) noexcept;
 
   const CompiledModel& model() const { return *model_; }
   const std::vector<double>& parameters() const { return params_; }
@@ -76,6 +83,8 @@ class Dynamics {
   Eigen::MatrixXd K_;  // full KKT matrix, used only when M is singular
   Eigen::VectorXd kkt_rhs_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_K_;
+  std::unique_ptr<dynamics::SparseRangeSpace> sparse_;  // diagonal M with many constraints
+  std::vector<double> m_diag_;
 };
 
 }  // namespace lagrange

@@ -3,12 +3,15 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dynamics/sparse_range_space.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 
 namespace lagrange {
 
 namespace {
+
+constexpr size_t kSparseThreshold = 24;  // coordinates; below it dense LLT is faster
 
 // Smallest squared pivot of a Cholesky factor relative to the largest diagonal entry of the
 // factored matrix: a conditioning test that costs O(n).
@@ -51,8 +54,18 @@ Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<doubl
   K_.setZero(cm.n + cm.m, cm.n + cm.m);
   kkt_rhs_.setZero(cm.n + cm.m);
   lu_K_ = Eigen::PartialPivLU<Eigen::MatrixXd>(cm.n + cm.m);
+  // A diagonal M with many constraints (chains in Cartesian coordinates) takes the sparse
+  // range-space path; small systems stay dense, where it is faster.
+  if (cm.M_diagonal && cm.m > 0 && cm.n >= kSparseThreshold && cm.M_pattern.size() == cm.n) {
+    sparse_ = std::make_unique<dynamics::SparseRangeSpace>(cm);
+    m_diag_.assign(cm.n, 0.0);
+  }
   set_parameters(parameters);
 }
+
+Dynamics::~Dynamics() = default;
+Dynamics::Dynamics(Dynamics&&) noexcept = default;
+Dynamics& Dynamics::operator=(Dynamics&&) noexcept = default;
 
 void Dynamics::set_parameters(const std::vector<double>& values) {
   const CompiledModel& cm = *model_;
@@ -143,6 +156,15 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
       gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] -
                                      2.0 * alpha_ * out[cm.Cdot_out() + r] -
                                      alpha_ * alpha_ * out[cm.C_out() + r];
+  }
+  if (sparse_) {
+    for (size_t e = 0; e < cm.n; ++e) m_diag_[cm.M_pattern[e].first] = out[e];
+    if (sparse_->solve(m_diag_.data(), out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
+      for (size_t i = 0; i < cm.n; ++i)
+        if (!std::isfinite(a[i]) || !std::isfinite(qdot[i]))
+          fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
+      return;
+    }  // otherwise the dense path below diagnoses the failure
   }
   llt_M_.compute(M_);
   if (ill_conditioned(llt_M_, M_)) {
