@@ -66,7 +66,8 @@ std::string format_text(const Equations& eq, Style style) {
     for (size_t r = 0; r < eq.m; ++r)
       if (!eq.G(r, i).is_zero())
         extra += fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
-    line(str(eq.euler_lagrange_lhs(i), style), str(rhs, style) + extra);
+    std::string right = rhs.is_zero() && !extra.empty() ? extra.substr(1) : str(rhs, style) + extra;
+    line(str(eq.euler_lagrange_lhs(i), style), right);
   }
   heading("Mass matrix M(q)");
   for (size_t i = 0; i < eq.n; ++i)
