@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
@@ -80,6 +81,49 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
   };
 }
 
+// Forward dynamics at the model's initial state, before anything is integrated or written. A
+// mass matrix that is singular there (a zero mass, a zero-length link) is a mistake in the model:
+// it is reported as a ModelError at the coordinate without inertia, naming the parameters its
+// mass-matrix entry depends on, so that no output file is created for a run that cannot start.
+void require_regular_initial_state(const Model& model, const Equations& eq, Dynamics& dyn,
+                                   const std::vector<double>& q, const std::vector<double>& v) {
+  const CompiledModel& cm = dyn.model();
+  std::vector<double> qdot(cm.n), a(cm.n), lambda(cm.m);
+  try {
+    dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+  } catch (const SimulationError& e) {
+    GiNaC::exmap at_start;
+    for (size_t i = 0; i < model.coordinates.size(); ++i) {
+      at_start[model.coordinates[i].q] = q[i];
+      at_start[model.coordinates[i].v] = v[i];
+    }
+    at_start[model.t] = 0;
+    for (size_t j = 0; j < model.parameters.size(); ++j)
+      at_start[model.parameters[j].sym] = dyn.parameters()[j];
+    for (size_t i = 0; i < cm.n; ++i) {
+      const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
+      const GiNaC::ex value = GiNaC::evalf(Mii.subs(at_start));
+      if (!GiNaC::is_a<GiNaC::numeric>(value) || std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
+        continue;
+      std::string depends;
+      for (size_t j = 0; j < model.parameters.size(); ++j)
+        if (Mii.has(model.parameters[j].sym))
+          depends += fmt::format("{}{} = {:g}", depends.empty() ? "" : ", ", model.parameters[j].name,
+                                 dyn.parameters()[j]);
+      const Coordinate& c = model.coordinates[i];
+      std::ostringstream entry;
+      entry << Mii;
+      throw ModelError(c.loc, fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
+                                          "matrix entry M[{},{}] = {} is 0{}; expected positive masses "
+                                          "and non-zero lengths",
+                                          c.name, c.name, c.name, entry.str(),
+                                          depends.empty() ? "" : " with " + depends));
+    }
+    const SourceLoc where = model.coordinates.empty() ? SourceLoc{model.file, 1, 1} : model.coordinates[0].loc;
+    throw ModelError(where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
+  }
+}
+
 }  // namespace
 
 int run_derive(const Options& opt) {
@@ -100,7 +144,8 @@ int run_export(const Options& opt) {
 
 int run_check(const Options& opt) {
   const Model model = read_model_file(opt.model);
-  const auto cm = compile(derive(model));
+  const Equations eq = derive(model);
+  const auto cm = compile(eq);
   Dynamics dyn(cm, parameter_values(*cm, opt.sets));
   dyn.set_baumgarte(model.stabilization.alpha);
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
@@ -129,8 +174,7 @@ int run_check(const Options& opt) {
     }
     fmt::print("initial state is consistent (max residual {:.3e})\n", worst);
   }
-  std::vector<double> qdot(cm->n), a(cm->n), lambda(cm->m);
-  dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+  require_regular_initial_state(model, eq, dyn, q, v);
   fmt::print("mass matrix positive definite at the initial state\n");
   return 0;
 }
@@ -147,6 +191,7 @@ int run_simulate(const Options& opt) {
   const double t_compile = seconds_since(t1);
 
   SimulationOptions so = simulation_options(model, opt);
+  require_regular_initial_state(model, eq, dyn, cm->q0, cm->v0);
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
   const auto t2 = Clock::now();
@@ -176,8 +221,11 @@ int run_simulate(const Options& opt) {
                  traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1,
                  std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300));
       std::string last;
-      for (const auto& name : cm->coordinate_names)
-        last += fmt::format("{}{} = {:.6g}", last.empty() ? "" : ", ", name, traj.at(rows - 1, name));
+      const size_t shown = std::min<size_t>(cm->n, 6);
+      for (size_t i = 0; i < shown; ++i)
+        last += fmt::format("{}{} = {:.6g}", i ? ", " : "", cm->coordinate_names[i],
+                            traj.at(rows - 1, cm->coordinate_names[i]));
+      if (shown < cm->n) last += fmt::format(", … ({} more in the CSV)", cm->n - shown);
       fmt::print("  final state: {}\n", last);
       if (cm->m > 0) {
         double worst = 0;

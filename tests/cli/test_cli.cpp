@@ -97,6 +97,8 @@ struct BadCase {
   const char* fragment;  // expected in the message
 };
 
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadInput, ExitsWithOneNamesThePlaceAndWritesNothing) {
