@@ -12,38 +12,44 @@
 namespace lagrange {
 
 /// Sizes, names and tapes of a derived model. All tapes share the input layout
-/// [t, q(n), v(n), u(k), u̇(k), ü(k), p(np)] (see input_offset()).
+/// [t, q(nq), v(nv), u(k), u̇(k), ü(k), p(np)] (see input_offset()). The last parameter of a
+/// model with free bodies is `stabilization.gamma`, the SO(3) drift correction rate (§4.4).
 struct CompiledModel {
-  size_t n = 0, m = 0, k = 0, np = 0;
-  std::vector<std::string> coordinate_names, constraint_names, output_names, input_names,
-      parameter_names;
+  size_t nq = 0, nv = 0, m = 0, k = 0, np = 0;
+  size_t plain = 0;  ///< leading coordinates with q̇ = v (position index = velocity index)
+  std::vector<std::string> coordinate_names;  ///< nq: plain names, then `<body>.x`, `<body>.R11`, …
+  std::vector<std::string> velocity_names;    ///< nv: `<name>_dot`, then `<body>.vx`, `<body>.wx`, …
+  std::vector<std::string> constraint_names, output_names, input_names, parameter_names;
   std::vector<double> parameter_defaults;
-  std::vector<double> q0, v0;   ///< initial state from the model
-  std::vector<bool> fixed;      ///< coordinates kept by the initial-state projection
+  std::vector<double> q0, v0;   ///< initial state from the model (nq, nv)
+  std::vector<bool> fixed;      ///< nq: coordinates kept by the initial-state projection
 
-  /// Structural non-zeros: M lower triangle (i ≥ j) and G (row, column), in tape output order.
-  std::vector<std::pair<size_t, size_t>> M_pattern, G_pattern;
+  /// Structural non-zeros: M lower triangle (i ≥ j), G (row, velocity column) and ∂C/∂q
+  /// (row, coordinate column), in tape output order.
+  std::vector<std::pair<size_t, size_t>> M_pattern, G_pattern, Cq_pattern;
   bool M_diagonal = false;  ///< M has no structural off-diagonal entries
 
-  /// Outputs: M_pattern values, rhs = h + Q (n), q̇ (n), G_pattern values, c (m), Ċ (m), C (m).
+  /// Outputs: M_pattern values, rhs = h + Q (nv), q̇ (nq), G_pattern values, c (m), Ċ (m),
+  /// C (m), Cq_pattern values.
   Tape dynamics;
   /// Outputs: T, U, then the model's outputs.
   Tape observables;
   /// Outputs: u (k), u̇ (k), ü (k) as functions of t and p.
   Tape inputs;
 
-  size_t input_count() const { return 1 + 2 * n + 3 * k + np; }
+  size_t input_count() const { return 1 + nq + nv + 3 * k + np; }
   size_t q_offset() const { return 1; }
-  size_t v_offset() const { return 1 + n; }
-  size_t u_offset() const { return 1 + 2 * n; }
-  size_t p_offset() const { return 1 + 2 * n + 3 * k; }
+  size_t v_offset() const { return 1 + nq; }
+  size_t u_offset() const { return 1 + nq + nv; }
+  size_t p_offset() const { return 1 + nq + nv + 3 * k; }
   /// Offsets of the blocks in the dynamics tape's outputs.
   size_t rhs_out() const { return M_pattern.size(); }
-  size_t qdot_out() const { return rhs_out() + n; }
-  size_t G_out() const { return qdot_out() + n; }
+  size_t qdot_out() const { return rhs_out() + nv; }
+  size_t G_out() const { return qdot_out() + nq; }
   size_t c_out() const { return G_out() + G_pattern.size(); }
   size_t Cdot_out() const { return c_out() + m; }
   size_t C_out() const { return Cdot_out() + m; }
+  size_t Cq_out() const { return C_out() + m; }
 };
 
 /// Compile derived equations into tapes (common subexpressions shared, parameters kept as

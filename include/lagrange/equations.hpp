@@ -10,30 +10,53 @@
 
 namespace lagrange {
 
+/// State layout and kinematics q̇ = K(q) v (DESIGN.md §2): the model's plain coordinates
+/// first (q̇ = v), then each free body's r, R (9 entries) and ṙ, ω (body frame) (§4.4).
+struct Kinematics {
+  const Model* model = nullptr;
+  std::vector<GiNaC::symbol> q, v, a;  ///< nq, nv, nv symbols
+  std::vector<GiNaC::ex> qdot;         ///< nq expressions of (q, v, γ)
+  std::vector<std::string> q_names, v_names;
+  size_t plain = 0;                    ///< leading coordinates with q̇ = v
+  bool has_gamma = false;              ///< some free body uses the drift correction rate γ
+  GiNaC::symbol gamma{"gamma"};        ///< SO(3) drift correction rate, a tape parameter
+  /// K = ∂q̇/∂v by columns: for each v_k, the non-zeros (j, ∂q̇ⱼ/∂v_k).
+  std::vector<std::vector<std::pair<size_t, GiNaC::ex>>> K;
+};
+
+/// The kinematics of a model: plain coordinates, then free bodies with
+/// Ṙ = R(Ω + Ξ), Ξ = (γ/2)((RᵀR)⁻¹ − 1) (DESIGN.md §4.4).
+Kinematics kinematics(const Model& model);
+
 /// The equations of motion of a model in the form
 ///   M(q,t) a = h(q,v,t) + Q(q,v,t) − Gᵀλ,   C(q,t) = 0,   C̈ = G a + c,
 /// with state (q, v), q̇ = qdot(q, v) (DESIGN.md §2), all symbolic in (t, q, v, u, u̇, ü, p).
 struct Equations {
   const Model* model = nullptr;  ///< the model these were derived from (symbols live there)
-  size_t n = 0;                  ///< number of coordinates
+  Kinematics kin;                ///< state layout, q̇ = K(q) v
+  size_t nq = 0;                 ///< number of position coordinates
+  size_t nv = 0;                 ///< number of velocities (size of M)
   size_t m = 0;                  ///< number of constraints
 
   GiNaC::ex T, U, L;              ///< kinetic, potential energy, L = T − U (λᵀC kept apart)
-  GiNaC::matrix M;                ///< n×n mass matrix ∂²T/∂v∂vᵀ
+  GiNaC::matrix M;                ///< nv×nv mass matrix ∂²T/∂v∂vᵀ
   std::vector<GiNaC::ex> h;       ///< forcing from L: ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂²L/∂v∂t
   std::vector<GiNaC::ex> Q;       ///< non-conservative generalised forces (virtual work)
   std::vector<GiNaC::ex> qdot;    ///< kinematics q̇ = K(q) v (identity for plain coordinates)
 
   std::vector<GiNaC::ex> C;       ///< constraints C(q,t), m of them
-  GiNaC::matrix G;                ///< m×n constraint Jacobian ∂C/∂q
-  std::vector<GiNaC::ex> Cdot;    ///< Ċ = G v + ∂C/∂t
-  std::vector<GiNaC::ex> c;       ///< C̈ − G a: (∂(G v)/∂q) v + 2(∂G/∂t) v + ∂²C/∂t²
+  GiNaC::matrix G;                ///< m×nv constraint Jacobian ∂Ċ/∂v (= ∂C/∂q when q̇ = v)
+  GiNaC::matrix Cq;               ///< m×nq ∂C/∂q, for the position projection
+  std::vector<GiNaC::ex> Cdot;    ///< Ċ = Σ ∂C/∂qⱼ q̇ⱼ + ∂C/∂t
+  std::vector<GiNaC::ex> c;       ///< C̈ − G a: dĊ/dt at a = 0
 
-  std::vector<GiNaC::ex> outputs;  ///< the model's named outputs, in order
+  std::vector<GiNaC::ex> outputs;         ///< named outputs: the model's, then per free body
+  std::vector<std::string> output_names;  ///< its orthonormality error ‖RᵀR − 1‖_F
 
-  /// Left side of coordinate i's Euler–Lagrange equation, d/dt(∂L/∂q̇ᵢ) − ∂L/∂qᵢ = Σⱼ Mᵢⱼ aⱼ − hᵢ.
+  /// Left side of velocity i's equation of motion (Euler–Lagrange for plain coordinates,
+  /// Newton–Euler for bodies): Σⱼ Mᵢⱼ aⱼ − hᵢ.
   GiNaC::ex euler_lagrange_lhs(size_t i) const;
-  /// Tape input symbols in their fixed order: t, q, v, u, u̇, ü, p.
+  /// Tape input symbols in their fixed order: t, q, v, u, u̇, ü, p (then γ when has_gamma).
   std::vector<GiNaC::symbol> tape_inputs() const;
 };
 
@@ -42,8 +65,8 @@ struct Equations {
 /// dampers by virtual work (§4.2), constraints twice differentiated (§4.3).
 Equations derive(const Model& model);
 
-/// Symbolic accelerations a = M⁻¹(h + Q) for unconstrained systems with n ≤ 4 (for display
-/// and tests); normalised. Throws std::invalid_argument when constrained or n > 4.
+/// Symbolic accelerations a = M⁻¹(h + Q) for unconstrained systems with nv ≤ 4 (for display
+/// and tests); normalised. Throws std::invalid_argument when constrained or nv > 4.
 std::vector<GiNaC::ex> solve_accelerations(const Equations& eq);
 
 /// A canonical rational form with sin² + cos² = 1 applied (for display and for symbolic

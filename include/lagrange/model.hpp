@@ -15,6 +15,9 @@ namespace lagrange {
 /// A 3-vector of symbolic expressions (world frame).
 using Vec3 = std::array<GiNaC::ex, 3>;
 
+/// A 3×3 matrix of symbolic expressions, row-major (rows are Vec3).
+using Mat3 = std::array<Vec3, 3>;
+
 /// A named symbolic constant whose value can change without a new derivation.
 struct Parameter {
   std::string name;
@@ -76,6 +79,43 @@ struct Damper {
   SourceLoc loc;
 };
 
+/// A rigid body (DESIGN.md §4.4). Free bodies own their coordinates: q ⊃ r (3) and the nine
+/// entries of R (row-major), v ⊃ ṙ (3) and the body-frame ω (3). Posed bodies follow
+/// `position` and `rotation`, expressions of the model's coordinates and t.
+struct Body {
+  std::string name;
+  GiNaC::ex mass;
+  Mat3 inertia;                    ///< inertia tensor about the centre of mass, body axes
+  Vec3 com{0, 0, 0};               ///< centre of mass in body axes, from the body origin
+  bool free = false;
+  std::array<GiNaC::symbol, 3> r, rd, rdd;   ///< free: origin, its velocity and acceleration
+  std::array<GiNaC::symbol, 9> R;            ///< free: rotation body → world, row-major
+  std::array<GiNaC::symbol, 3> w, wd;        ///< free: body-frame ω and ω̇
+  std::array<double, 3> r0{}, v0{}, w0{};    ///< free: initial r, ṙ, ω (body frame)
+  std::array<double, 9> R0{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< free: initial R
+  Vec3 position{0, 0, 0};          ///< posed: world position of the body origin
+  Mat3 rotation{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};  ///< posed: rotation body → world
+  SourceLoc loc;
+
+  /// Make this a free body with fresh symbols named `<name>.x`, `<name>.R11`, `<name>.wx`, ….
+  void make_free();
+  /// World position of the body origin (symbols for a free body).
+  Vec3 origin() const;
+  /// Rotation body → world (symbols for a free body).
+  Mat3 rot() const;
+  /// World position of the body-fixed point p_b: r + R p_b.
+  Vec3 world_point(const Vec3& p_body) const;
+};
+
+/// A torque on a body, in the world frame or the body frame; enters by virtual power
+/// τ·ω (DESIGN.md §4.2, §4.4: F_rot = 2P(F_R)).
+struct BodyTorque {
+  std::string body;
+  Vec3 torque;
+  bool body_frame = false;
+  SourceLoc loc;
+};
+
 /// A named scalar expression (constraint C = 0, or an output to record).
 struct NamedExpr {
   std::string name;
@@ -119,6 +159,8 @@ struct Model {
   std::vector<PointForce> forces;
   std::vector<Spring> springs;
   std::vector<Damper> dampers;
+  std::vector<Body> bodies;
+  std::vector<BodyTorque> torques;
   std::vector<NamedExpr> constraints;
   std::vector<NamedExpr> outputs;
   Stabilization stabilization;
@@ -129,6 +171,7 @@ struct Model {
   int parameter_index(const std::string& name) const;
   int input_index(const std::string& name) const;
   const Point* find_point(const std::string& name) const;
+  const Body* find_body(const std::string& name) const;
 
   /// Total time derivative d/dt of an expression in (t, q, v, u, u̇, p):
   /// Σ ∂e/∂q v + ∂e/∂v a + ∂e/∂u u̇ + ∂e/∂u̇ ü + ∂e/∂t. Fails (std::logic_error) on ü.

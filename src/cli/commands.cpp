@@ -88,7 +88,7 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
 void require_regular_initial_state(const Model& model, const Equations& eq, Dynamics& dyn,
                                    const std::vector<double>& q, const std::vector<double>& v) {
   const CompiledModel& cm = dyn.model();
-  std::vector<double> qdot(cm.n), a(cm.n), lambda(cm.m);
+  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
   try {
     dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
   } catch (const SimulationError& e) {
@@ -100,7 +100,7 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
     at_start[model.t] = 0;
     for (size_t j = 0; j < model.parameters.size(); ++j)
       at_start[model.parameters[j].sym] = dyn.parameters()[j];
-    for (size_t i = 0; i < cm.n; ++i) {
+    for (size_t i = 0; i < cm.plain; ++i) {
       const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
       const GiNaC::ex value = GiNaC::evalf(Mii.subs(at_start));
       if (!GiNaC::is_a<GiNaC::numeric>(value) || std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
@@ -149,7 +149,7 @@ int run_check(const Options& opt) {
   Dynamics dyn(cm, parameter_values(*cm, opt.sets));
   dyn.set_baumgarte(model.stabilization.alpha);
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
-             model.name, cm->n, cm->m, cm->np, cm->k);
+             model.name, cm->nq, cm->m, cm->np, cm->k);
   std::vector<double> q = cm->q0, v = cm->v0;
   if (cm->m > 0) {
     std::vector<double> C(cm->m), Cdot(cm->m);
@@ -163,12 +163,12 @@ int run_check(const Options& opt) {
       const ProjectionResult pr = dyn.project(0.0, q.data(), v.data(), cm->fixed, 1e-13);
       fmt::print("initial state is inconsistent (max residual {:.3e}); simulate will project it:\n",
                  worst);
-      for (size_t i = 0; i < cm->n; ++i) {
+      for (size_t i = 0; i < cm->nq; ++i)
         if (q[i] != cm->q0[i])
           fmt::print("  {}: {:.10g} -> {:.10g}\n", cm->coordinate_names[i], cm->q0[i], q[i]);
+      for (size_t i = 0; i < cm->nv; ++i)
         if (v[i] != cm->v0[i])
-          fmt::print("  {}_dot: {:.10g} -> {:.10g}\n", cm->coordinate_names[i], cm->v0[i], v[i]);
-      }
+          fmt::print("  {}: {:.10g} -> {:.10g}\n", cm->velocity_names[i], cm->v0[i], v[i]);
       fmt::print("  |dq| = {:.3e}, |dv| = {:.3e}\n", pr.position_change, pr.velocity_change);
       return 1;
     }
@@ -211,7 +211,7 @@ int run_simulate(const Options& opt) {
   }
   if (!opt.quiet) {
     const size_t rows = traj.rows();
-    fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->n,
+    fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->nq,
                cm->m, cm->dynamics.num_instructions());
     fmt::print("  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, {})\n",
                t_derive, t_compile, t_sim, traj.stats.steps, traj.stats.rhs_evals, so.integrator.method);
@@ -221,11 +221,11 @@ int run_simulate(const Options& opt) {
                  traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1,
                  std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300));
       std::string last;
-      const size_t shown = std::min<size_t>(cm->n, 6);
+      const size_t shown = std::min<size_t>(cm->nq, 6);
       for (size_t i = 0; i < shown; ++i)
         last += fmt::format("{}{} = {:.6g}", i ? ", " : "", cm->coordinate_names[i],
                             traj.at(rows - 1, cm->coordinate_names[i]));
-      if (shown < cm->n) last += fmt::format(", … ({} more in the CSV)", cm->n - shown);
+      if (shown < cm->nq) last += fmt::format(", … ({} more in the CSV)", cm->nq - shown);
       fmt::print("  final state: {}\n", last);
       if (cm->m > 0) {
         double worst = 0;

@@ -5,37 +5,53 @@ namespace lagrange {
 std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   const Model& model = *eq.model;
   auto cm = std::make_shared<CompiledModel>();
-  cm->n = eq.n;
+  const Kinematics& kin = eq.kin;
+  cm->nq = eq.nq;
+  cm->nv = eq.nv;
+  cm->plain = kin.plain;
   cm->m = eq.m;
   cm->k = model.inputs.size();
-  cm->np = model.parameters.size();
+  cm->coordinate_names = kin.q_names;
+  cm->velocity_names = kin.v_names;
   for (const auto& c : model.coordinates) {
-    cm->coordinate_names.push_back(c.name);
     cm->q0.push_back(c.initial);
-    cm->v0.push_back(c.rate);
     cm->fixed.push_back(c.fixed);
   }
+  for (const auto& c : model.coordinates) cm->v0.push_back(c.rate);
+  for (const auto& b : model.bodies) {  // free bodies, in the order of kinematics()
+    if (!b.free) continue;
+    cm->q0.insert(cm->q0.end(), b.r0.begin(), b.r0.end());
+    cm->q0.insert(cm->q0.end(), b.R0.begin(), b.R0.end());
+    cm->fixed.insert(cm->fixed.end(), 12, false);
+    cm->v0.insert(cm->v0.end(), b.v0.begin(), b.v0.end());
+    cm->v0.insert(cm->v0.end(), b.w0.begin(), b.w0.end());
+  }
   for (const auto& c : model.constraints) cm->constraint_names.push_back(c.name);
-  for (const auto& o : model.outputs) cm->output_names.push_back(o.name);
+  cm->output_names = eq.output_names;
   for (const auto& u : model.inputs) cm->input_names.push_back(u.name);
   for (const auto& p : model.parameters) {
     cm->parameter_names.push_back(p.name);
     cm->parameter_defaults.push_back(p.value);
   }
+  if (kin.has_gamma) {
+    cm->parameter_names.push_back("stabilization.gamma");
+    cm->parameter_defaults.push_back(model.stabilization.gamma);
+  }
+  cm->np = cm->parameter_names.size();
 
   std::vector<GiNaC::ex> dyn;
   cm->M_diagonal = true;
-  for (size_t i = 0; i < eq.n; ++i)
+  for (size_t i = 0; i < eq.nv; ++i)
     for (size_t j = 0; j <= i; ++j)
       if (!eq.M(i, j).is_zero()) {
         cm->M_pattern.emplace_back(i, j);
         dyn.push_back(eq.M(i, j));
         if (i != j) cm->M_diagonal = false;
       }
-  for (size_t i = 0; i < eq.n; ++i) dyn.push_back(eq.h[i] + eq.Q[i]);
-  for (size_t i = 0; i < eq.n; ++i) dyn.push_back(eq.qdot[i]);
+  for (size_t i = 0; i < eq.nv; ++i) dyn.push_back(eq.h[i] + eq.Q[i]);
+  for (size_t i = 0; i < eq.nq; ++i) dyn.push_back(eq.qdot[i]);
   for (size_t r = 0; r < eq.m; ++r)
-    for (size_t j = 0; j < eq.n; ++j)
+    for (size_t j = 0; j < eq.nv; ++j)
       if (!eq.G(r, j).is_zero()) {
         cm->G_pattern.emplace_back(r, j);
         dyn.push_back(eq.G(r, j));
@@ -43,6 +59,12 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   for (const auto& e : eq.c) dyn.push_back(e);
   for (const auto& e : eq.Cdot) dyn.push_back(e);
   for (const auto& e : eq.C) dyn.push_back(e);
+  for (size_t r = 0; r < eq.m; ++r)
+    for (size_t j = 0; j < eq.nq; ++j)
+      if (!eq.Cq(r, j).is_zero()) {
+        cm->Cq_pattern.emplace_back(r, j);
+        dyn.push_back(eq.Cq(r, j));
+      }
 
   const std::vector<GiNaC::symbol> in = eq.tape_inputs();
   cm->dynamics = Tape::compile(dyn, in);

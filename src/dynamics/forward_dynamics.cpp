@@ -41,24 +41,24 @@ Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<doubl
   out_.assign(cm.dynamics.num_outputs(), 0.0);
   obs_out_.assign(cm.observables.num_outputs(), 0.0);
   sig_out_.assign(cm.inputs.num_outputs(), 0.0);
-  M_.setZero(cm.n, cm.n);
-  G_.setZero(cm.m, cm.n);
-  Y_.setZero(cm.n, cm.m);
+  M_.setZero(cm.nv, cm.nv);
+  G_.setZero(cm.m, cm.nv);
+  Y_.setZero(cm.nv, cm.m);
   S_.setZero(cm.m, cm.m);
-  rhs_.setZero(cm.n);
-  a_.setZero(cm.n);
+  rhs_.setZero(cm.nv);
+  a_.setZero(cm.nv);
   gamma_.setZero(cm.m);
   lambda_.setZero(cm.m);
-  llt_M_ = Eigen::LLT<Eigen::MatrixXd>(cm.n);
+  llt_M_ = Eigen::LLT<Eigen::MatrixXd>(cm.nv);
   llt_S_ = Eigen::LLT<Eigen::MatrixXd>(cm.m);
-  K_.setZero(cm.n + cm.m, cm.n + cm.m);
-  kkt_rhs_.setZero(cm.n + cm.m);
-  lu_K_ = Eigen::PartialPivLU<Eigen::MatrixXd>(cm.n + cm.m);
+  K_.setZero(cm.nv + cm.m, cm.nv + cm.m);
+  kkt_rhs_.setZero(cm.nv + cm.m);
+  lu_K_ = Eigen::PartialPivLU<Eigen::MatrixXd>(cm.nv + cm.m);
   // A diagonal M with many constraints (chains in Cartesian coordinates) takes the sparse
   // range-space path; small systems stay dense, where it is faster.
-  if (cm.M_diagonal && cm.m > 0 && cm.n >= kSparseThreshold && cm.M_pattern.size() == cm.n) {
+  if (cm.M_diagonal && cm.m > 0 && cm.nv >= kSparseThreshold && cm.M_pattern.size() == cm.nv && cm.nq == cm.nv) {
     sparse_ = std::make_unique<dynamics::SparseRangeSpace>(cm);
-    m_diag_.assign(cm.n, 0.0);
+    m_diag_.assign(cm.nv, 0.0);
   }
   set_parameters(parameters);
 }
@@ -84,8 +84,8 @@ void Dynamics::set_parameters(const std::vector<double>& values) {
 void Dynamics::load_inputs(double t, const double* q, const double* v) {
   const CompiledModel& cm = *model_;
   in_[0] = t;
-  std::copy(q, q + cm.n, in_.begin() + static_cast<long>(cm.q_offset()));
-  std::copy(v, v + cm.n, in_.begin() + static_cast<long>(cm.v_offset()));
+  std::copy(q, q + cm.nq, in_.begin() + static_cast<long>(cm.q_offset()));
+  std::copy(v, v + cm.nv, in_.begin() + static_cast<long>(cm.v_offset()));
   if (cm.k > 0) {
     sig_.eval(in_.data(), sig_out_.data(), work_.data());
     std::copy(sig_out_.begin(), sig_out_.end(), in_.begin() + static_cast<long>(cm.u_offset()));
@@ -118,7 +118,7 @@ void Dynamics::fail_singular(double t, const std::string& what) const {
   throw SimulationError(
       t, fmt::format("{} at state {}; {}", what,
                      format_values(cm.coordinate_names, in_.data() + cm.q_offset(), ""),
-                     format_values(cm.coordinate_names, in_.data() + cm.v_offset(), "_dot")));
+                     format_values(cm.velocity_names, in_.data() + cm.v_offset(), "")));
 }
 
 void Dynamics::fail_redundant(double t) const {
@@ -146,9 +146,11 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   eval_dynamics(t, q, v);
   const double* out = out_.data();
   assemble_M();
-  for (size_t i = 0; i < cm.n; ++i) {
-    rhs_[static_cast<long>(i)] = out[cm.rhs_out() + i];
+  for (size_t i = 0; i < cm.nv; ++i) rhs_[static_cast<long>(i)] = out[cm.rhs_out() + i];
+  for (size_t i = 0; i < cm.nq; ++i) {
     qdot[i] = out[cm.qdot_out() + i];
+    if (!std::isfinite(qdot[i]))
+      fail_singular(t, fmt::format("the rate of '{}' is not finite", cm.coordinate_names[i]));
   }
   if (cm.m > 0) {
     assemble_G();
@@ -158,11 +160,11 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
                                      alpha_ * alpha_ * out[cm.C_out() + r];
   }
   if (sparse_) {
-    for (size_t e = 0; e < cm.n; ++e) m_diag_[cm.M_pattern[e].first] = out[e];
+    for (size_t e = 0; e < cm.nv; ++e) m_diag_[cm.M_pattern[e].first] = out[e];
     if (sparse_->solve(m_diag_.data(), out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
-      for (size_t i = 0; i < cm.n; ++i)
-        if (!std::isfinite(a[i]) || !std::isfinite(qdot[i]))
-          fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
+      for (size_t i = 0; i < cm.nv; ++i)
+        if (!std::isfinite(a[i]))
+          fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.velocity_names[i]));
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
@@ -186,17 +188,17 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
     }
   }
   for (size_t r = 0; r < cm.m; ++r) lambda[r] = lambda_[static_cast<long>(r)];
-  for (size_t i = 0; i < cm.n; ++i) {
+  for (size_t i = 0; i < cm.nv; ++i) {
     a[i] = a_[static_cast<long>(i)];
-    if (!std::isfinite(a[i]) || !std::isfinite(qdot[i]))
-      fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
+    if (!std::isfinite(a[i]))
+      fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.velocity_names[i]));
   }
 }
 
 // [M Gᵀ; G 0][a; λ] = [h + Q; γ] by LU with partial pivoting (DESIGN.md §4.3).
 void Dynamics::solve_full_kkt(double t) {
   const CompiledModel& cm = *model_;
-  const long n = static_cast<long>(cm.n), m = static_cast<long>(cm.m);
+  const long n = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);
   K_.topLeftCorner(n, n) = M_;
   K_.topRightCorner(n, m) = G_.transpose();
   K_.bottomLeftCorner(m, n) = G_;
@@ -214,13 +216,13 @@ void Dynamics::solve_full_kkt(double t) {
 void Dynamics::dae_residual(double t, const double* q, const double* v, const double* qp,
                             const double* vp, const double* lambda, double* r) {
   const CompiledModel& cm = *model_;
-  const long n = static_cast<long>(cm.n), m = static_cast<long>(cm.m);
+  const long nq = static_cast<long>(cm.nq), n = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);
   eval_dynamics(t, q, v);
   assemble_M();
   assemble_G();
   const Eigen::Map<const Eigen::VectorXd> vpv(vp, n), lam(lambda, m);
-  Eigen::Map<Eigen::VectorXd> rv(r + n, n), rl(r + 2 * n, m);
-  for (long i = 0; i < n; ++i) r[i] = qp[i] - out_[cm.qdot_out() + static_cast<size_t>(i)];
+  Eigen::Map<Eigen::VectorXd> rv(r + nq, n), rl(r + nq + n, m);
+  for (long i = 0; i < nq; ++i) r[i] = qp[i] - out_[cm.qdot_out() + static_cast<size_t>(i)];
   rv.noalias() = M_ * vpv;
   if (m > 0) rv.noalias() += G_.transpose() * lam;
   for (long i = 0; i < n; ++i) rv[i] -= out_[cm.rhs_out() + static_cast<size_t>(i)];

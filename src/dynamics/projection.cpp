@@ -19,22 +19,32 @@ double max_abs(const double* x, size_t n) {
 }  // namespace
 
 // DESIGN.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
-// free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation G Δq = −C), then
-// the minimum-norm change of the free rates that satisfies Ċ = G v + ∂ₜC = 0.
+// free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation (∂C/∂q) Δq = −C),
+// then the minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free
+// body's R moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back.
 ProjectionResult Dynamics::project(double t, double* q, double* v, const std::vector<bool>& fixed,
                                    double tol, int max_iterations) {
   const CompiledModel& cm = *model_;
   ProjectionResult res;
   if (cm.m == 0) return res;
-  const long n = static_cast<long>(cm.n), m = static_cast<long>(cm.m);
-  Eigen::Map<Eigen::VectorXd> qv(q, n), vv(v, n);
+  const long nq = static_cast<long>(cm.nq), nv = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);
+  Eigen::Map<Eigen::VectorXd> qv(q, nq), vv(v, nv);
   const Eigen::VectorXd q_start = qv, v_start = vv;
   Eigen::VectorXd rhs(m);
-  auto free_jacobian = [&]() {
+  auto is_fixed = [&](size_t j) { return j < fixed.size() && fixed[j]; };
+  auto position_jacobian = [&]() {
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, nq);
+    const double* d = out_.data() + cm.Cq_out();
+    for (size_t e = 0; e < cm.Cq_pattern.size(); ++e)
+      if (!is_fixed(cm.Cq_pattern[e].second))
+        J(static_cast<long>(cm.Cq_pattern[e].first), static_cast<long>(cm.Cq_pattern[e].second)) = d[e];
+    return J;
+  };
+  auto velocity_jacobian = [&]() {  // plain velocities share their coordinate's flag
     assemble_G();
     Eigen::MatrixXd Gf = G_;
-    for (long j = 0; j < n; ++j)
-      if (static_cast<size_t>(j) < fixed.size() && fixed[static_cast<size_t>(j)]) Gf.col(j).setZero();
+    for (long k = 0; k < nv; ++k)
+      if (static_cast<size_t>(k) < cm.plain && is_fixed(static_cast<size_t>(k))) Gf.col(k).setZero();
     return Gf;
   };
   for (;; ++res.iterations) {
@@ -50,12 +60,12 @@ ProjectionResult Dynamics::project(double t, double* q, double* v, const std::ve
                          "state, or the free coordinates cannot satisfy the constraints",
                          max_iterations, res.residual));
     for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.C_out() + static_cast<size_t>(r)];
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(free_jacobian());
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(position_jacobian());
     qv += cod.solve(rhs);
   }
   eval_dynamics(t, q, v);
   for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.Cdot_out() + static_cast<size_t>(r)];
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(free_jacobian());
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(velocity_jacobian());
   vv += cod.solve(rhs);
   eval_dynamics(t, q, v);
   res.rate_residual = max_abs(out_.data() + cm.Cdot_out(), cm.m);

@@ -7,7 +7,7 @@
 namespace lagrange::dynamics {
 
 SparseRangeSpace::SparseRangeSpace(const CompiledModel& cm)
-    : n_(cm.n), m_(cm.m), G_(cm.G_pattern), a0_(cm.n), lam_(cm.m) {
+    : n_(cm.nv), m_(cm.m), G_(cm.G_pattern), a0_(cm.nv), lam_(cm.m) {
   // Entries of G grouped by column: S_rs = Σ_j G_rj G_sj / M_jj over shared columns j.
   std::vector<std::vector<int>> by_column(n_);
   for (size_t e = 0; e < G_.size(); ++e) by_column[G_[e].second].push_back(static_cast<int>(e));

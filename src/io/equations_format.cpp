@@ -53,14 +53,16 @@ std::string format_text(const Equations& eq, Style style) {
     out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h) : fmt::format("\n{}\n", h);
   };
   if (tex) out += "\\begin{align*}\n";
-  else out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.n, eq.m);
+  else out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
+  // Plain coordinates are named by q, body velocities by their own names (`brick.wx`).
+  auto vname = [&](size_t i) { return i < eq.kin.plain ? eq.kin.q_names[i] : eq.kin.v_names[i]; };
   heading("Energies");
   line("T", str(eq.T, style));
   line("U", str(eq.U, style));
   line(tex ? "L" : "L", eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C")
                              : str(eq.L, style));
   heading(tex ? "Euler--Lagrange equations" : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
-  for (size_t i = 0; i < eq.n; ++i) {
+  for (size_t i = 0; i < eq.nv; ++i) {
     GiNaC::ex rhs = eq.Q[i];
     std::string extra;
     for (size_t r = 0; r < eq.m; ++r)
@@ -69,29 +71,38 @@ std::string format_text(const Equations& eq, Style style) {
     std::string right = rhs.is_zero() && !extra.empty() ? extra.substr(1) : str(rhs, style) + extra;
     line(str(eq.euler_lagrange_lhs(i), style), right);
   }
+  if (eq.nq > eq.kin.plain) {
+    heading(tex ? "Rigid-body kinematics (DESIGN.md 4.4)"
+                : "Rigid-body kinematics (DESIGN.md §4.4): r' = v, R' = R (Omega + Xi), "
+                  "Xi = gamma/2 ((R^T R)^-1 - 1); rows above for w are J w' + w x J w + 2P(dV/dR) = F_rot");
+    for (const auto& b : model.bodies)
+      if (b.free)
+        line(b.name + ".R'", b.name + ".R (" + b.name + ".Omega + Xi),  Omega = [" + b.name +
+                                 ".wx, " + b.name + ".wy, " + b.name + ".wz]x");
+  }
   heading("Mass matrix M(q)");
-  for (size_t i = 0; i < eq.n; ++i)
+  for (size_t i = 0; i < eq.nv; ++i)
     for (size_t j = 0; j <= i; ++j)
       if (!eq.M(i, j).is_zero()) line(fmt::format("M_{{{}{}}}", i + 1, j + 1), str(eq.M(i, j), style));
   heading("Forcing h(q, v) + Q");
-  for (size_t i = 0; i < eq.n; ++i)
-    line(fmt::format("(h+Q)_{{{}}}", model.coordinates[i].name), str(eq.h[i] + eq.Q[i], style));
+  for (size_t i = 0; i < eq.nv; ++i)
+    line(fmt::format("(h+Q)_{{{}}}", vname(i)), str(eq.h[i] + eq.Q[i], style));
   if (eq.m > 0) {
     heading(tex ? "Constraints, index-3: C = 0" : "Constraints (index-3 DAE: C = 0)");
     for (size_t r = 0; r < eq.m; ++r) line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
     heading("Constraint Jacobian G = dC/dq");
     for (size_t r = 0; r < eq.m; ++r)
-      for (size_t j = 0; j < eq.n; ++j)
+      for (size_t j = 0; j < eq.nv; ++j)
         if (!eq.G(r, j).is_zero())
-          line(fmt::format("G_{{{},{}}}", model.constraints[r].name, model.coordinates[j].name),
+          line(fmt::format("G_{{{},{}}}", model.constraints[r].name, vname(j)),
                str(eq.G(r, j), style));
     heading(tex ? "Index-1 form: G a + c = 0" : "Index-1 form (C'' = G a + c = 0)");
     for (size_t r = 0; r < eq.m; ++r) {
       std::string lhs;
-      for (size_t j = 0; j < eq.n; ++j)
+      for (size_t j = 0; j < eq.nv; ++j)
         if (!eq.G(r, j).is_zero())
           lhs += fmt::format("{}({})*{}", lhs.empty() ? "" : " + ", str(eq.G(r, j), style),
-                             symbol_str(model.coordinates[j].a, style));
+                             symbol_str(eq.kin.a[j], style));
       line(lhs + " + " + str(eq.c[r], style), "0");
     }
     heading(tex ? "Baumgarte: G a + c + 2 alpha Cdot + alpha^2 C = 0"
@@ -99,10 +110,10 @@ std::string format_text(const Equations& eq, Style style) {
     for (size_t r = 0; r < eq.m; ++r)
       line("Cdot_{" + model.constraints[r].name + "}", str(eq.Cdot[r], style));
   }
-  if (eq.m == 0 && eq.n <= 3) {
+  if (eq.m == 0 && eq.nv <= 3 && eq.nq == eq.nv) {
     heading("Accelerations a = M^-1 (h + Q)");
     const auto acc = solve_accelerations(eq);
-    for (size_t i = 0; i < eq.n; ++i) line(symbol_str(model.coordinates[i].a, style), str(acc[i], style));
+    for (size_t i = 0; i < eq.nv; ++i) line(symbol_str(eq.kin.a[i], style), str(acc[i], style));
   }
   if (tex) out += "\\end{align*}\n";
   return out;
@@ -114,15 +125,17 @@ std::string format_json(const Equations& eq) {
   auto l = [](const GiNaC::ex& e) { return str(e, Style::Latex); };
   nlohmann::json j;
   j["name"] = model.name;
-  for (const auto& c : model.coordinates) j["coordinates"].push_back(c.name);
+  for (const auto& c : eq.kin.q_names) j["coordinates"].push_back(c);
+  for (const auto& c : eq.kin.v_names) j["velocities"].push_back(c);
+  for (size_t i = 0; i < eq.nq; ++i) j["qdot"].push_back(s(eq.qdot[i]));
   j["T"] = s(eq.T);
   j["U"] = s(eq.U);
   j["L"] = s(eq.L);
   j["latex"]["T"] = l(eq.T);
   j["latex"]["U"] = l(eq.U);
-  for (size_t i = 0; i < eq.n; ++i) {
+  for (size_t i = 0; i < eq.nv; ++i) {
     nlohmann::json row = nlohmann::json::array();
-    for (size_t k = 0; k < eq.n; ++k) row.push_back(s(eq.M(i, k)));
+    for (size_t k = 0; k < eq.nv; ++k) row.push_back(s(eq.M(i, k)));
     j["M"].push_back(row);
     j["h"].push_back(s(eq.h[i]));
     j["Q"].push_back(s(eq.Q[i]));
@@ -130,7 +143,7 @@ std::string format_json(const Equations& eq) {
   }
   for (size_t r = 0; r < eq.m; ++r) {
     nlohmann::json row = nlohmann::json::array();
-    for (size_t k = 0; k < eq.n; ++k) row.push_back(s(eq.G(r, k)));
+    for (size_t k = 0; k < eq.nv; ++k) row.push_back(s(eq.G(r, k)));
     j["constraints"].push_back({{"name", model.constraints[r].name},
                                 {"C", s(eq.C[r])},
                                 {"Cdot", s(eq.Cdot[r])},

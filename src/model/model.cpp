@@ -22,6 +22,11 @@ const Point* Model::find_point(const std::string& name) const {
   return i < 0 ? nullptr : &points[static_cast<size_t>(i)];
 }
 
+const Body* Model::find_body(const std::string& name) const {
+  int i = index_by_name(bodies, name);
+  return i < 0 ? nullptr : &bodies[static_cast<size_t>(i)];
+}
+
 GiNaC::ex Model::time_derivative(const GiNaC::ex& e) const {
   GiNaC::ex d = e.diff(t);
   for (const auto& c : coordinates) {

@@ -12,7 +12,7 @@ namespace lagrange {
 std::vector<std::string> trajectory_columns(const CompiledModel& cm) {
   std::vector<std::string> cols{"t"};
   for (const auto& q : cm.coordinate_names) cols.push_back(q);
-  for (const auto& q : cm.coordinate_names) cols.push_back(q + "_dot");
+  for (const auto& v : cm.velocity_names) cols.push_back(v);
   cols.insert(cols.end(), {"kinetic", "potential", "energy"});
   for (const auto& o : cm.output_names) cols.push_back(o);
   if (cm.m > 0) {
@@ -53,18 +53,18 @@ double max_abs(const std::vector<double>& x) {
 void append_row(Dynamics& dyn, double t, const double* q, const double* v,
                 std::vector<double>& scratch, Trajectory& traj) {
   const CompiledModel& cm = dyn.model();
-  const size_t n = cm.n, m = cm.m;
+  const size_t nq = cm.nq, nv = cm.nv, m = cm.m;
   std::vector<double>& row = scratch;
   row.clear();
   row.push_back(t);
-  row.insert(row.end(), q, q + n);
-  row.insert(row.end(), v, v + n);
+  row.insert(row.end(), q, q + nq);
+  row.insert(row.end(), v, v + nv);
   std::vector<double> obs(cm.observables.num_outputs());
   dyn.observe(t, q, v, obs.data());
   row.insert(row.end(), {obs[0], obs[1], obs[0] + obs[1]});
   row.insert(row.end(), obs.begin() + 2, obs.end());
   if (m > 0) {
-    std::vector<double> qdot(n), a(n), lambda(m), C(m), Cdot(m);
+    std::vector<double> qdot(nq), a(nv), lambda(m), C(m), Cdot(m);
     dyn.forward(t, q, v, qdot.data(), a.data(), lambda.data());
     dyn.constraints(t, q, v, C.data(), Cdot.data());
     row.insert(row.end(), lambda.begin(), lambda.end());
@@ -90,12 +90,12 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
   const std::vector<double> q_old = q, v_old = v;
   ProjectionResult pr = dyn.project(opt.t0, q.data(), v.data(), cm.fixed, 1e-13);
   std::string changes;
-  for (size_t i = 0; i < cm.n; ++i) {
+  for (size_t i = 0; i < cm.nq; ++i)
     if (q[i] != q_old[i])
       changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.coordinate_names[i], q_old[i], q[i]);
+  for (size_t i = 0; i < cm.nv; ++i)
     if (v[i] != v_old[i])
-      changes += fmt::format("\n  {}_dot: {:.10g} -> {:.10g}", cm.coordinate_names[i], v_old[i], v[i]);
-  }
+      changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.velocity_names[i], v_old[i], v[i]);
   traj.notes.push_back(fmt::format(
       "initial state was inconsistent (max |C| = {:.3g}, max |Ċ| = {:.3g}); projected onto the "
       "constraints (|Δq| = {:.3g}, |Δv| = {:.3g}):{}",
@@ -107,33 +107,37 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
 Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<double> q0,
                     std::vector<double> v0) {
   const CompiledModel& cm = dyn.model();
-  const size_t n = cm.n, m = cm.m;
+  const size_t nq = cm.nq, nv = cm.nv, n = nq + nv, m = cm.m;
   Trajectory traj;
   traj.columns = trajectory_columns(cm);
-  std::vector<double> row, C(m), Cdot(m), lambda(m), qdot(n), acc(n);
+  if (q0.size() != nq || v0.size() != nv)
+    throw std::invalid_argument(fmt::format("simulate: expected {} positions and {} velocities, "
+                                            "got {} and {}",
+                                            nq, nv, q0.size(), v0.size()));
+  std::vector<double> row, C(m), Cdot(m), lambda(m);
   const bool dae = opt.integrator.method == "ida";
   // At each output sample: check the state is finite, project drift away (DESIGN.md §4.3),
   // record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;
-    for (size_t i = 0; i < 2 * n; ++i)
+    for (size_t i = 0; i < n; ++i)
       if (!std::isfinite(yy[i]))
         throw SimulationError(t, fmt::format("the state is not finite ({} = {})",
-                                             i < n ? cm.coordinate_names[i]
-                                                   : cm.coordinate_names[i - n] + "_dot",
+                                             i < nq ? cm.coordinate_names[i]
+                                                    : cm.velocity_names[i - nq],
                                              yy[i]));
     if (m > 0 && opt.project) {
-      dyn.constraints(t, yy, yy + n, C.data(), Cdot.data());
+      dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
       if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
-        dyn.project(t, yy, yy + n, std::vector<bool>(n, false), 1e-13);
+        dyn.project(t, yy, yy + nq, std::vector<bool>(nq, false), 1e-13);
         if (dae) {  // keep (λ, y') consistent with the projected state
-          dyn.forward(t, yy, yy + n, yp, yp + n, yy + 2 * n);
-          std::fill(yp + 2 * n, yp + 2 * n + m, 0.0);
+          dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
+          std::fill(yp + n, yp + n + m, 0.0);
         }
         action = ObserverAction::StateChanged;
       }
     }
-    append_row(dyn, t, yy, yy + n, row, traj);
+    append_row(dyn, t, yy, yy + nq, row, traj);
     if (opt.progress) opt.progress(t);
     if (opt.interrupt != nullptr && opt.interrupt->load()) {
       traj.status = Trajectory::Status::Interrupted;
@@ -146,27 +150,27 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     make_consistent(dyn, opt, q0, v0, traj);
     if (dae) {
       // Index-1 DAE in (q, v, λ) for IDA, started from the forward-dynamics solution.
-      std::vector<double> y(2 * n + m), yp(2 * n + m, 0.0);
+      std::vector<double> y(n + m), yp(n + m, 0.0);
       std::copy(q0.begin(), q0.end(), y.begin());
-      std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
-      dyn.forward(opt.t0, q0.data(), v0.data(), yp.data(), yp.data() + n, y.data() + 2 * n);
+      std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
+      dyn.forward(opt.t0, q0.data(), v0.data(), yp.data(), yp.data() + nq, y.data() + n);
       DaeProblem problem;
-      problem.size = 2 * n + m;
-      problem.differential.assign(2 * n + m, true);
-      std::fill(problem.differential.begin() + static_cast<long>(2 * n), problem.differential.end(), false);
-      problem.residual = [&dyn, n](double t, const double* yy, const double* ypp, double* r) {
-        dyn.dae_residual(t, yy, yy + n, ypp, ypp + n, yy + 2 * n, r);
+      problem.size = n + m;
+      problem.differential.assign(n + m, true);
+      std::fill(problem.differential.begin() + static_cast<long>(n), problem.differential.end(), false);
+      problem.residual = [&dyn, n, nq](double t, const double* yy, const double* ypp, double* r) {
+        dyn.dae_residual(t, yy, yy + nq, ypp, ypp + nq, yy + n, r);
       };
       traj.stats = integrate_dae(problem, opt.integrator, opt.t0, y, yp, opt.t_end, opt.output_step,
                                  observer);
     } else {
-      std::vector<double> y(2 * n);
+      std::vector<double> y(n);
       std::copy(q0.begin(), q0.end(), y.begin());
-      std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
+      std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
       OdeProblem ode;
-      ode.size = 2 * n;
-      ode.rhs = [&dyn, n, &lambda](double t, const double* yy, double* yd) {
-        dyn.forward(t, yy, yy + n, yd, yd + n, lambda.data());
+      ode.size = n;
+      ode.rhs = [&dyn, nq, &lambda](double t, const double* yy, double* yd) {
+        dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
       };
       traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }

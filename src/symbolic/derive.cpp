@@ -4,52 +4,71 @@
 namespace lagrange {
 
 Equations derive(const Model& model) {
-  const size_t n = model.coordinates.size();
-  symbolic::MechanicalTerms terms(n);
-  symbolic::add_particle_terms(model, terms);
-  symbolic::add_energy_terms(model, terms);
-  symbolic::add_generalized_forces(model, terms);
-
   Equations eq;
+  eq.kin = kinematics(model);
+  const Kinematics& kin = eq.kin;
+  symbolic::MechanicalTerms terms(kin.v.size());
+  symbolic::add_particle_terms(kin, terms);
+  symbolic::add_body_terms(kin, terms);
+  symbolic::add_energy_terms(kin, terms);
+  symbolic::add_generalized_forces(kin, terms);
+
   eq.model = &model;
-  eq.n = n;
+  eq.nq = kin.q.size();
+  eq.nv = kin.v.size();
   eq.T = terms.T;
   eq.U = terms.U;
   eq.L = terms.T - terms.U;
   eq.M = terms.M;
   eq.h = std::move(terms.h);
   eq.Q = std::move(terms.Q);
-  for (const auto& c : model.coordinates) eq.qdot.push_back(c.v);
-  symbolic::add_constraint_terms(model, eq);
-  for (const auto& out : model.outputs) eq.outputs.push_back(out.expr);
+  eq.qdot = kin.qdot;
+  symbolic::add_constraint_terms(kin, eq);
+  for (const auto& out : model.outputs) {
+    eq.outputs.push_back(out.expr);
+    eq.output_names.push_back(out.name);
+  }
+  for (const auto& b : model.bodies) {
+    if (!b.free) continue;
+    const Mat3 R = b.rot();
+    GiNaC::ex sq = 0;  // ‖RᵀR − 1‖²_F
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        const GiNaC::ex e = R[0][i] * R[0][j] + R[1][i] * R[1][j] + R[2][i] * R[2][j] - (i == j ? 1 : 0);
+        sq += e * e;
+      }
+    eq.outputs.push_back(GiNaC::sqrt(sq));
+    eq.output_names.push_back(b.name + ".orthonormality_error");
+  }
   return eq;
 }
 
 GiNaC::ex Equations::euler_lagrange_lhs(size_t i) const {
   GiNaC::ex lhs = -h[i];
-  for (size_t j = 0; j < n; ++j) lhs += M(i, j) * model->coordinates[j].a;
+  for (size_t j = 0; j < nv; ++j) lhs += M(i, j) * kin.a[j];
   return lhs;
 }
 
 std::vector<GiNaC::symbol> Equations::tape_inputs() const {
   std::vector<GiNaC::symbol> in{model->t};
-  for (const auto& c : model->coordinates) in.push_back(c.q);
-  for (const auto& c : model->coordinates) in.push_back(c.v);
+  in.insert(in.end(), kin.q.begin(), kin.q.end());
+  in.insert(in.end(), kin.v.begin(), kin.v.end());
   for (const auto& u : model->inputs) in.push_back(u.u);
   for (const auto& u : model->inputs) in.push_back(u.ud);
   for (const auto& u : model->inputs) in.push_back(u.udd);
   for (const auto& p : model->parameters) in.push_back(p.sym);
+  if (kin.has_gamma) in.push_back(kin.gamma);
   return in;
 }
 
 std::vector<GiNaC::ex> solve_accelerations(const Equations& eq) {
   if (eq.m > 0) throw std::invalid_argument("solve_accelerations: the system is constrained");
-  if (eq.n > 4) throw std::invalid_argument("solve_accelerations: more than 4 coordinates");
-  GiNaC::matrix rhs(static_cast<unsigned>(eq.n), 1);
-  for (size_t i = 0; i < eq.n; ++i) rhs(i, 0) = eq.h[i] + eq.Q[i];
+  if (eq.nv > 4) throw std::invalid_argument("solve_accelerations: more than 4 coordinates");
+  GiNaC::matrix rhs(static_cast<unsigned>(eq.nv), 1);
+  for (size_t i = 0; i < eq.nv; ++i) rhs(i, 0) = eq.h[i] + eq.Q[i];
   GiNaC::matrix a = eq.M.inverse().mul(rhs);
   std::vector<GiNaC::ex> out;
-  for (size_t i = 0; i < eq.n; ++i) out.push_back(a(i, 0).normal());
+  for (size_t i = 0; i < eq.nv; ++i) out.push_back(a(i, 0).normal());
   return out;
 }
 

@@ -23,17 +23,32 @@ GiNaC::ex spring_potential(const Model& model) {
 
 }  // namespace
 
-// DESIGN.md §4.1: M = ∂²L/∂v∂vᵀ, h = ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂ₜ(∂L/∂v).
-void add_energy_terms(const Model& model, MechanicalTerms& terms) {
+// DESIGN.md §4.1: M = ∂²L/∂v∂vᵀ, h = ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂ₜ(∂L/∂v) over the plain
+// coordinates; for free-body coordinates h −= Kᵀ ∂U/∂q (§4.4, the 2P(∂U/∂R) rows).
+void add_energy_terms(const Kinematics& kin, MechanicalTerms& terms) {
+  const Model& model = *kin.model;
   const size_t n = model.coordinates.size();
-  if (depends_on_accelerations(model, model.kinetic))
+  if (depends_on_accelerations(kin, model.kinetic))
     throw ModelError({model.file, 0, 0}, "the kinetic energy depends on accelerations");
-  if (depends_on_accelerations(model, model.potential))
+  if (depends_on_accelerations(kin, model.potential))
     throw ModelError({model.file, 0, 0}, "the potential energy depends on accelerations");
+  if (depends_on_body_state(kin, model.kinetic))
+    throw ModelError({model.file, 0, 0},
+                     "the kinetic energy depends on a free body's coordinates or velocities; "
+                     "expected plain coordinates only (a body's kinetic energy comes from its "
+                     "mass and inertia)");
   const GiNaC::ex U = model.potential + spring_potential(model);
+  for (size_t k = kin.plain; k < kin.v.size(); ++k)
+    if (U.has(kin.v[k]))
+      throw ModelError({model.file, 0, 0}, "the potential energy depends on the velocity '" +
+                                               kin.v_names[k] + "'; expected U(q, t)");
   const GiNaC::ex L = model.kinetic - U;
   terms.T += model.kinetic;
   terms.U += U;
+  if (kin.q.size() > kin.plain) {
+    const std::vector<GiNaC::ex> f = velocity_gradient(kin, U);  // Kᵀ ∂U/∂q
+    for (size_t k = kin.plain; k < kin.v.size(); ++k) terms.h[k] -= f[k];
+  }
   for (size_t i = 0; i < n; ++i) {
     const auto& ci = model.coordinates[i];
     if (L.has(ci.q)) terms.h[i] += L.diff(ci.q);
@@ -44,7 +59,7 @@ void add_energy_terms(const Model& model, MechanicalTerms& terms) {
       if (p.has(cj.v)) terms.M(i, j) += p.diff(cj.v);
       if (p.has(cj.q)) terms.h[i] -= p.diff(cj.q) * cj.v;
     }
-    terms.h[i] -= partial_t(model, p);
+    terms.h[i] -= partial_t(kin, p);
   }
 }
 

@@ -21,34 +21,28 @@ Vec3 vec_of(const GiNaC::ex& key, size_t offset = 0) {
 
 }  // namespace
 
-std::vector<Vec3> point_jacobian(const Model& model, const Vec3& x) {
-  std::vector<Vec3> J(model.coordinates.size());
-  for (size_t i = 0; i < J.size(); ++i)
-    for (size_t k = 0; k < 3; ++k) J[i][k] = x[k].diff(model.coordinates[i].q);
-  return J;
-}
-
 // DESIGN.md §8: M = Σₖ mₖ JₖᵀJₖ and h = Σₖ mₖ Jₖᵀ(g − bₖ). Columns of different particles
 // that are the same expression (a chain point is its parent plus one link, so ∂x/∂θᵢ is
 // shared by every point below link i) are grouped: Mᵢⱼ = Σ_(cols) (Σ m)·(colᵢ·colⱼ) and
 // hᵢ = Σ_(col) col·(Σ m (g − b)), which keeps the expression size O(N²) for chains.
-void add_particle_terms(const Model& model, MechanicalTerms& terms) {
-  const size_t n = model.coordinates.size();
+void add_particle_terms(const Kinematics& kin, MechanicalTerms& terms) {
+  const Model& model = *kin.model;
+  const size_t n = kin.v.size();
   const Vec3 g = model.gravity.value_or(Vec3{0, 0, 0});
   std::vector<ExMap> mass_of_pair(n * n);  // (i ≤ j) → (colᵢ, colⱼ) → Σ m
   std::vector<ExVecMap> force_of_col(n);   // i → colᵢ → Σ m (g − b)
   for (const auto& particle : model.particles) {
     const Point* point = model.find_point(particle.point);
     if (point == nullptr) throw ModelError(particle.loc, "unknown point '" + particle.point + "'");
-    if (depends_on_state(model, particle.mass))
+    if (depends_on_state(kin, particle.mass))
       throw ModelError(particle.loc, "the mass of the particle at '" + particle.point +
                                          "' depends on the state; expected a constant mass");
     const GiNaC::ex& m = particle.mass;
-    const std::vector<Vec3> J = point_jacobian(model, point->pos);
-    const Vec3 xdot = point_velocity(model, point->pos);
+    const std::vector<Vec3> J = point_jacobian(kin, point->pos);
+    const Vec3 xdot = point_velocity(kin, point->pos);
     Vec3 g_minus_b;
     for (size_t k = 0; k < 3; ++k)
-      g_minus_b[k] = g[k] - derivative_without_accelerations(model, xdot[k]);
+      g_minus_b[k] = g[k] - derivative_without_accelerations(kin, xdot[k]);
     terms.T += m / 2 * dot(xdot, xdot);
     terms.U -= m * dot(g, point->pos);
     std::vector<size_t> active;
