@@ -18,8 +18,8 @@ struct CompiledModel {
   std::vector<std::string> coordinate_names, constraint_names, output_names, input_names,
       parameter_names;
   std::vector<double> parameter_defaults;
-  std::vector<double> q0, v0;   ///< initial state from the model
-  std::vector<bool> fixed;      ///< coordinates kept by the initial-state projection
+  std::vector<double> q0, v0;  ///< initial state from the model
+  std::vector<bool> fixed;     ///< coordinates kept by the initial-state projection
 
   /// Structural non-zeros: M lower triangle (i ≥ j) and G (row, column), in tape output order.
   std::vector<std::pair<size_t, size_t>> M_pattern, G_pattern;

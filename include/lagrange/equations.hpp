@@ -18,16 +18,16 @@ struct Equations {
   size_t n = 0;                  ///< number of coordinates
   size_t m = 0;                  ///< number of constraints
 
-  GiNaC::ex T, U, L;              ///< kinetic, potential energy, L = T − U (λᵀC kept apart)
-  GiNaC::matrix M;                ///< n×n mass matrix ∂²T/∂v∂vᵀ
-  std::vector<GiNaC::ex> h;       ///< forcing from L: ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂²L/∂v∂t
-  std::vector<GiNaC::ex> Q;       ///< non-conservative generalised forces (virtual work)
-  std::vector<GiNaC::ex> qdot;    ///< kinematics q̇ = K(q) v (identity for plain coordinates)
+  GiNaC::ex T, U, L;         ///< kinetic, potential energy, L = T − U (λᵀC kept apart)
+  GiNaC::matrix M;           ///< n×n mass matrix ∂²T/∂v∂vᵀ
+  std::vector<GiNaC::ex> h;  ///< forcing from L: ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂²L/∂v∂t
+  std::vector<GiNaC::ex> Q;     ///< non-conservative generalised forces (virtual work)
+  std::vector<GiNaC::ex> qdot;  ///< kinematics q̇ = K(q) v (identity for plain coordinates)
 
-  std::vector<GiNaC::ex> C;       ///< constraints C(q,t), m of them
-  GiNaC::matrix G;                ///< m×n constraint Jacobian ∂C/∂q
-  std::vector<GiNaC::ex> Cdot;    ///< Ċ = G v + ∂C/∂t
-  std::vector<GiNaC::ex> c;       ///< C̈ − G a: (∂(G v)/∂q) v + 2(∂G/∂t) v + ∂²C/∂t²
+  std::vector<GiNaC::ex> C;     ///< constraints C(q,t), m of them
+  GiNaC::matrix G;              ///< m×n constraint Jacobian ∂C/∂q
+  std::vector<GiNaC::ex> Cdot;  ///< Ċ = G v + ∂C/∂t
+  std::vector<GiNaC::ex> c;     ///< C̈ − G a: (∂(G v)/∂q) v + 2(∂G/∂t) v + ∂²C/∂t²
 
   std::vector<GiNaC::ex> outputs;  ///< the model's named outputs, in order
 

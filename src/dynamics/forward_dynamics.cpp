@@ -127,10 +127,12 @@ void Dynamics::fail_redundant(double t) const {
   std::string names;
   const auto perm = qr.colsPermutation().indices();
   for (long r = qr.rank(); r < perm.size(); ++r)
-    names += (names.empty() ? "'" : ", '") + cm.constraint_names[static_cast<size_t>(perm[r])] + "'";
+    names +=
+        (names.empty() ? "'" : ", '") + cm.constraint_names[static_cast<size_t>(perm[r])] + "'";
   if (names.empty())
-    fail_singular(t, "the mass matrix is singular on the constraint manifold (the KKT system "
-                     "has no unique solution)");
+    fail_singular(t,
+                  "the mass matrix is singular on the constraint manifold (the KKT system "
+                  "has no unique solution)");
   fail_singular(t, fmt::format("the constraints are redundant or singular (rank {} of {}; "
                                "dependent: {})",
                                qr.rank(), cm.m, names));
@@ -153,8 +155,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   if (cm.m > 0) {
     assemble_G();
     for (size_t r = 0; r < cm.m; ++r)
-      gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] -
-                                     2.0 * alpha_ * out[cm.Cdot_out() + r] -
+      gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] - 2.0 * alpha_ * out[cm.Cdot_out() + r] -
                                      alpha_ * alpha_ * out[cm.C_out() + r];
   }
   if (sparse_) {
@@ -162,7 +163,8 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
     if (sparse_->solve(m_diag_.data(), out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
       for (size_t i = 0; i < cm.n; ++i)
         if (!std::isfinite(a[i]) || !std::isfinite(qdot[i]))
-          fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
+          fail_singular(
+              t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
@@ -189,7 +191,8 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   for (size_t i = 0; i < cm.n; ++i) {
     a[i] = a_[static_cast<long>(i)];
     if (!std::isfinite(a[i]) || !std::isfinite(qdot[i]))
-      fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
+      fail_singular(t,
+                    fmt::format("the acceleration of '{}' is not finite", cm.coordinate_names[i]));
   }
 }
 

@@ -34,7 +34,8 @@ ProjectionResult Dynamics::project(double t, double* q, double* v, const std::ve
     assemble_G();
     Eigen::MatrixXd Gf = G_;
     for (long j = 0; j < n; ++j)
-      if (static_cast<size_t>(j) < fixed.size() && fixed[static_cast<size_t>(j)]) Gf.col(j).setZero();
+      if (static_cast<size_t>(j) < fixed.size() && fixed[static_cast<size_t>(j)])
+        Gf.col(j).setZero();
     return Gf;
   };
   for (;; ++res.iterations) {

@@ -50,35 +50,42 @@ std::string format_text(const Equations& eq, Style style) {
     out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
   };
   auto heading = [&](const std::string& h) {
-    out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h) : fmt::format("\n{}\n", h);
+    out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h)
+               : fmt::format("\n{}\n", h);
   };
-  if (tex) out += "\\begin{align*}\n";
-  else out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.n, eq.m);
+  if (tex)
+    out += "\\begin{align*}\n";
+  else
+    out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.n, eq.m);
   heading("Energies");
   line("T", str(eq.T, style));
   line("U", str(eq.U, style));
-  line(tex ? "L" : "L", eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C")
-                             : str(eq.L, style));
-  heading(tex ? "Euler--Lagrange equations" : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
+  line(tex ? "L" : "L",
+       eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
+  heading(tex ? "Euler--Lagrange equations"
+              : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
   for (size_t i = 0; i < eq.n; ++i) {
     GiNaC::ex rhs = eq.Q[i];
     std::string extra;
     for (size_t r = 0; r < eq.m; ++r)
       if (!eq.G(r, i).is_zero())
-        extra += fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
+        extra +=
+            fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
     std::string right = rhs.is_zero() && !extra.empty() ? extra.substr(1) : str(rhs, style) + extra;
     line(str(eq.euler_lagrange_lhs(i), style), right);
   }
   heading("Mass matrix M(q)");
   for (size_t i = 0; i < eq.n; ++i)
     for (size_t j = 0; j <= i; ++j)
-      if (!eq.M(i, j).is_zero()) line(fmt::format("M_{{{}{}}}", i + 1, j + 1), str(eq.M(i, j), style));
+      if (!eq.M(i, j).is_zero())
+        line(fmt::format("M_{{{}{}}}", i + 1, j + 1), str(eq.M(i, j), style));
   heading("Forcing h(q, v) + Q");
   for (size_t i = 0; i < eq.n; ++i)
     line(fmt::format("(h+Q)_{{{}}}", model.coordinates[i].name), str(eq.h[i] + eq.Q[i], style));
   if (eq.m > 0) {
     heading(tex ? "Constraints, index-3: C = 0" : "Constraints (index-3 DAE: C = 0)");
-    for (size_t r = 0; r < eq.m; ++r) line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
+    for (size_t r = 0; r < eq.m; ++r)
+      line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
     heading("Constraint Jacobian G = dC/dq");
     for (size_t r = 0; r < eq.m; ++r)
       for (size_t j = 0; j < eq.n; ++j)
@@ -102,7 +109,8 @@ std::string format_text(const Equations& eq, Style style) {
   if (eq.m == 0 && eq.n <= 3) {
     heading("Accelerations a = M^-1 (h + Q)");
     const auto acc = solve_accelerations(eq);
-    for (size_t i = 0; i < eq.n; ++i) line(symbol_str(model.coordinates[i].a, style), str(acc[i], style));
+    for (size_t i = 0; i < eq.n; ++i)
+      line(symbol_str(model.coordinates[i].a, style), str(acc[i], style));
   }
   if (tex) out += "\\end{align*}\n";
   return out;

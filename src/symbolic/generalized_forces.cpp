@@ -20,9 +20,9 @@ void add_generalized_forces(const Model& model, MechanicalTerms& terms) {
   const size_t n = model.coordinates.size();
   for (size_t i = 0; i < n && i < model.generalized_forces.size(); ++i) {
     if (depends_on_accelerations(model, model.generalized_forces[i]))
-      throw ModelError(model.coordinates[i].loc, "the generalised force on '" +
-                                                     model.coordinates[i].name +
-                                                     "' depends on accelerations");
+      throw ModelError(
+          model.coordinates[i].loc,
+          "the generalised force on '" + model.coordinates[i].name + "' depends on accelerations");
     terms.Q[i] += model.generalized_forces[i];
   }
   for (const auto& f : model.forces) {

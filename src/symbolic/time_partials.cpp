@@ -24,7 +24,9 @@ Vec3 point_velocity(const Model& model, const Vec3& x) {
   return v;
 }
 
-GiNaC::ex dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+GiNaC::ex dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 bool depends_on_rates(const Model& model, const GiNaC::ex& e) {
   for (const auto& c : model.coordinates)
