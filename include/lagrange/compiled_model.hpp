@@ -18,11 +18,11 @@ struct CompiledModel {
   size_t nq = 0, nv = 0, m = 0, k = 0, np = 0;
   size_t plain = 0;  ///< leading coordinates with q̇ = v (position index = velocity index)
   std::vector<std::string> coordinate_names;  ///< nq: plain names, then `<body>.x`, `<body>.R11`, …
-  std::vector<std::string> velocity_names;    ///< nv: `<name>_dot`, then `<body>.vx`, `<body>.wx`, …
+  std::vector<std::string> velocity_names;  ///< nv: `<name>_dot`, then `<body>.vx`, `<body>.wx`, …
   std::vector<std::string> constraint_names, output_names, input_names, parameter_names;
   std::vector<double> parameter_defaults;
-  std::vector<double> q0, v0;   ///< initial state from the model (nq, nv)
-  std::vector<bool> fixed;      ///< nq: coordinates kept by the initial-state projection
+  std::vector<double> q0, v0;  ///< initial state from the model (nq, nv)
+  std::vector<bool> fixed;     ///< nq: coordinates kept by the initial-state projection
 
   /// Structural non-zeros: M lower triangle (i ≥ j), G (row, velocity column) and ∂C/∂q
   /// (row, coordinate column), in tape output order.

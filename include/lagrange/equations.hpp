@@ -17,9 +17,9 @@ struct Kinematics {
   std::vector<GiNaC::symbol> q, v, a;  ///< nq, nv, nv symbols
   std::vector<GiNaC::ex> qdot;         ///< nq expressions of (q, v, γ)
   std::vector<std::string> q_names, v_names;
-  size_t plain = 0;                    ///< leading coordinates with q̇ = v
-  bool has_gamma = false;              ///< some free body uses the drift correction rate γ
-  GiNaC::symbol gamma{"gamma"};        ///< SO(3) drift correction rate, a tape parameter
+  size_t plain = 0;              ///< leading coordinates with q̇ = v
+  bool has_gamma = false;        ///< some free body uses the drift correction rate γ
+  GiNaC::symbol gamma{"gamma"};  ///< SO(3) drift correction rate, a tape parameter
   /// K = ∂q̇/∂v by columns: for each v_k, the non-zeros (j, ∂q̇ⱼ/∂v_k).
   std::vector<std::vector<std::pair<size_t, GiNaC::ex>>> K;
 };
@@ -38,17 +38,17 @@ struct Equations {
   size_t nv = 0;                 ///< number of velocities (size of M)
   size_t m = 0;                  ///< number of constraints
 
-  GiNaC::ex T, U, L;              ///< kinetic, potential energy, L = T − U (λᵀC kept apart)
-  GiNaC::matrix M;                ///< nv×nv mass matrix ∂²T/∂v∂vᵀ
-  std::vector<GiNaC::ex> h;       ///< forcing from L: ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂²L/∂v∂t
-  std::vector<GiNaC::ex> Q;       ///< non-conservative generalised forces (virtual work)
-  std::vector<GiNaC::ex> qdot;    ///< kinematics q̇ = K(q) v (identity for plain coordinates)
+  GiNaC::ex T, U, L;         ///< kinetic, potential energy, L = T − U (λᵀC kept apart)
+  GiNaC::matrix M;           ///< nv×nv mass matrix ∂²T/∂v∂vᵀ
+  std::vector<GiNaC::ex> h;  ///< forcing from L: ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂²L/∂v∂t
+  std::vector<GiNaC::ex> Q;     ///< non-conservative generalised forces (virtual work)
+  std::vector<GiNaC::ex> qdot;  ///< kinematics q̇ = K(q) v (identity for plain coordinates)
 
-  std::vector<GiNaC::ex> C;       ///< constraints C(q,t), m of them
-  GiNaC::matrix G;                ///< m×nv constraint Jacobian ∂Ċ/∂v (= ∂C/∂q when q̇ = v)
-  GiNaC::matrix Cq;               ///< m×nq ∂C/∂q, for the position projection
-  std::vector<GiNaC::ex> Cdot;    ///< Ċ = Σ ∂C/∂qⱼ q̇ⱼ + ∂C/∂t
-  std::vector<GiNaC::ex> c;       ///< C̈ − G a: dĊ/dt at a = 0
+  std::vector<GiNaC::ex> C;     ///< constraints C(q,t), m of them
+  GiNaC::matrix G;              ///< m×nv constraint Jacobian ∂Ċ/∂v (= ∂C/∂q when q̇ = v)
+  GiNaC::matrix Cq;             ///< m×nq ∂C/∂q, for the position projection
+  std::vector<GiNaC::ex> Cdot;  ///< Ċ = Σ ∂C/∂qⱼ q̇ⱼ + ∂C/∂t
+  std::vector<GiNaC::ex> c;     ///< C̈ − G a: dĊ/dt at a = 0
 
   std::vector<GiNaC::ex> outputs;         ///< named outputs: the model's, then per free body
   std::vector<std::string> output_names;  ///< its orthonormality error ‖RᵀR − 1‖_F

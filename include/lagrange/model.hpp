@@ -125,9 +125,9 @@ struct NamedExpr {
 
 /// Constraint stabilisation settings (DESIGN.md §4.3).
 struct Stabilization {
-  double alpha = 20.0;   ///< Baumgarte: both eigenvalues of the constraint error at −α
-  bool project = true;   ///< project onto C = 0, Ċ = 0 after each output step
-  double gamma = 1.0;    ///< SO(3) orthonormality drift correction rate (DESIGN.md §4.4)
+  double alpha = 20.0;  ///< Baumgarte: both eigenvalues of the constraint error at −α
+  bool project = true;  ///< project onto C = 0, Ċ = 0 after each output step
+  double gamma = 1.0;   ///< SO(3) orthonormality drift correction rate (DESIGN.md §4.4)
   SourceLoc loc;
 };
 

@@ -13,12 +13,13 @@ namespace lagrange {
 
 /// A sampled trajectory; `status` says whether it is complete.
 struct Trajectory {
-  std::vector<std::string> columns;  ///< t, q…, q_dot…, kinetic, potential, energy, outputs…, λ…, residuals
-  std::vector<double> data;          ///< row-major samples
+  std::vector<std::string>
+      columns;  ///< t, q…, q_dot…, kinetic, potential, energy, outputs…, λ…, residuals
+  std::vector<double> data;  ///< row-major samples
   enum class Status { Complete, Failed, Interrupted } status = Status::Complete;
-  std::string message;               ///< failure reason (empty when complete)
+  std::string message;  ///< failure reason (empty when complete)
   double failure_time = 0.0;
-  std::vector<std::string> notes;    ///< e.g. what the initial-state projection changed
+  std::vector<std::string> notes;  ///< e.g. what the initial-state projection changed
   IntegratorStats stats;
 
   size_t rows() const { return columns.empty() ? 0 : data.size() / columns.size(); }

@@ -26,7 +26,8 @@ double seconds_since(Clock::time_point start) {
 }
 
 // Parameter values: the model's, overridden by --set NAME=VALUE.
-std::vector<double> parameter_values(const CompiledModel& cm, const std::vector<std::string>& sets) {
+std::vector<double> parameter_values(const CompiledModel& cm,
+                                     const std::vector<std::string>& sets) {
   std::vector<double> p = cm.parameter_defaults;
   for (const auto& s : sets) {
     const auto eq = s.find('=');
@@ -75,7 +76,8 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
   auto last = start;
   return [start, last, t_end](double t) mutable {
     const auto now = Clock::now();
-    if (seconds_since(start) < 1.0 || std::chrono::duration<double>(now - last).count() < 0.2) return;
+    if (seconds_since(start) < 1.0 || std::chrono::duration<double>(now - last).count() < 0.2)
+      return;
     last = now;
     fmt::print(stderr, "\r  t = {:.4g} / {:.4g} ({:.0f} %)   ", t, t_end, 100.0 * t / t_end);
   };
@@ -103,24 +105,28 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
     for (size_t i = 0; i < cm.plain; ++i) {
       const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
       const GiNaC::ex value = GiNaC::evalf(Mii.subs(at_start));
-      if (!GiNaC::is_a<GiNaC::numeric>(value) || std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
+      if (!GiNaC::is_a<GiNaC::numeric>(value) ||
+          std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
         continue;
       std::string depends;
       for (size_t j = 0; j < model.parameters.size(); ++j)
         if (Mii.has(model.parameters[j].sym))
-          depends += fmt::format("{}{} = {:g}", depends.empty() ? "" : ", ", model.parameters[j].name,
-                                 dyn.parameters()[j]);
+          depends += fmt::format("{}{} = {:g}", depends.empty() ? "" : ", ",
+                                 model.parameters[j].name, dyn.parameters()[j]);
       const Coordinate& c = model.coordinates[i];
       std::ostringstream entry;
       entry << Mii;
-      throw ModelError(c.loc, fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
-                                          "matrix entry M[{},{}] = {} is 0{}; expected positive masses "
-                                          "and non-zero lengths",
-                                          c.name, c.name, c.name, entry.str(),
-                                          depends.empty() ? "" : " with " + depends));
+      throw ModelError(c.loc,
+                       fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
+                                   "matrix entry M[{},{}] = {} is 0{}; expected positive masses "
+                                   "and non-zero lengths",
+                                   c.name, c.name, c.name, entry.str(),
+                                   depends.empty() ? "" : " with " + depends));
     }
-    const SourceLoc where = model.coordinates.empty() ? SourceLoc{model.file, 1, 1} : model.coordinates[0].loc;
-    throw ModelError(where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
+    const SourceLoc where =
+        model.coordinates.empty() ? SourceLoc{model.file, 1, 1} : model.coordinates[0].loc;
+    throw ModelError(
+        where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
   }
 }
 
@@ -213,13 +219,17 @@ int run_simulate(const Options& opt) {
     const size_t rows = traj.rows();
     fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->nq,
                cm->m, cm->dynamics.num_instructions());
-    fmt::print("  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, {})\n",
-               t_derive, t_compile, t_sim, traj.stats.steps, traj.stats.rhs_evals, so.integrator.method);
+    fmt::print(
+        "  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, "
+        "{})\n",
+        t_derive, t_compile, t_sim, traj.stats.steps, traj.stats.rhs_evals, so.integrator.method);
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
-      fmt::print("  t = {:.6g} .. {:.6g}, {} samples; energy {:.10g} -> {:.10g} (relative change {:.2e})\n",
-                 traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1,
-                 std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300));
+      fmt::print(
+          "  t = {:.6g} .. {:.6g}, {} samples; energy {:.10g} -> {:.10g} (relative change "
+          "{:.2e})\n",
+          traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1,
+          std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300));
       std::string last;
       const size_t shown = std::min<size_t>(cm->nq, 6);
       for (size_t i = 0; i < shown; ++i)
@@ -229,7 +239,8 @@ int run_simulate(const Options& opt) {
       fmt::print("  final state: {}\n", last);
       if (cm->m > 0) {
         double worst = 0;
-        for (size_t r = 0; r < rows; ++r) worst = std::max(worst, traj.at(r, "constraint_residual"));
+        for (size_t r = 0; r < rows; ++r)
+          worst = std::max(worst, traj.at(r, "constraint_residual"));
         fmt::print("  max constraint residual {:.2e}\n", worst);
       }
     }
@@ -239,8 +250,10 @@ int run_simulate(const Options& opt) {
   if (traj.status == Trajectory::Status::Failed) {
     fmt::print(stderr, "lagrange: {}\n", traj.message);
     if (!opt.csv.empty())
-      fmt::print(stderr, "lagrange: the trajectory up to t = {:.6g} was kept in {} (marked failed in {}.json)\n",
-                 traj.rows() ? traj.data[(traj.rows() - 1) * traj.columns.size()] : 0.0, opt.csv, opt.csv);
+      fmt::print(
+          stderr,
+          "lagrange: the trajectory up to t = {:.6g} was kept in {} (marked failed in {}.json)\n",
+          traj.rows() ? traj.data[(traj.rows() - 1) * traj.columns.size()] : 0.0, opt.csv, opt.csv);
     return 3;
   }
   if (traj.status == Trajectory::Status::Interrupted) {

@@ -1,22 +1,24 @@
 // The `lagrange` command (DESIGN.md §6): derive, simulate, export, check.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
-#include <unistd.h>
 
 #include "cli/commands.hpp"
 #include "lagrange/error.hpp"
 
 namespace {
 std::atomic<bool> g_interrupt{false};
-extern "C" void on_sigint(int) { g_interrupt.store(true); }
+extern "C" void on_sigint(int) {
+  g_interrupt.store(true);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -25,7 +27,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Options opt;
 
-  auto* derive = app.add_subcommand("derive", "print T, U, L, the Euler-Lagrange equations, M and h + Q");
+  auto* derive =
+      app.add_subcommand("derive", "print T, U, L, the Euler-Lagrange equations, M and h + Q");
   derive->add_option("model", opt.model, "model file (YAML)")->required();
   derive->add_option("--format", opt.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}));
@@ -50,7 +53,8 @@ int main(int argc, char** argv) {
   exp->add_option("model", opt.model, "model file (YAML)")->required();
   exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->required();
 
-  auto* check = app.add_subcommand("check", "validate the model and the consistency of its initial state");
+  auto* check =
+      app.add_subcommand("check", "validate the model and the consistency of its initial state");
   check->add_option("model", opt.model, "model file (YAML)")->required();
   check->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
 

@@ -56,7 +56,8 @@ Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<doubl
   lu_K_ = Eigen::PartialPivLU<Eigen::MatrixXd>(cm.nv + cm.m);
   // A diagonal M with many constraints (chains in Cartesian coordinates) takes the sparse
   // range-space path; small systems stay dense, where it is faster.
-  if (cm.M_diagonal && cm.m > 0 && cm.nv >= kSparseThreshold && cm.M_pattern.size() == cm.nv && cm.nq == cm.nv) {
+  if (cm.M_diagonal && cm.m > 0 && cm.nv >= kSparseThreshold && cm.M_pattern.size() == cm.nv &&
+      cm.nq == cm.nv) {
     sparse_ = std::make_unique<dynamics::SparseRangeSpace>(cm);
     m_diag_.assign(cm.nv, 0.0);
   }
@@ -127,10 +128,12 @@ void Dynamics::fail_redundant(double t) const {
   std::string names;
   const auto perm = qr.colsPermutation().indices();
   for (long r = qr.rank(); r < perm.size(); ++r)
-    names += (names.empty() ? "'" : ", '") + cm.constraint_names[static_cast<size_t>(perm[r])] + "'";
+    names +=
+        (names.empty() ? "'" : ", '") + cm.constraint_names[static_cast<size_t>(perm[r])] + "'";
   if (names.empty())
-    fail_singular(t, "the mass matrix is singular on the constraint manifold (the KKT system "
-                     "has no unique solution)");
+    fail_singular(t,
+                  "the mass matrix is singular on the constraint manifold (the KKT system "
+                  "has no unique solution)");
   fail_singular(t, fmt::format("the constraints are redundant or singular (rank {} of {}; "
                                "dependent: {})",
                                qr.rank(), cm.m, names));
@@ -155,8 +158,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   if (cm.m > 0) {
     assemble_G();
     for (size_t r = 0; r < cm.m; ++r)
-      gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] -
-                                     2.0 * alpha_ * out[cm.Cdot_out() + r] -
+      gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] - 2.0 * alpha_ * out[cm.Cdot_out() + r] -
                                      alpha_ * alpha_ * out[cm.C_out() + r];
   }
   if (sparse_) {
@@ -164,7 +166,8 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
     if (sparse_->solve(m_diag_.data(), out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
       for (size_t i = 0; i < cm.nv; ++i)
         if (!std::isfinite(a[i]))
-          fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.velocity_names[i]));
+          fail_singular(
+              t, fmt::format("the acceleration of '{}' is not finite", cm.velocity_names[i]));
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
@@ -216,7 +219,8 @@ void Dynamics::solve_full_kkt(double t) {
 void Dynamics::dae_residual(double t, const double* q, const double* v, const double* qp,
                             const double* vp, const double* lambda, double* r) {
   const CompiledModel& cm = *model_;
-  const long nq = static_cast<long>(cm.nq), n = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);
+  const long nq = static_cast<long>(cm.nq), n = static_cast<long>(cm.nv),
+             m = static_cast<long>(cm.m);
   eval_dynamics(t, q, v);
   assemble_M();
   assemble_G();

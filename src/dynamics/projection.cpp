@@ -27,7 +27,8 @@ ProjectionResult Dynamics::project(double t, double* q, double* v, const std::ve
   const CompiledModel& cm = *model_;
   ProjectionResult res;
   if (cm.m == 0) return res;
-  const long nq = static_cast<long>(cm.nq), nv = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);
+  const long nq = static_cast<long>(cm.nq), nv = static_cast<long>(cm.nv),
+             m = static_cast<long>(cm.m);
   Eigen::Map<Eigen::VectorXd> qv(q, nq), vv(v, nv);
   const Eigen::VectorXd q_start = qv, v_start = vv;
   Eigen::VectorXd rhs(m);
@@ -37,14 +38,16 @@ ProjectionResult Dynamics::project(double t, double* q, double* v, const std::ve
     const double* d = out_.data() + cm.Cq_out();
     for (size_t e = 0; e < cm.Cq_pattern.size(); ++e)
       if (!is_fixed(cm.Cq_pattern[e].second))
-        J(static_cast<long>(cm.Cq_pattern[e].first), static_cast<long>(cm.Cq_pattern[e].second)) = d[e];
+        J(static_cast<long>(cm.Cq_pattern[e].first), static_cast<long>(cm.Cq_pattern[e].second)) =
+            d[e];
     return J;
   };
   auto velocity_jacobian = [&]() {  // plain velocities share their coordinate's flag
     assemble_G();
     Eigen::MatrixXd Gf = G_;
     for (long k = 0; k < nv; ++k)
-      if (static_cast<size_t>(k) < cm.plain && is_fixed(static_cast<size_t>(k))) Gf.col(k).setZero();
+      if (static_cast<size_t>(k) < cm.plain && is_fixed(static_cast<size_t>(k)))
+        Gf.col(k).setZero();
     return Gf;
   };
   for (;; ++res.iterations) {

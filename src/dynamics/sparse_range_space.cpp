@@ -1,7 +1,7 @@
 #include "dynamics/sparse_range_space.hpp"
 
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <map>
 
 namespace lagrange::dynamics {
@@ -21,7 +21,8 @@ SparseRangeSpace::SparseRangeSpace(const CompiledModel& cm)
       }
   std::vector<Eigen::Triplet<double>> triplets;
   for (const auto& [rs, list] : pairs) triplets.emplace_back(rs.first, rs.second, 1.0);
-  for (size_t r = 0; r < m_; ++r) triplets.emplace_back(static_cast<int>(r), static_cast<int>(r), 0.0);
+  for (size_t r = 0; r < m_; ++r)
+    triplets.emplace_back(static_cast<int>(r), static_cast<int>(r), 0.0);
   S_.resize(static_cast<long>(m_), static_cast<long>(m_));
   S_.setFromTriplets(triplets.begin(), triplets.end());  // lower triangle, duplicates summed
   S_.makeCompressed();
@@ -50,7 +51,8 @@ bool SparseRangeSpace::solve(const double* m_diag, const double* g, const double
   for (size_t r = 0; r < m_; ++r) lam_[static_cast<long>(r)] -= gamma[r];
   lam_ = llt_.solve(lam_);
   for (size_t j = 0; j < n_; ++j) a[j] = rhs[j];
-  for (size_t e = 0; e < G_.size(); ++e) a[G_[e].second] -= g[e] * lam_[static_cast<long>(G_[e].first)];
+  for (size_t e = 0; e < G_.size(); ++e)
+    a[G_[e].second] -= g[e] * lam_[static_cast<long>(G_[e].first)];
   for (size_t j = 0; j < n_; ++j) a[j] /= m_diag[j];
   for (size_t r = 0; r < m_; ++r) lambda[r] = lam_[static_cast<long>(r)];
   return true;

@@ -50,31 +50,37 @@ std::string format_text(const Equations& eq, Style style) {
     out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
   };
   auto heading = [&](const std::string& h) {
-    out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h) : fmt::format("\n{}\n", h);
+    out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h)
+               : fmt::format("\n{}\n", h);
   };
-  if (tex) out += "\\begin{align*}\n";
-  else out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
+  if (tex)
+    out += "\\begin{align*}\n";
+  else
+    out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
   // Plain coordinates are named by q, body velocities by their own names (`brick.wx`).
   auto vname = [&](size_t i) { return i < eq.kin.plain ? eq.kin.q_names[i] : eq.kin.v_names[i]; };
   heading("Energies");
   line("T", str(eq.T, style));
   line("U", str(eq.U, style));
-  line(tex ? "L" : "L", eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C")
-                             : str(eq.L, style));
-  heading(tex ? "Euler--Lagrange equations" : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
+  line(tex ? "L" : "L",
+       eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
+  heading(tex ? "Euler--Lagrange equations"
+              : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
   for (size_t i = 0; i < eq.nv; ++i) {
     GiNaC::ex rhs = eq.Q[i];
     std::string extra;
     for (size_t r = 0; r < eq.m; ++r)
       if (!eq.G(r, i).is_zero())
-        extra += fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
+        extra +=
+            fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
     std::string right = rhs.is_zero() && !extra.empty() ? extra.substr(1) : str(rhs, style) + extra;
     line(str(eq.euler_lagrange_lhs(i), style), right);
   }
   if (eq.nq > eq.kin.plain) {
     heading(tex ? "Rigid-body kinematics (DESIGN.md 4.4)"
                 : "Rigid-body kinematics (DESIGN.md §4.4): r' = v, R' = R (Omega + Xi), "
-                  "Xi = gamma/2 ((R^T R)^-1 - 1); rows above for w are J w' + w x J w + 2P(dV/dR) = F_rot");
+                  "Xi = gamma/2 ((R^T R)^-1 - 1); rows above for w are J w' + w x J w + 2P(dV/dR) "
+                  "= F_rot");
     for (const auto& b : model.bodies)
       if (b.free)
         line(b.name + ".R'", b.name + ".R (" + b.name + ".Omega + Xi),  Omega = [" + b.name +
@@ -83,13 +89,15 @@ std::string format_text(const Equations& eq, Style style) {
   heading("Mass matrix M(q)");
   for (size_t i = 0; i < eq.nv; ++i)
     for (size_t j = 0; j <= i; ++j)
-      if (!eq.M(i, j).is_zero()) line(fmt::format("M_{{{}{}}}", i + 1, j + 1), str(eq.M(i, j), style));
+      if (!eq.M(i, j).is_zero())
+        line(fmt::format("M_{{{}{}}}", i + 1, j + 1), str(eq.M(i, j), style));
   heading("Forcing h(q, v) + Q");
   for (size_t i = 0; i < eq.nv; ++i)
     line(fmt::format("(h+Q)_{{{}}}", vname(i)), str(eq.h[i] + eq.Q[i], style));
   if (eq.m > 0) {
     heading(tex ? "Constraints, index-3: C = 0" : "Constraints (index-3 DAE: C = 0)");
-    for (size_t r = 0; r < eq.m; ++r) line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
+    for (size_t r = 0; r < eq.m; ++r)
+      line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
     heading("Constraint Jacobian G = dC/dq");
     for (size_t r = 0; r < eq.m; ++r)
       for (size_t j = 0; j < eq.nv; ++j)

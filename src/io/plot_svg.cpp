@@ -59,7 +59,8 @@ void plot_trajectory_svg(const Trajectory& traj, const std::vector<std::string>&
   const int status = pclose(pipe);
   if (status != 0) {
     std::remove(tmp.c_str());
-    throw std::runtime_error("gnuplot failed (is gnuplot-nox installed?) while plotting '" + path + "'");
+    throw std::runtime_error("gnuplot failed (is gnuplot-nox installed?) while plotting '" + path +
+                             "'");
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
     throw std::runtime_error("cannot rename '" + tmp + "' to '" + path + "'");

@@ -21,9 +21,9 @@ void add_generalized_forces(const Kinematics& kin, MechanicalTerms& terms) {
   const size_t n = kin.v.size();
   for (size_t i = 0; i < model.coordinates.size() && i < model.generalized_forces.size(); ++i) {
     if (depends_on_accelerations(kin, model.generalized_forces[i]))
-      throw ModelError(model.coordinates[i].loc, "the generalised force on '" +
-                                                     model.coordinates[i].name +
-                                                     "' depends on accelerations");
+      throw ModelError(
+          model.coordinates[i].loc,
+          "the generalised force on '" + model.coordinates[i].name + "' depends on accelerations");
     terms.Q[i] += model.generalized_forces[i];
   }
   for (const auto& f : model.forces) {

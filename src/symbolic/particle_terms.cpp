@@ -11,9 +11,13 @@ namespace {
 using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
 using ExVecMap = std::map<GiNaC::ex, Vec3, GiNaC::ex_is_less>;
 
-bool is_zero(const Vec3& v) { return v[0].is_zero() && v[1].is_zero() && v[2].is_zero(); }
+bool is_zero(const Vec3& v) {
+  return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
+}
 
-GiNaC::ex key_of(const Vec3& col) { return GiNaC::lst{col[0], col[1], col[2]}; }
+GiNaC::ex key_of(const Vec3& col) {
+  return GiNaC::lst{col[0], col[1], col[2]};
+}
 
 Vec3 vec_of(const GiNaC::ex& key, size_t offset = 0) {
   return {key.op(offset), key.op(offset + 1), key.op(offset + 2)};

@@ -41,7 +41,9 @@ std::vector<GiNaC::ex> velocity_gradient(const Kinematics& kin, const GiNaC::ex&
   return g;
 }
 
-GiNaC::ex dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+GiNaC::ex dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 bool depends_on_rates(const Kinematics& kin, const GiNaC::ex& e) {
   for (size_t k = 0; k < kin.v.size(); ++k)

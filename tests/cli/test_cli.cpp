@@ -65,7 +65,9 @@ TEST(Cli, SimulateWritesCsvSidecarAndPlot) {
 TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
   const fs::path a = scratch("a.csv"), b = scratch("b.csv");
   ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 1 -o " + a.string()).code, 0);
-  ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 2 --set l=4 -o " + b.string()).code, 0);
+  ASSERT_EQ(
+      run("simulate " + example("pendulum.yaml") + " -q --t-end 2 --set l=4 -o " + b.string()).code,
+      0);
   auto last_theta = [](const fs::path& p) {
     std::ifstream in(p);
     std::string line, last;
@@ -97,7 +99,9 @@ struct BadCase {
   const char* fragment;  // expected in the message
 };
 
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const BadCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
@@ -117,12 +121,11 @@ INSTANTIATE_TEST_SUITE_P(
     Cli, BadInput,
     ::testing::Values(
         BadCase{"yaml_syntax", "name: x\ncoordinates:\n  q: {initial: 1\n", "4:", "YAML"},
-        BadCase{"unknown_name",
-                "coordinates:\n  q: {initial: 1}\npotential: k*q^2\n", "3:12", "'k'"},
-        BadCase{"wrong_vector_size",
-                "coordinates:\n  q: {initial: 1}\npoints:\n  p: [q, 0]\n", "4:", "3"},
-        BadCase{"missing_initial",
-                "coordinates:\n  q: {rate: 1}\n", "2:", "initial"}),
+        BadCase{"unknown_name", "coordinates:\n  q: {initial: 1}\npotential: k*q^2\n", "3:12",
+                "'k'"},
+        BadCase{"wrong_vector_size", "coordinates:\n  q: {initial: 1}\npoints:\n  p: [q, 0]\n",
+                "4:", "3"},
+        BadCase{"missing_initial", "coordinates:\n  q: {rate: 1}\n", "2:", "initial"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Cli, MissingFileIsAModelError) {

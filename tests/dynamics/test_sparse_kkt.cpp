@@ -1,8 +1,8 @@
 // The sparse range-space KKT path (diagonal M, banded G) against analytic tensions and the
 // polar formulation of the same chain.
 
-#include <gtest/gtest.h>
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 

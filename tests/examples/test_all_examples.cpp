@@ -14,7 +14,8 @@ namespace {
 
 std::vector<std::string> example_files() {
   std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples"))
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples"))
     if (e.path().extension() == ".yaml") names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
@@ -34,8 +35,8 @@ TEST_P(Example, RunsAndKeepsItsInvariants) {
       ASSERT_LT(tr.at(r, "constraint_rate_residual"), 1e-9) << "t = " << tr.at(r, "t");
     }
   }
-  const bool conservative = sys.model->dampers.empty() && sys.model->forces.empty() &&
-                            sys.model->inputs.empty();
+  const bool conservative =
+      sys.model->dampers.empty() && sys.model->forces.empty() && sys.model->inputs.empty();
   if (conservative) {
     const double e0 = tr.at(0, "energy");
     const double e1 = tr.at(tr.rows() - 1, "energy");

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <iomanip>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "lagrange/io.hpp"
@@ -43,9 +43,9 @@ std::vector<double> run_exported(const CompiledModel& cm, const std::string& tag
        << "  for (i = 0; i < LAGRANGE_M; ++i) printf(\"%.17g\\n\", lam[i]);\n  return 0;\n}\n";
   std::ofstream(dir / "main.c") << main.str();
   const std::string exe = (dir / "run").string();
-  const std::string cmd = "cc -std=c99 -O1 -ffp-contract=off -Wall -Werror -pedantic -o " + exe + " " +
-                          (dir / "main.c").string() + " " + (dir / "lagrange_model.c").string() +
-                          " -lm 2>&1";
+  const std::string cmd = "cc -std=c99 -O1 -ffp-contract=off -Wall -Werror -pedantic -o " + exe +
+                          " " + (dir / "main.c").string() + " " +
+                          (dir / "lagrange_model.c").string() + " -lm 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   FILE* pipe = popen(exe.c_str(), "r");
   std::vector<double> out;

@@ -111,7 +111,8 @@ TEST(Analytic, DoublePendulumConservesEnergy) {
   EXPECT_LT(drift / std::abs(e0), 1e-8);
   // The chaotic motion really happened: the lower link went over the top.
   double max_theta2 = 0;
-  for (size_t r = 0; r < tr.rows(); ++r) max_theta2 = std::max(max_theta2, std::abs(tr.at(r, "theta2")));
+  for (size_t r = 0; r < tr.rows(); ++r)
+    max_theta2 = std::max(max_theta2, std::abs(tr.at(r, "theta2")));
   EXPECT_GT(max_theta2, 3.0);
 }
 
@@ -133,7 +134,8 @@ TEST(Analytic, Rk4ConvergesAtFourthOrder) {
     return std::hypot(tr.at(last, "theta1") - exact.at(last, "theta1"),
                       tr.at(last, "theta2") - exact.at(last, "theta2"));
   };
-  const double e1 = error_with_step(0.05), e2 = error_with_step(0.025), e3 = error_with_step(0.0125);
+  const double e1 = error_with_step(0.05), e2 = error_with_step(0.025),
+               e3 = error_with_step(0.0125);
   EXPECT_NEAR(std::log2(e1 / e2), 4.0, 0.3) << e1 << " " << e2;
   EXPECT_NEAR(std::log2(e2 / e3), 4.0, 0.3) << e2 << " " << e3;
 }

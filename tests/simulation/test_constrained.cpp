@@ -175,7 +175,8 @@ TEST(Constrained, FixedCoordinatesAreKeptByProjection) {
   EXPECT_DOUBLE_EQ(tr.at(0, "th1_dot"), 0.5);
   EXPECT_LT(max_over(tr, "constraint_residual"), 1e-9);
   // Closed kinematic loop without friction conserves energy.
-  EXPECT_NEAR(tr.at(tr.rows() - 1, "energy"), tr.at(0, "energy"), 1e-6 * std::abs(tr.at(0, "energy")));
+  EXPECT_NEAR(tr.at(tr.rows() - 1, "energy"), tr.at(0, "energy"),
+              1e-6 * std::abs(tr.at(0, "energy")));
 }
 
 TEST(Constrained, RedundantConstraintsAreNamed) {
@@ -201,7 +202,9 @@ constraints:
     const std::string msg = e.what();
     EXPECT_NE(msg.find("t = 0.25"), std::string::npos) << msg;
     EXPECT_NE(msg.find("redundant or singular"), std::string::npos) << msg;
-    EXPECT_TRUE(msg.find("'rod'") != std::string::npos || msg.find("'rod_again'") != std::string::npos) << msg;
+    EXPECT_TRUE(msg.find("'rod'") != std::string::npos ||
+                msg.find("'rod_again'") != std::string::npos)
+        << msg;
   }
 }
 

@@ -34,7 +34,9 @@ inline GiNaC::symbol sym(const Model& m, const std::string& name) {
 }
 
 /// True when a − b normalises to zero (symbolic equality of canonical forms).
-inline bool same(const GiNaC::ex& a, const GiNaC::ex& b) { return simplify(a - b).is_zero(); }
+inline bool same(const GiNaC::ex& a, const GiNaC::ex& b) {
+  return simplify(a - b).is_zero();
+}
 
 /// A model with everything needed to simulate it.
 struct Loaded {
