@@ -35,10 +35,10 @@ TEST(SparseKkt, HangingChainTensionsAreTheWeightBelow) {
   auto sys = testing::load_string(cartesian_chain(N, 0.0));
   const auto& cm = *sys.compiled;
   ASSERT_TRUE(cm.M_diagonal);
-  std::vector<double> qd(cm.n), a(cm.n), lambda(cm.m);
-  const std::vector<double> v(cm.n, 0.0);
+  std::vector<double> qd(cm.nq), a(cm.nv), lambda(cm.m);
+  const std::vector<double> v(cm.nv, 0.0);
   sys.dynamics->forward(0.0, cm.q0.data(), v.data(), qd.data(), a.data(), lambda.data());
-  for (size_t i = 0; i < cm.n; ++i) EXPECT_NEAR(a[i], 0.0, 1e-10) << i;
+  for (size_t i = 0; i < cm.nv; ++i) EXPECT_NEAR(a[i], 0.0, 1e-10) << i;
   // C = (|d|² − l²)/2 ⇒ rod force λ d, tension λ l = (N − i + 1) m g.
   for (int i = 1; i <= N; ++i)
     EXPECT_NEAR(lambda[static_cast<size_t>(i - 1)] * 0.5, (N - i + 1) * 9.81, 1e-9) << i;

@@ -35,7 +35,7 @@ std::vector<double> run_exported(const CompiledModel& cm, const std::string& tag
   arr("q", q);
   arr("v", v);
   arr("p", cm.parameter_defaults);
-  main << "  double u[3 * LAGRANGE_K + 1], qd[LAGRANGE_N], a[LAGRANGE_N], lam[LAGRANGE_M + 1];\n"
+  main << "  double u[3 * LAGRANGE_K + 1], qd[LAGRANGE_NQ], a[LAGRANGE_N], lam[LAGRANGE_M + 1];\n"
        << "  int i, rc;\n  lagrange_inputs(" << std::setprecision(17) << t << ", p, u);\n"
        << "  rc = lagrange_dynamics(" << t << ", q, v, u, p, " << alpha << ", qd, a, lam);\n"
        << "  if (rc) return 10 + rc;\n"
@@ -61,13 +61,13 @@ void expect_export_matches(const std::string& example, const std::vector<double>
   const CompiledModel& cm = *sys.compiled;
   const double alpha = 7.0;
   sys.dynamics->set_baumgarte(alpha);
-  std::vector<double> qd(cm.n), a(cm.n), lambda(cm.m);
+  std::vector<double> qd(cm.nq), a(cm.nv), lambda(cm.m);
   sys.dynamics->forward(t, q.data(), v.data(), qd.data(), a.data(), lambda.data());
   const std::vector<double> c = run_exported(cm, example, q, v, t, alpha);
-  ASSERT_EQ(c.size(), cm.n + cm.m);
-  for (size_t i = 0; i < cm.n; ++i) EXPECT_NEAR(c[i], a[i], 1e-12 * (1 + std::abs(a[i]))) << i;
+  ASSERT_EQ(c.size(), cm.nv + cm.m);
+  for (size_t i = 0; i < cm.nv; ++i) EXPECT_NEAR(c[i], a[i], 1e-12 * (1 + std::abs(a[i]))) << i;
   for (size_t r = 0; r < cm.m; ++r)
-    EXPECT_NEAR(c[cm.n + r], lambda[r], 1e-12 * (1 + std::abs(lambda[r]))) << r;
+    EXPECT_NEAR(c[cm.nv + r], lambda[r], 1e-12 * (1 + std::abs(lambda[r]))) << r;
 }
 
 TEST(ExportC, DoublePendulumMatchesEngine) {
