@@ -20,6 +20,7 @@ SparseRangeSpace::SparseRangeSpace(const CompiledModel& cm)
         if (r >= s) pairs[{r, s}].push_back({e1, e2, static_cast<int>(j)});
       }
   std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(pairs.size() + m_);
   for (const auto& [rs, list] : pairs) triplets.emplace_back(rs.first, rs.second, 1.0);
   for (size_t r = 0; r < m_; ++r)
     triplets.emplace_back(static_cast<int>(r), static_cast<int>(r), 0.0);
