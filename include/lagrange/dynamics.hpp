@@ -27,7 +27,7 @@ struct ProjectionResult {
 /// and all scratch memory, so that forward() never allocates. Not thread-safe; make one per thread.
 class Dynamics {
  public:
-  Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters);
+  Dynamics(std::shared_ptr<const CompiledModel> model, const std::vector<double>& parameters);
   ~Dynamics();
   Dynamics(Dynamics&&) noexcept;
   Dynamics& operator=(Dynamics&&) noexcept;

@@ -34,7 +34,8 @@ std::string format_values(const std::vector<std::string>& names, const double* x
 
 }  // namespace
 
-Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters)
+Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model,
+                   const std::vector<double>& parameters)
     : model_(std::move(model)) {
   const CompiledModel& cm = *model_;
   in_.assign(cm.input_count(), 0.0);

@@ -1,10 +1,10 @@
 #pragma once
 // Sparse KKT solve for a diagonal mass matrix (e.g. chains in Cartesian coordinates).
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+#include <Eigen/Dense>
 #include <vector>
 
+#include "dynamics/envelope_cholesky.hpp"
 #include "lagrange/compiled_model.hpp"
 
 namespace lagrange::dynamics {
@@ -12,7 +12,8 @@ namespace lagrange::dynamics {
 /// Range-space KKT solve when M is diagonal (DESIGN.md §4.3):
 ///   S = G M⁻¹ Gᵀ (sparse, pattern fixed at construction), S λ = G M⁻¹(h + Q) − γ,
 ///   a = M⁻¹(h + Q − Gᵀ λ).
-/// Cost per call is linear in the number of non-zeros of G and S for banded G (chains).
+/// S is factorised by an envelope Cholesky in the constraints' natural order, so the cost per
+/// call is linear in the number of constraints for banded G (chains), with no allocation.
 class SparseRangeSpace {
  public:
   explicit SparseRangeSpace(const CompiledModel& model);
@@ -23,7 +24,6 @@ class SparseRangeSpace {
              double* a, double* lambda);
 
  private:
-  bool well_conditioned() const;
   struct Contribution {
     int value;   // index into S's value array
     int g1, g2;  // G entries (same column j)
@@ -32,8 +32,7 @@ class SparseRangeSpace {
   size_t n_, m_;
   std::vector<std::pair<size_t, size_t>> G_;  // (row, column) per G value
   std::vector<Contribution> contributions_;
-  Eigen::SparseMatrix<double> S_;
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
+  EnvelopeCholesky S_;
   Eigen::VectorXd a0_, lam_;
 };
 

@@ -1,6 +1,7 @@
 #include <map>
 
 #include "lagrange/error.hpp"
+#include "symbolic/gradient_cache.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
 
@@ -35,6 +36,7 @@ void add_particle_terms(const Kinematics& kin, MechanicalTerms& terms) {
   const Vec3 g = model.gravity.value_or(Vec3{0, 0, 0});
   std::vector<ExMap> mass_of_pair(n * n);  // (i ≤ j) → (colᵢ, colⱼ) → Σ m
   std::vector<ExVecMap> force_of_col(n);   // i → colᵢ → Σ m (g − b)
+  GradientCache cache(kin);
   for (const auto& particle : model.particles) {
     const Point* point = model.find_point(particle.point);
     if (point == nullptr) throw ModelError(particle.loc, "unknown point '" + particle.point + "'");
@@ -42,11 +44,10 @@ void add_particle_terms(const Kinematics& kin, MechanicalTerms& terms) {
       throw ModelError(particle.loc, "the mass of the particle at '" + particle.point +
                                          "' depends on the state; expected a constant mass");
     const GiNaC::ex& m = particle.mass;
-    const std::vector<Vec3> J = point_jacobian(kin, point->pos);
-    const Vec3 xdot = point_velocity(kin, point->pos);
-    Vec3 g_minus_b;
-    for (size_t k = 0; k < 3; ++k)
-      g_minus_b[k] = g[k] - derivative_without_accelerations(kin, xdot[k]);
+    const std::vector<Vec3> J = cache.jacobian(point->pos);
+    Vec3 xdot, g_minus_b;
+    for (size_t k = 0; k < 3; ++k) xdot[k] = cache.rate(point->pos[k]);
+    for (size_t k = 0; k < 3; ++k) g_minus_b[k] = g[k] - cache.rate(xdot[k]);
     terms.T += m / 2 * dot(xdot, xdot);
     terms.U -= m * dot(g, point->pos);
     std::vector<size_t> active;

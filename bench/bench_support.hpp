@@ -1,0 +1,78 @@
+#pragma once
+// Shared set-up of the benchmarks: a model read, derived, compiled and specialised, with the
+// time each stage took.
+
+#include <time.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/model.hpp"
+#include "lagrange/reader.hpp"
+
+namespace lagrange::bench {
+
+/// Seconds spent in each stage of building a model from YAML text.
+struct StageTimes {
+  double read = 0.0, derive = 0.0, compile = 0.0, specialise = 0.0;
+  /// derive + compile + specialise: what a user waits for after the file is read.
+  double build() const { return derive + compile + specialise; }
+};
+
+/// Wall-clock and process CPU time together. CPU time is what the comparison with the
+/// (single-threaded) SymPy peer should use when other jobs share the machine's cores.
+class Stopwatch {
+ public:
+  struct Reading {
+    double wall, cpu;
+  };
+  Reading now() const {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    const double cpu = static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return {wall, cpu};
+  }
+};
+
+/// A model carried through every stage. The Model is heap-allocated because Equations keeps a
+/// pointer to it.
+struct BuiltModel {
+  std::unique_ptr<Model> model;
+  Equations equations;
+  std::shared_ptr<const CompiledModel> compiled;
+  std::unique_ptr<Dynamics> dynamics;  ///< tapes specialised to the default parameters
+  StageTimes times;                    ///< wall-clock seconds
+  StageTimes cpu_times;                ///< process CPU seconds
+};
+
+inline BuiltModel build_model(const std::string& yaml, const std::string& label) {
+  const Stopwatch clock;
+  BuiltModel b;
+  const auto t0 = clock.now();
+  b.model = std::make_unique<Model>(read_model_string(yaml, label));
+  const auto t1 = clock.now();
+  b.equations = derive(*b.model);
+  const auto t2 = clock.now();
+  b.compiled = compile(b.equations);
+  const auto t3 = clock.now();
+  b.dynamics = std::make_unique<Dynamics>(b.compiled, b.compiled->parameter_defaults);
+  const auto t4 = clock.now();
+  b.times = {t1.wall - t0.wall, t2.wall - t1.wall, t3.wall - t2.wall, t4.wall - t3.wall};
+  b.cpu_times = {t1.cpu - t0.cpu, t2.cpu - t1.cpu, t3.cpu - t2.cpu, t4.cpu - t3.cpu};
+  return b;
+}
+
+/// Instruction count of the dynamics tape after specialisation to the default parameters
+/// (Dynamics keeps its specialised tape private; this repeats the same specialisation).
+inline size_t specialised_instructions(const CompiledModel& cm) {
+  return cm.dynamics.specialize(cm.p_offset(), cm.parameter_defaults).num_instructions();
+}
+
+}  // namespace lagrange::bench

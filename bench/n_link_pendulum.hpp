@@ -1,0 +1,41 @@
+#pragma once
+// Model generators for the benchmark families (DESIGN.md §8, PEERS.md): YAML text for any N.
+
+#include <cstddef>
+#include <string>
+
+namespace lagrange::bench {
+
+/// How the N-link pendulum's parameters are declared.
+enum class PendulumParameters {
+  /// One mass m and one length l shared by all links (the PEERS.md figures). Symbolic sums
+  /// such as Σₖ m fold to (N − j)·m during derivation.
+  Shared,
+  /// Per-link masses m1..mN and lengths l1..lN with distinct values: nothing folds
+  /// symbolically, the harder and fairer case for a symbolic engine (DESIGN.md §8).
+  PerLink,
+};
+
+/// Planar N-link pendulum with absolute angles th1..thN and point masses at the link ends:
+///   p1 = [l1 sin th1, −l1 cos th1, 0],  pₖ = pₖ₋₁ + [lₖ sin thₖ, −lₖ cos thₖ, 0],
+/// gravity along −y. Initial angles initial_angle(k), initial rates 0. Throws
+/// std::invalid_argument when n is 0.
+std::string n_link_pendulum_yaml(std::size_t n,
+                                 PendulumParameters parameters = PendulumParameters::PerLink);
+
+/// Initial angle of link k (1-based): 0.5 − 0.1·(k mod 4) rad. Neighbouring links differ, so
+/// that no sin(θᵢ − θⱼ) vanishes and the velocity terms are exercised.
+double initial_angle(std::size_t k);
+/// Mass of link k (1-based) in the PerLink family: 1 + 0.1·(k mod 7).
+double per_link_mass(std::size_t k);
+/// Length of link k (1-based) in the PerLink family: 0.5 + 0.05·(k mod 5).
+double per_link_length(std::size_t k);
+
+/// Planar N-link chain in Cartesian coordinates x1, y1, …, xN, yN with a particle of mass m at
+/// each joint and one rod constraint per link,
+///   rodₖ: ((xₖ − xₖ₋₁)² + (yₖ − yₖ₋₁)² − l²)/2,   x₀ = y₀ = 0,
+/// gravity along −y. The initial state hangs straight at 0.5 rad from the vertical (consistent
+/// with the constraints), at rest. Throws std::invalid_argument when n is 0.
+std::string cartesian_chain_yaml(std::size_t n);
+
+}  // namespace lagrange::bench

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Run the benchmarks and the SymPy peer in the same run and print the comparison table.
+#   bench/run.sh BUILD_DIR        (`make bench` builds the `benchmarks` target first)
+# Environment:
+#   LAGRANGE_BENCH_SYMPY_20=1   also derive N = 20 with SymPy (about a minute more)
+#   LAGRANGE_BENCH_OUT=DIR      where the raw results go (default BUILD_DIR/bench-results)
+set -euo pipefail
+
+if [[ $# -ne 1 ]]; then
+  echo "usage: $0 BUILD_DIR" >&2
+  exit 2
+fi
+build=$1
+here=$(cd "$(dirname "$0")" && pwd)
+python=/usr/bin/python3  # Debian's python3 has sympy and numpy (PEERS.md)
+out=${LAGRANGE_BENCH_OUT:-$build/bench-results}
+
+for exe in bench_pendulum bench_cartesian_chain; do
+  if [[ ! -x $build/bench/$exe ]]; then
+    echo "$0: $build/bench/$exe not found; build it first: cmake --build $build --target benchmarks" >&2
+    exit 1
+  fi
+done
+if ! "$python" -c 'import sympy, numpy' 2>/dev/null; then
+  echo "$0: $python lacks sympy or numpy (apt-get install python3-sympy python3-numpy)" >&2
+  exit 1
+fi
+mkdir -p "$out"
+
+sympy_args=()
+if [[ ${LAGRANGE_BENCH_SYMPY_20:-0} == 1 ]]; then sympy_args+=(--with-20); fi
+
+echo "== lagrange: N-link pendulum (derive + compile, forward) =="
+"$build/bench/bench_pendulum" --benchmark_out="$out/pendulum.json" --benchmark_out_format=json
+echo
+echo "== lagrange: Cartesian chain (forward with KKT) =="
+"$build/bench/bench_cartesian_chain" --benchmark_out="$out/chain.json" --benchmark_out_format=json
+echo
+echo "== lagrange: accelerations at the benchmark state (cross-check with SymPy) =="
+: >"$out/accelerations.txt"
+for n in 2 5 8 10; do
+  "$build/bench/bench_pendulum" --accelerations "$n" >>"$out/accelerations.txt"
+done
+echo "written to $out/accelerations.txt"
+echo
+echo "== SymPy peer (sympy.physics.mechanics LagrangesMethod) =="
+"$python" "$here/sympy_lagrange.py" "${sympy_args[@]}" | tee "$out/sympy.jsonl"
+echo
+"$python" "$here/report.py" "$out" | tee "$out/report.md"
