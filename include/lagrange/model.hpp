@@ -85,15 +85,15 @@ struct Damper {
 struct Body {
   std::string name;
   GiNaC::ex mass;
-  Mat3 inertia;                    ///< inertia tensor about the centre of mass, body axes
-  Vec3 com{0, 0, 0};               ///< centre of mass in body axes, from the body origin
+  Mat3 inertia;       ///< inertia tensor about the centre of mass, body axes
+  Vec3 com{0, 0, 0};  ///< centre of mass in body axes, from the body origin
   bool free = false;
-  std::array<GiNaC::symbol, 3> r, rd, rdd;   ///< free: origin, its velocity and acceleration
-  std::array<GiNaC::symbol, 9> R;            ///< free: rotation body → world, row-major
-  std::array<GiNaC::symbol, 3> w, wd;        ///< free: body-frame ω and ω̇
-  std::array<double, 3> r0{}, v0{}, w0{};    ///< free: initial r, ṙ, ω (body frame)
+  std::array<GiNaC::symbol, 3> r, rd, rdd;  ///< free: origin, its velocity and acceleration
+  std::array<GiNaC::symbol, 9> R;           ///< free: rotation body → world, row-major
+  std::array<GiNaC::symbol, 3> w, wd;       ///< free: body-frame ω and ω̇
+  std::array<double, 3> r0{}, v0{}, w0{};   ///< free: initial r, ṙ, ω (body frame)
   std::array<double, 9> R0{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< free: initial R
-  Vec3 position{0, 0, 0};          ///< posed: world position of the body origin
+  Vec3 position{0, 0, 0};  ///< posed: world position of the body origin
   Mat3 rotation{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};  ///< posed: rotation body → world
   SourceLoc loc;
 

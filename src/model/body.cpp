@@ -17,7 +17,9 @@ void Body::make_free() {
       R[3 * i + j] = GiNaC::symbol(name + ".R" + std::to_string(i + 1) + std::to_string(j + 1));
 }
 
-Vec3 Body::origin() const { return free ? Vec3{r[0], r[1], r[2]} : position; }
+Vec3 Body::origin() const {
+  return free ? Vec3{r[0], r[1], r[2]} : position;
+}
 
 Mat3 Body::rot() const {
   if (!free) return rotation;

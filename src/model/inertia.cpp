@@ -41,8 +41,7 @@ double value_of(const Model& model, const GiNaC::ex& e, const Body& body, const 
   GiNaC::exmap values;
   for (const auto& p : model.parameters) values[p.sym] = p.value;
   const GiNaC::ex v = e.subs(values).evalf();
-  if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-  {
+  if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real()) {
     std::ostringstream os;
     os << e;
     throw ModelError(body.loc, fmt::format("the {} of body '{}' must be a number or an expression "
@@ -57,13 +56,15 @@ double value_of(const Model& model, const GiNaC::ex& e, const Body& body, const 
 void check_body_inertia(const Model& model, const Body& body) {
   const double m = value_of(model, body.mass, body, "mass");
   if (!(m > 0))
-    throw ModelError(body.loc, fmt::format("body '{}': expected a positive mass, got {}", body.name, m));
+    throw ModelError(body.loc,
+                     fmt::format("body '{}': expected a positive mass, got {}", body.name, m));
   Eigen::Matrix3d I;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) I(i, j) = value_of(model, body.inertia[i][j], body, "inertia");
   const double scale = I.cwiseAbs().maxCoeff();
   if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
-    throw ModelError(body.loc, fmt::format("body '{}': the inertia tensor is not symmetric", body.name));
+    throw ModelError(body.loc,
+                     fmt::format("body '{}': the inertia tensor is not symmetric", body.name));
   const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
   const double tol = 1e-12 * std::max(scale, 1e-300);
   if (!(p[0] > 0))

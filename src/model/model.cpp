@@ -13,9 +13,15 @@ int index_by_name(const Seq& seq, const std::string& name) {
 }
 }  // namespace
 
-int Model::coordinate_index(const std::string& name) const { return index_by_name(coordinates, name); }
-int Model::parameter_index(const std::string& name) const { return index_by_name(parameters, name); }
-int Model::input_index(const std::string& name) const { return index_by_name(inputs, name); }
+int Model::coordinate_index(const std::string& name) const {
+  return index_by_name(coordinates, name);
+}
+int Model::parameter_index(const std::string& name) const {
+  return index_by_name(parameters, name);
+}
+int Model::input_index(const std::string& name) const {
+  return index_by_name(inputs, name);
+}
 
 const Point* Model::find_point(const std::string& name) const {
   int i = index_by_name(points, name);

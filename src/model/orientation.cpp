@@ -11,17 +11,22 @@ Rotation rotation_from_axis_angle(const std::array<double, 3>& axis, double angl
   if (!(n > 0)) throw std::invalid_argument("the rotation axis is zero");
   const double x = axis[0] / n, y = axis[1] / n, z = axis[2] / n;
   const double c = std::cos(angle), s = std::sin(angle), C = 1 - c;
-  return {c + x * x * C,     x * y * C - z * s, x * z * C + y * s,
-          y * x * C + z * s, c + y * y * C,     y * z * C - x * s,
-          z * x * C - y * s, z * y * C + x * s, c + z * z * C};
+  return {c + x * x * C,     x * y * C - z * s, x * z * C + y * s, y * x * C + z * s, c + y * y * C,
+          y * z * C - x * s, z * x * C - y * s, z * y * C + x * s, c + z * z * C};
 }
 
 Rotation rotation_from_euler(double roll, double pitch, double yaw) {
   const double cr = std::cos(roll), sr = std::sin(roll), cp = std::cos(pitch), sp = std::sin(pitch);
   const double cy = std::cos(yaw), sy = std::sin(yaw);
-  return {cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-          sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
-          -sp,     cp * sr,                cp * cr};
+  return {cy * cp,
+          cy * sp * sr - sy * cr,
+          cy * sp * cr + sy * sr,
+          sy * cp,
+          sy * sp * sr + cy * cr,
+          sy * sp * cr - cy * sr,
+          -sp,
+          cp * sr,
+          cp * cr};
 }
 
 Rotation rotation_from_quaternion(const std::array<double, 4>& q) {

@@ -34,9 +34,12 @@ double Trajectory::at(size_t r, const std::string& column) const {
 
 const char* Trajectory::status_name() const {
   switch (status) {
-    case Status::Complete: return "complete";
-    case Status::Failed: return "failed";
-    case Status::Interrupted: return "interrupted";
+    case Status::Complete:
+      return "complete";
+    case Status::Failed:
+      return "failed";
+    case Status::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -84,9 +87,10 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
   const double err = max_abs(C), rate_err = max_abs(Cdot);
   if (err <= opt.projection_tol && rate_err <= opt.projection_tol) return;
   if (!opt.project_initial)
-    throw SimulationError(opt.t0, fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
-                                              "max |Ċ| = {:.3g}",
-                                              err, rate_err));
+    throw SimulationError(opt.t0,
+                          fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
+                                      "max |Ċ| = {:.3g}",
+                                      err, rate_err));
   const std::vector<double> q_old = q, v_old = v;
   ProjectionResult pr = dyn.project(opt.t0, q.data(), v.data(), cm.fixed, 1e-13);
   std::string changes;
@@ -111,9 +115,10 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   Trajectory traj;
   traj.columns = trajectory_columns(cm);
   if (q0.size() != nq || v0.size() != nv)
-    throw std::invalid_argument(fmt::format("simulate: expected {} positions and {} velocities, "
-                                            "got {} and {}",
-                                            nq, nv, q0.size(), v0.size()));
+    throw std::invalid_argument(
+        fmt::format("simulate: expected {} positions and {} velocities, "
+                    "got {} and {}",
+                    nq, nv, q0.size(), v0.size()));
   std::vector<double> row, C(m), Cdot(m), lambda(m);
   const bool dae = opt.integrator.method == "ida";
   // At each output sample: check the state is finite, project drift away (DESIGN.md §4.3),
@@ -122,10 +127,9 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     ObserverAction action = ObserverAction::Continue;
     for (size_t i = 0; i < n; ++i)
       if (!std::isfinite(yy[i]))
-        throw SimulationError(t, fmt::format("the state is not finite ({} = {})",
-                                             i < nq ? cm.coordinate_names[i]
-                                                    : cm.velocity_names[i - nq],
-                                             yy[i]));
+        throw SimulationError(
+            t, fmt::format("the state is not finite ({} = {})",
+                           i < nq ? cm.coordinate_names[i] : cm.velocity_names[i - nq], yy[i]));
     if (m > 0 && opt.project) {
       dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
       if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
@@ -157,7 +161,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       DaeProblem problem;
       problem.size = n + m;
       problem.differential.assign(n + m, true);
-      std::fill(problem.differential.begin() + static_cast<long>(n), problem.differential.end(), false);
+      std::fill(problem.differential.begin() + static_cast<long>(n), problem.differential.end(),
+                false);
       problem.residual = [&dyn, n, nq](double t, const double* yy, const double* ypp, double* r) {
         dyn.dae_residual(t, yy, yy + nq, ypp, ypp + nq, yy + n, r);
       };

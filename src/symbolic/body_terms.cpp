@@ -23,7 +23,9 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-bool is_zero(const Vec3& v) { return v[0].is_zero() && v[1].is_zero() && v[2].is_zero(); }
+bool is_zero(const Vec3& v) {
+  return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
+}
 
 }  // namespace
 
@@ -60,7 +62,8 @@ void add_body_terms(const Kinematics& kin, MechanicalTerms& terms) {
     const Vec3 vc = point_velocity(kin, xc);
     const std::vector<Vec3> Jc = point_jacobian(kin, xc);
     Vec3 force;  // m (g − b_c)
-    for (size_t k = 0; k < 3; ++k) force[k] = m * (g[k] - derivative_without_accelerations(kin, vc[k]));
+    for (size_t k = 0; k < 3; ++k)
+      force[k] = m * (g[k] - derivative_without_accelerations(kin, vc[k]));
     const Vec3 w = body_angular_velocity(kin, body);
     std::vector<Vec3> Jw(nv);
     for (size_t k = 0; k < nv; ++k)

@@ -34,7 +34,8 @@ Equations derive(const Model& model) {
     GiNaC::ex sq = 0;  // ‖RᵀR − 1‖²_F
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j) {
-        const GiNaC::ex e = R[0][i] * R[0][j] + R[1][i] * R[1][j] + R[2][i] * R[2][j] - (i == j ? 1 : 0);
+        const GiNaC::ex e =
+            R[0][i] * R[0][j] + R[1][i] * R[1][j] + R[2][i] * R[2][j] - (i == j ? 1 : 0);
         sq += e * e;
       }
     eq.outputs.push_back(GiNaC::sqrt(sq));

@@ -53,8 +53,10 @@ std::vector<Vec3> GradientCache::jacobian(const Vec3& x) {
   for (size_t k = 0; k < 3; ++k) {
     std::map<size_t, GiNaC::ex> body;  // q index → ∂x/∂q, free-body coordinates
     for (const auto& [i, d] : gradient(x[k])) {
-      if (i < kin_.plain) J[i][k] = d;
-      else body.emplace(i, d);
+      if (i < kin_.plain)
+        J[i][k] = d;
+      else
+        body.emplace(i, d);
     }
     if (body.empty()) continue;
     for (size_t col = kin_.plain; col < kin_.v.size(); ++col)

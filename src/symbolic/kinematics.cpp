@@ -13,7 +13,8 @@ Mat3 skew(const Vec3& w) {
 Mat3 drift_correction(const Mat3& R, const GiNaC::ex& gamma) {
   Mat3 S;
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) S[i][j] = R[0][i] * R[0][j] + R[1][i] * R[1][j] + R[2][i] * R[2][j];
+    for (size_t j = 0; j < 3; ++j)
+      S[i][j] = R[0][i] * R[0][j] + R[1][i] * R[1][j] + R[2][i] * R[2][j];
   Mat3 adj;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j) {

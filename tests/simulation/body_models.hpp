@@ -25,19 +25,22 @@ inline Mat3 rot_x(const GiNaC::ex& a) {
 inline Mat3 mul(const Mat3& A, const Mat3& B) {
   Mat3 C;
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
+    for (size_t j = 0; j < 3; ++j)
+      C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
   return C;
 }
 /// Numeric value of a constant rotation expression, row-major.
 inline Rotation numeric(const Mat3& R) {
   Rotation out;
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) out[3 * i + j] = GiNaC::ex_to<GiNaC::numeric>(R[i][j].evalf()).to_double();
+    for (size_t j = 0; j < 3; ++j)
+      out[3 * i + j] = GiNaC::ex_to<GiNaC::numeric>(R[i][j].evalf()).to_double();
   return out;
 }
 
 /// A free body with principal moments (i1, i2, i3) spinning at body-frame ω0, no forces.
-inline std::unique_ptr<Model> free_brick(double i1, double i2, double i3, std::array<double, 3> w0) {
+inline std::unique_ptr<Model> free_brick(double i1, double i2, double i3,
+                                         std::array<double, 3> w0) {
   auto m = std::make_unique<Model>();
   m->name = "brick";
   Body b;
@@ -82,8 +85,14 @@ inline std::unique_ptr<Model> compound_pendulum_planar(double theta0, double ome
   m->name = "compound pendulum (planar)";
   m->parameters = {param("m", 2.0), param("l", 1.0), param("g", 9.81)};
   const GiNaC::ex M = m->parameters[0].sym, l = m->parameters[1].sym, g = m->parameters[2].sym;
-  Coordinate th{"theta", GiNaC::symbol("theta"), GiNaC::symbol("theta_dot"),
-                GiNaC::symbol("theta_ddot"), theta0, omega0, false, {}};
+  Coordinate th{"theta",
+                GiNaC::symbol("theta"),
+                GiNaC::symbol("theta_dot"),
+                GiNaC::symbol("theta_ddot"),
+                theta0,
+                omega0,
+                false,
+                {}};
   m->coordinates.push_back(th);
   Body b;
   b.name = "bar";
@@ -135,8 +144,9 @@ inline std::unique_ptr<Model> heavy_top_euler(const TopSetup& s) {
   auto m = std::make_unique<Model>();
   m->name = "heavy top (Euler angles)";
   auto coord = [](const std::string& n, double q0, double v0) {
-    return Coordinate{n, GiNaC::symbol(n), GiNaC::symbol(n + "_dot"), GiNaC::symbol(n + "_ddot"),
-                      q0, v0, false, {}};
+    return Coordinate{
+        n, GiNaC::symbol(n), GiNaC::symbol(n + "_dot"), GiNaC::symbol(n + "_ddot"), q0, v0, false,
+        {}};
   };
   m->coordinates = {coord("phi", s.phi, s.phid), coord("theta", s.theta, s.thetad),
                     coord("psi", s.psi, s.psid)};

@@ -40,8 +40,9 @@ SimulationOptions tight(const testing::Loaded& sys, double t_end, double step) {
 TEST(RigidBody, CsvColumnsOfAFreeBody) {
   auto sys = load_model(testing::free_brick(2, 3, 4, {0, 1, 0}));
   const auto& cols = trajectory_columns(*sys.compiled);
-  for (const char* c : {"brick.x", "brick.y", "brick.z", "brick.R11", "brick.R23", "brick.R33",
-                        "brick.vx", "brick.wx", "brick.wy", "brick.wz", "brick.orthonormality_error"})
+  for (const char* c :
+       {"brick.x", "brick.y", "brick.z", "brick.R11", "brick.R23", "brick.R33", "brick.vx",
+        "brick.wx", "brick.wy", "brick.wz", "brick.orthonormality_error"})
     EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
   EXPECT_EQ(sys.compiled->nq, 12u);
   EXPECT_EQ(sys.compiled->nv, 6u);
@@ -55,11 +56,13 @@ TEST(RigidBody, FreeBodyConservesEnergyAndWorldAngularMomentum) {
   const Trajectory tr = sys.run(tight(sys, 100, 0.1));
   ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
   const double T0 = tr.at(0, "kinetic");
-  const Eigen::Vector3d L0 = rotation_at(tr, 0, "brick") * I.asDiagonal() * omega_at(tr, 0, "brick");
+  const Eigen::Vector3d L0 =
+      rotation_at(tr, 0, "brick") * I.asDiagonal() * omega_at(tr, 0, "brick");
   double worst_T = 0, worst_L = 0;
   for (size_t r = 0; r < tr.rows(); ++r) {
     worst_T = std::max(worst_T, std::abs(tr.at(r, "kinetic") - T0) / T0);
-    const Eigen::Vector3d L = rotation_at(tr, r, "brick") * I.asDiagonal() * omega_at(tr, r, "brick");
+    const Eigen::Vector3d L =
+        rotation_at(tr, r, "brick") * I.asDiagonal() * omega_at(tr, r, "brick");
     worst_L = std::max(worst_L, (L - L0).norm() / L0.norm());
   }
   RecordProperty("energy_relative_drift", std::to_string(worst_T));
@@ -86,7 +89,8 @@ TEST(RigidBody, IntermediateAxisFlipsMajorAndMinorDoNot) {
     }
     return std::make_pair(flips, min_ratio);
   };
-  const auto minor = spin_sign_changes(0), middle = spin_sign_changes(1), major = spin_sign_changes(2);
+  const auto minor = spin_sign_changes(0), middle = spin_sign_changes(1),
+             major = spin_sign_changes(2);
   EXPECT_GE(middle.first, 2);
   EXPECT_LT(middle.second, -0.9);
   EXPECT_EQ(minor.first, 0);
@@ -96,7 +100,7 @@ TEST(RigidBody, IntermediateAxisFlipsMajorAndMinorDoNot) {
 }
 
 std::vector<double> orthonormality_errors(testing::Loaded& sys, double gamma,
-                                         const SimulationOptions& so) {
+                                          const SimulationOptions& so) {
   std::vector<double> p = sys.compiled->parameter_defaults;
   p.back() = gamma;  // stabilization.gamma, a runtime parameter
   sys.dynamics->set_parameters(p);
@@ -179,7 +183,8 @@ TEST(RigidBody, HeavyTopMatchesEulerAnglesAndPrecessesAtTheFastTopRate) {
   double worst = 0;
   for (size_t r = 0; r < a.rows(); ++r) {
     const double ph = b.at(r, "phi"), th = b.at(r, "theta");
-    const Eigen::Vector3d axis_euler(std::sin(ph) * std::sin(th), -std::cos(ph) * std::sin(th), std::cos(th));
+    const Eigen::Vector3d axis_euler(std::sin(ph) * std::sin(th), -std::cos(ph) * std::sin(th),
+                                     std::cos(th));
     const Eigen::Vector3d axis_so3 = rotation_at(a, r, "top").col(2);
     worst = std::max(worst, (axis_so3 - axis_euler).norm());
   }
