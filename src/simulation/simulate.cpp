@@ -34,9 +34,12 @@ double Trajectory::at(size_t r, const std::string& column) const {
 
 const char* Trajectory::status_name() const {
   switch (status) {
-    case Status::Complete: return "complete";
-    case Status::Failed: return "failed";
-    case Status::Interrupted: return "interrupted";
+    case Status::Complete:
+      return "complete";
+    case Status::Failed:
+      return "failed";
+    case Status::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -84,9 +87,10 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
   const double err = max_abs(C), rate_err = max_abs(Cdot);
   if (err <= opt.projection_tol && rate_err <= opt.projection_tol) return;
   if (!opt.project_initial)
-    throw SimulationError(opt.t0, fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
-                                              "max |Ċ| = {:.3g}",
-                                              err, rate_err));
+    throw SimulationError(opt.t0,
+                          fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
+                                      "max |Ċ| = {:.3g}",
+                                      err, rate_err));
   const std::vector<double> q_old = q, v_old = v;
   ProjectionResult pr = dyn.project(opt.t0, q.data(), v.data(), cm.fixed, 1e-13);
   std::string changes;
@@ -94,13 +98,57 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
     if (q[i] != q_old[i])
       changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.coordinate_names[i], q_old[i], q[i]);
     if (v[i] != v_old[i])
-      changes += fmt::format("\n  {}_dot: {:.10g} -> {:.10g}", cm.coordinate_names[i], v_old[i], v[i]);
+      changes +=
+          fmt::format("\n  {}_dot: {:.10g} -> {:.10g}", cm.coordinate_names[i], v_old[i], v[i]);
   }
   traj.notes.push_back(fmt::format(
       "initial state was inconsistent (max |C| = {:.3g}, max |Ċ| = {:.3g}); projected onto the "
       "constraints (|Δq| = {:.3g}, |Δv| = {:.3g}):{}",
       err, rate_err, pr.position_change, pr.velocity_change, changes));
 }
+
+// The state the integrator last asked about, kept so that a failure inside the integrator (too
+// much work, step size too small, convergence) can say where it happened.
+struct LastEvaluation {
+  double t = 0.0;
+  std::vector<double> q, v, a;
+  bool valid = false;
+  // set while the dynamics run: a failure there already names the state in its message
+  bool reported = false;
+
+  void record(double time, const double* qq, const double* vv, const double* aa, size_t n) {
+    t = time;
+    std::copy(qq, qq + n, q.begin());
+    std::copy(vv, vv + n, v.begin());
+    std::copy(aa, aa + n, a.begin());
+    valid = true;
+  }
+
+  // "last evaluated state at t = …: x = …, x_dot = …; largest |values|: x_ddot = …" — every q and
+  // v for small models, the three entries of largest magnitude among q, v and a otherwise.
+  std::string describe(const CompiledModel& cm) const {
+    const size_t n = cm.n;
+    std::vector<std::pair<std::string, double>> all;
+    for (size_t i = 0; i < n; ++i) all.emplace_back(cm.coordinate_names[i], q[i]);
+    for (size_t i = 0; i < n; ++i) all.emplace_back(cm.coordinate_names[i] + "_dot", v[i]);
+    for (size_t i = 0; i < n; ++i) all.emplace_back(cm.coordinate_names[i] + "_ddot", a[i]);
+    auto list = [](auto first, auto last) {
+      std::string s;
+      for (auto it = first; it != last; ++it)
+        s += fmt::format("{}{} = {:.6g}", s.empty() ? "" : ", ", it->first, it->second);
+      return s;
+    };
+    std::string text = fmt::format("last evaluated state at t = {:.17g}", t);
+    if (n <= 4) text += ": " + list(all.begin(), all.begin() + static_cast<long>(2 * n));
+    auto magnitude = [](const std::pair<std::string, double>& e) {
+      return std::isfinite(e.second) ? std::abs(e.second) : HUGE_VAL;
+    };
+    const size_t shown = std::min<size_t>(3, all.size());
+    std::partial_sort(all.begin(), all.begin() + static_cast<long>(shown), all.end(),
+                      [&](const auto& x, const auto& y) { return magnitude(x) > magnitude(y); });
+    return text + "; largest values: " + list(all.begin(), all.begin() + static_cast<long>(shown));
+  }
+};
 
 }  // namespace
 
@@ -112,16 +160,22 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   traj.columns = trajectory_columns(cm);
   std::vector<double> row, C(m), Cdot(m), lambda(m), qdot(n), acc(n);
   const bool dae = opt.integrator.method == "ida";
+  LastEvaluation last;
+  last.q.resize(n);
+  last.v.resize(n);
+  last.a.resize(n);
   // At each output sample: check the state is finite, project drift away (DESIGN.md §4.3),
   // record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;
     for (size_t i = 0; i < 2 * n; ++i)
-      if (!std::isfinite(yy[i]))
-        throw SimulationError(t, fmt::format("the state is not finite ({} = {})",
-                                             i < n ? cm.coordinate_names[i]
-                                                   : cm.coordinate_names[i - n] + "_dot",
-                                             yy[i]));
+      if (!std::isfinite(yy[i])) {
+        last.reported = true;
+        throw SimulationError(
+            t, fmt::format("the state is not finite ({} = {})",
+                           i < n ? cm.coordinate_names[i] : cm.coordinate_names[i - n] + "_dot",
+                           yy[i]));
+      }
     if (m > 0 && opt.project) {
       dyn.constraints(t, yy, yy + n, C.data(), Cdot.data());
       if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
@@ -153,9 +207,14 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       DaeProblem problem;
       problem.size = 2 * n + m;
       problem.differential.assign(2 * n + m, true);
-      std::fill(problem.differential.begin() + static_cast<long>(2 * n), problem.differential.end(), false);
-      problem.residual = [&dyn, n](double t, const double* yy, const double* ypp, double* r) {
+      std::fill(problem.differential.begin() + static_cast<long>(2 * n), problem.differential.end(),
+                false);
+      problem.residual = [&dyn, n, &last](double t, const double* yy, const double* ypp,
+                                          double* r) {
+        last.reported = true;
         dyn.dae_residual(t, yy, yy + n, ypp, ypp + n, yy + 2 * n, r);
+        last.reported = false;
+        last.record(t, yy, yy + n, ypp + n, n);
       };
       traj.stats = integrate_dae(problem, opt.integrator, opt.t0, y, yp, opt.t_end, opt.output_step,
                                  observer);
@@ -165,14 +224,18 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(n));
       OdeProblem ode;
       ode.size = 2 * n;
-      ode.rhs = [&dyn, n, &lambda](double t, const double* yy, double* yd) {
+      ode.rhs = [&dyn, n, &lambda, &last](double t, const double* yy, double* yd) {
+        last.reported = true;
         dyn.forward(t, yy, yy + n, yd, yd + n, lambda.data());
+        last.reported = false;
+        last.record(t, yy, yy + n, yd + n, n);
       };
       traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
   } catch (const SimulationError& e) {
     traj.status = Trajectory::Status::Failed;
     traj.message = e.what();
+    if (last.valid && !last.reported) traj.message += "; " + last.describe(cm);
     traj.failure_time = e.time();
   }
   return traj;
