@@ -94,17 +94,24 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
   try {
     dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
   } catch (const SimulationError& e) {
+    // CLN refuses subnormal doubles (floating_point_underflow_exception): flush them to 0.
+    auto number = [](double x) { return GiNaC::numeric(std::isnormal(x) ? x : 0.0); };
     GiNaC::exmap at_start;
     for (size_t i = 0; i < model.coordinates.size(); ++i) {
-      at_start[model.coordinates[i].q] = q[i];
-      at_start[model.coordinates[i].v] = v[i];
+      at_start[model.coordinates[i].q] = number(q[i]);
+      at_start[model.coordinates[i].v] = number(v[i]);
     }
     at_start[model.t] = 0;
     for (size_t j = 0; j < model.parameters.size(); ++j)
-      at_start[model.parameters[j].sym] = dyn.parameters()[j];
+      at_start[model.parameters[j].sym] = number(dyn.parameters()[j]);
     for (size_t i = 0; i < cm.plain; ++i) {
       const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
-      const GiNaC::ex value = GiNaC::evalf(Mii.subs(at_start));
+      GiNaC::ex value;
+      try {
+        value = GiNaC::evalf(Mii.subs(at_start));
+      } catch (const std::exception&) {
+        continue;  // a pole of M at the initial state: reported below with the dynamics' message
+      }
       if (!GiNaC::is_a<GiNaC::numeric>(value) ||
           std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
         continue;

@@ -32,6 +32,11 @@ std::string format_values(const std::vector<std::string>& names, const double* x
   return s;
 }
 
+// Plain coordinates are named by q ('x'), free-body velocities by their own name ('top.wx').
+const std::string& acceleration_name(const CompiledModel& cm, size_t i) {
+  return i < cm.plain ? cm.coordinate_names[i] : cm.velocity_names[i];
+}
+
 }  // namespace
 
 Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model,
@@ -168,7 +173,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
       for (size_t i = 0; i < cm.nv; ++i)
         if (!std::isfinite(a[i]))
           fail_singular(
-              t, fmt::format("the acceleration of '{}' is not finite", cm.velocity_names[i]));
+              t, fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
@@ -195,7 +200,8 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   for (size_t i = 0; i < cm.nv; ++i) {
     a[i] = a_[static_cast<long>(i)];
     if (!std::isfinite(a[i]))
-      fail_singular(t, fmt::format("the acceleration of '{}' is not finite", cm.velocity_names[i]));
+      fail_singular(
+          t, fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
   }
 }
 

@@ -106,6 +106,51 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
       err, rate_err, pr.position_change, pr.velocity_change, changes));
 }
 
+// The state the integrator last asked about, kept so that a failure inside the integrator (too
+// much work, step size too small, convergence) can say where it happened.
+struct LastEvaluation {
+  double t = 0.0;
+  std::vector<double> q, v, a;
+  bool valid = false;
+  // set while the dynamics run: a failure there already names the state in its message
+  bool reported = false;
+
+  void record(double time, const double* qq, const double* vv, const double* aa) {
+    t = time;
+    std::copy(qq, qq + q.size(), q.begin());
+    std::copy(vv, vv + v.size(), v.begin());
+    std::copy(aa, aa + a.size(), a.begin());
+    valid = true;
+  }
+
+  // "last evaluated state at t = …: x = …, x_dot = …; largest |values|: x_ddot = …" — every q and
+  // v for small models, the three entries of largest magnitude among q, v and a otherwise.
+  std::string describe(const CompiledModel& cm) const {
+    std::vector<std::pair<std::string, double>> all;
+    for (size_t i = 0; i < cm.nq; ++i) all.emplace_back(cm.coordinate_names[i], q[i]);
+    for (size_t i = 0; i < cm.nv; ++i) all.emplace_back(cm.velocity_names[i], v[i]);
+    for (size_t i = 0; i < cm.nv; ++i)  // x_dot → x_ddot; body.wx → body.wx_dot
+      all.emplace_back(
+          i < cm.plain ? cm.coordinate_names[i] + "_ddot" : cm.velocity_names[i] + "_dot", a[i]);
+    auto list = [](auto first, auto last) {
+      std::string s;
+      for (auto it = first; it != last; ++it)
+        s += fmt::format("{}{} = {:.6g}", s.empty() ? "" : ", ", it->first, it->second);
+      return s;
+    };
+    std::string text = fmt::format("last evaluated state at t = {:.17g}", t);
+    if (cm.nq <= 4)
+      text += ": " + list(all.begin(), all.begin() + static_cast<long>(cm.nq + cm.nv));
+    auto magnitude = [](const std::pair<std::string, double>& e) {
+      return std::isfinite(e.second) ? std::abs(e.second) : HUGE_VAL;
+    };
+    const size_t shown = std::min<size_t>(3, all.size());
+    std::partial_sort(all.begin(), all.begin() + static_cast<long>(shown), all.end(),
+                      [&](const auto& x, const auto& y) { return magnitude(x) > magnitude(y); });
+    return text + "; largest values: " + list(all.begin(), all.begin() + static_cast<long>(shown));
+  }
+};
+
 }  // namespace
 
 Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<double> q0,
@@ -121,15 +166,21 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
                     nq, nv, q0.size(), v0.size()));
   std::vector<double> row, C(m), Cdot(m), lambda(m);
   const bool dae = opt.integrator.method == "ida";
+  LastEvaluation last;
+  last.q.resize(nq);
+  last.v.resize(nv);
+  last.a.resize(nv);
   // At each output sample: check the state is finite, project drift away (DESIGN.md §4.3),
   // record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;
     for (size_t i = 0; i < n; ++i)
-      if (!std::isfinite(yy[i]))
+      if (!std::isfinite(yy[i])) {
+        last.reported = true;
         throw SimulationError(
             t, fmt::format("the state is not finite ({} = {})",
                            i < nq ? cm.coordinate_names[i] : cm.velocity_names[i - nq], yy[i]));
+      }
     if (m > 0 && opt.project) {
       dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
       if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
@@ -163,8 +214,12 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       problem.differential.assign(n + m, true);
       std::fill(problem.differential.begin() + static_cast<long>(n), problem.differential.end(),
                 false);
-      problem.residual = [&dyn, n, nq](double t, const double* yy, const double* ypp, double* r) {
+      problem.residual = [&dyn, n, nq, &last](double t, const double* yy, const double* ypp,
+                                              double* r) {
+        last.reported = true;
         dyn.dae_residual(t, yy, yy + nq, ypp, ypp + nq, yy + n, r);
+        last.reported = false;
+        last.record(t, yy, yy + nq, ypp + nq);
       };
       traj.stats = integrate_dae(problem, opt.integrator, opt.t0, y, yp, opt.t_end, opt.output_step,
                                  observer);
@@ -174,14 +229,18 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
       OdeProblem ode;
       ode.size = n;
-      ode.rhs = [&dyn, nq, &lambda](double t, const double* yy, double* yd) {
+      ode.rhs = [&dyn, nq, &lambda, &last](double t, const double* yy, double* yd) {
+        last.reported = true;
         dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
+        last.reported = false;
+        last.record(t, yy, yy + nq, yd + nq);
       };
       traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
   } catch (const SimulationError& e) {
     traj.status = Trajectory::Status::Failed;
     traj.message = e.what();
+    if (last.valid && !last.reported) traj.message += "; " + last.describe(cm);
     traj.failure_time = e.time();
   }
   return traj;

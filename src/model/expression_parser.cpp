@@ -1,0 +1,368 @@
+#include "model/expression_parser.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+
+namespace lagrange::model {
+
+namespace {
+
+/// Built-in functions: name → number of arguments.
+const std::map<std::string, int>& builtin_arity() {
+  static const std::map<std::string, int> table = {
+      {"sin", 1},  {"cos", 1},   {"tan", 1},  {"asin", 1}, {"acos", 1}, {"atan", 1}, {"atan2", 2},
+      {"sinh", 1}, {"cosh", 1},  {"tanh", 1}, {"exp", 1},  {"log", 1},  {"sqrt", 1}, {"abs", 1},
+      {"dot", 2},  {"cross", 2}, {"norm", 1}, {"vel", 1},  {"der", 1}};
+  return table;
+}
+
+const char* kind_name(const Value& v) {
+  return v.is_vector ? "a vector" : "a scalar";
+}
+
+/// An exact GiNaC number for a decimal literal (rational when reasonably sized), finite.
+GiNaC::ex number_value(const Token& tok) {
+  const std::string& s = tok.text;
+  double d = std::strtod(s.c_str(), nullptr);
+  if (!std::isfinite(d))
+    throw ExprError{tok.offset, fmt::format("expected a finite number, got '{}'", clip(s))};
+  if (d != 0 && std::fabs(d) < std::numeric_limits<double>::min())
+    throw ExprError{tok.offset,
+                    fmt::format("expected a number of magnitude 0 or at least {:g}, got '{}'",
+                                std::numeric_limits<double>::min(), clip(s))};
+  std::string digits;
+  long exponent = 0;
+  size_t i = 0;
+  bool fraction = false;
+  for (; i < s.size() && s[i] != 'e' && s[i] != 'E'; ++i) {
+    if (s[i] == '.') {
+      fraction = true;
+    } else {
+      digits += s[i];
+      if (fraction) --exponent;
+    }
+  }
+  if (i < s.size()) exponent += std::strtol(s.c_str() + i + 1, nullptr, 10);
+  size_t nz = digits.find_first_not_of('0');
+  digits = nz == std::string::npos ? "0" : digits.substr(nz);
+  if (digits.size() > 40 || std::labs(exponent) > 300) return GiNaC::numeric(d);
+  GiNaC::numeric n(digits.c_str());
+  return n * GiNaC::numeric(10).power(GiNaC::numeric(exponent));
+}
+
+class Parser {
+ public:
+  Parser(const std::string& text, const ParseContext& ctx) : toks_(tokenize(text)), ctx_(ctx) {}
+
+  Value parse() {
+    Value v = expr();
+    if (peek().kind != TokenKind::End)
+      throw ExprError{peek().offset,
+                      fmt::format("expected an operator or the end, got {}", show(peek()))};
+    return v;
+  }
+
+ private:
+  const Token& peek() const { return toks_[pos_]; }
+  const Token& next() { return toks_[pos_++]; }
+  bool at(const char* sym) const { return peek().kind == TokenKind::Symbol && peek().text == sym; }
+  static std::string show(const Token& t) {
+    return t.kind == TokenKind::End ? "the end of the expression"
+                                    : fmt::format("'{}'", clip(t.text));
+  }
+  void expect(const char* sym) {
+    if (!at(sym))
+      throw ExprError{peek().offset, fmt::format("expected '{}', got {}", sym, show(peek()))};
+    ++pos_;
+  }
+
+  /// Run a GiNaC operation, turning its exceptions (division by zero, log(0)) into ExprError.
+  template <class F>
+  static auto guarded(size_t offset, F&& f) -> decltype(f()) {
+    try {
+      return f();
+    } catch (const ExprError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw ExprError{offset, fmt::format("cannot evaluate this: {}", e.what())};
+    }
+  }
+
+  Value expr() {
+    Value lhs = term();
+    while (at("+") || at("-")) {
+      const Token& op = next();
+      Value rhs = term();
+      lhs = add(lhs, rhs, op);
+    }
+    return lhs;
+  }
+
+  Value term() {
+    Value lhs = unary();
+    while (at("*") || at("/")) {
+      const Token& op = next();
+      Value rhs = unary();
+      lhs = op.text == "*" ? mul(lhs, rhs, op) : div(lhs, rhs, op);
+    }
+    return lhs;
+  }
+
+  Value unary() {
+    if (++depth_ > ctx_.max_depth)
+      throw ExprError{peek().offset, fmt::format("expected at most {} levels of nesting, got more",
+                                                 ctx_.max_depth)};
+    Value v;
+    if (at("-") || at("+")) {
+      const Token& op = next();
+      v = unary();
+      if (op.text == "-") v = negate(v);
+    } else {
+      v = power();
+    }
+    --depth_;
+    return v;
+  }
+
+  Value power() {
+    Value base = postfix();
+    if (!at("^")) return base;
+    const Token& op = next();
+    Value exponent = unary();
+    if (base.is_vector || exponent.is_vector)
+      throw ExprError{op.offset, fmt::format("expected scalar ^ scalar, got {} ^ {}",
+                                             kind_name(base), kind_name(exponent))};
+    return Value::of(
+        guarded(op.offset, [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); }));
+  }
+
+  Value postfix() {
+    Value v = primary();
+    while (at(".")) {
+      const Token& dot = next();
+      const Token& comp = peek();
+      if (comp.kind != TokenKind::Name ||
+          (comp.text != "x" && comp.text != "y" && comp.text != "z"))
+        throw ExprError{comp.offset,
+                        fmt::format("expected x, y or z after '.', got {}", show(comp))};
+      ++pos_;
+      if (!v.is_vector)
+        throw ExprError{dot.offset,
+                        fmt::format("expected a vector before '.{}', got a scalar", comp.text)};
+      v = Value::of(v.vec[static_cast<size_t>(comp.text[0] - 'x')]);
+    }
+    return v;
+  }
+
+  Value primary() {
+    const Token& tok = peek();
+    if (tok.kind == TokenKind::Number) {
+      ++pos_;
+      return Value::of(number_value(tok));
+    }
+    if (tok.kind == TokenKind::Name) {
+      ++pos_;
+      if (at("(")) return call(tok);
+      if (builtin_arity().count(tok.text))
+        throw ExprError{peek().offset, fmt::format("expected '(' after function '{}', got {}",
+                                                   tok.text, show(peek()))};
+      if (tok.text == "pi") return Value::of(GiNaC::Pi);
+      std::optional<Value> v = ctx_.resolve ? ctx_.resolve(tok.text, tok.offset) : std::nullopt;
+      if (!v) throw ExprError{tok.offset, fmt::format("unknown name '{}'", clip(tok.text))};
+      return *v;
+    }
+    if (at("(")) {
+      ++pos_;
+      Value v = expr();
+      expect(")");
+      return v;
+    }
+    if (at("[")) return vector_literal();
+    throw ExprError{tok.offset,
+                    fmt::format("expected a number, a name, '(' or '[', got {}", show(tok))};
+  }
+
+  Value vector_literal() {
+    const Token& open = next();
+    std::vector<Value> items;
+    if (!at("]")) {
+      items.push_back(expr());
+      while (at(",")) {
+        ++pos_;
+        items.push_back(expr());
+      }
+    }
+    expect("]");
+    if (items.size() != 3)
+      throw ExprError{open.offset,
+                      fmt::format("expected a vector of 3 components, got {}", items.size())};
+    Vec3 out;
+    for (size_t i = 0; i < 3; ++i) {
+      if (items[i].is_vector)
+        throw ExprError{
+            open.offset,
+            fmt::format("expected scalar vector components, got a vector as component {}", i + 1)};
+      out[i] = items[i].scalar;
+    }
+    return Value::of(out);
+  }
+
+  Value call(const Token& name) {
+    auto it = builtin_arity().find(name.text);
+    if (it == builtin_arity().end())
+      throw ExprError{name.offset, fmt::format("unknown function '{}'", clip(name.text))};
+    expect("(");
+    std::vector<Value> args{expr()};
+    while (at(",")) {
+      ++pos_;
+      args.push_back(expr());
+    }
+    expect(")");
+    if (static_cast<int>(args.size()) != it->second)
+      throw ExprError{name.offset,
+                      fmt::format("expected {} argument{} for '{}', got {}", it->second,
+                                  it->second == 1 ? "" : "s", name.text, args.size())};
+    return guarded(name.offset, [&] { return apply(name, args); });
+  }
+
+  void require(const Token& f, const Value& v, bool vector, size_t index) const {
+    if (v.is_vector == vector) return;
+    throw ExprError{f.offset,
+                    fmt::format("expected {} as argument {} of '{}', got {}",
+                                vector ? "a vector" : "a scalar", index + 1, f.text, kind_name(v))};
+  }
+
+  GiNaC::ex derivative(const Token& f, const GiNaC::ex& e) const {
+    if (!ctx_.time_derivative)
+      throw ExprError{f.offset, fmt::format("expected no time derivative here, got '{}'", f.text)};
+    try {
+      return ctx_.time_derivative(e);
+    } catch (const std::logic_error&) {
+      throw ExprError{f.offset,
+                      fmt::format("expected at most second time derivatives, got '{}' of an "
+                                  "acceleration or of an input's second derivative",
+                                  f.text)};
+    }
+  }
+
+  Value apply(const Token& f, const std::vector<Value>& a) const {
+    const std::string& n = f.text;
+    if (n == "dot" || n == "cross") {
+      require(f, a[0], true, 0);
+      require(f, a[1], true, 1);
+      const Vec3 &x = a[0].vec, &y = a[1].vec;
+      if (n == "dot") return Value::of(x[0] * y[0] + x[1] * y[1] + x[2] * y[2]);
+      return Value::of(
+          Vec3{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]});
+    }
+    if (n == "norm") {
+      require(f, a[0], true, 0);
+      const Vec3& x = a[0].vec;
+      return Value::of(GiNaC::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]));
+    }
+    if (n == "vel") {
+      require(f, a[0], true, 0);
+      Vec3 d;
+      for (size_t i = 0; i < 3; ++i) d[i] = derivative(f, a[0].vec[i]);
+      return Value::of(d);
+    }
+    for (size_t i = 0; i < a.size(); ++i) require(f, a[i], false, i);
+    const GiNaC::ex& x = a[0].scalar;
+    if (n == "der") return Value::of(derivative(f, x));
+    if (n == "atan2") return Value::of(GiNaC::atan2(x, a[1].scalar));
+    if (n == "sin") return Value::of(GiNaC::sin(x));
+    if (n == "cos") return Value::of(GiNaC::cos(x));
+    if (n == "tan") return Value::of(GiNaC::tan(x));
+    if (n == "asin") return Value::of(GiNaC::asin(x));
+    if (n == "acos") return Value::of(GiNaC::acos(x));
+    if (n == "atan") return Value::of(GiNaC::atan(x));
+    if (n == "sinh") return Value::of(GiNaC::sinh(x));
+    if (n == "cosh") return Value::of(GiNaC::cosh(x));
+    if (n == "tanh") return Value::of(GiNaC::tanh(x));
+    if (n == "exp") return Value::of(GiNaC::exp(x));
+    if (n == "log") return Value::of(GiNaC::log(x));
+    if (n == "sqrt") return Value::of(GiNaC::sqrt(x));
+    return Value::of(GiNaC::abs(x));  // the only remaining one-argument function
+  }
+
+  static Value negate(const Value& v) {
+    if (!v.is_vector) return Value::of(-v.scalar);
+    return Value::of(Vec3{-v.vec[0], -v.vec[1], -v.vec[2]});
+  }
+
+  static Value add(const Value& l, const Value& r, const Token& op) {
+    if (l.is_vector != r.is_vector)
+      throw ExprError{op.offset,
+                      fmt::format("expected two scalars or two vectors around '{}', got {} {} {}",
+                                  op.text, kind_name(l), op.text, kind_name(r))};
+    bool plus = op.text == "+";
+    if (!l.is_vector) return Value::of(plus ? l.scalar + r.scalar : l.scalar - r.scalar);
+    Vec3 out;
+    for (size_t i = 0; i < 3; ++i) out[i] = plus ? l.vec[i] + r.vec[i] : l.vec[i] - r.vec[i];
+    return Value::of(out);
+  }
+
+  static Value scale(const Vec3& v, const GiNaC::ex& s) {
+    return Value::of(Vec3{v[0] * s, v[1] * s, v[2] * s});
+  }
+
+  static Value mul(const Value& l, const Value& r, const Token& op) {
+    if (l.is_vector && r.is_vector)
+      throw ExprError{
+          op.offset,
+          "expected at most one vector around '*', got two vectors (use dot() or cross())"};
+    if (l.is_vector) return scale(l.vec, r.scalar);
+    if (r.is_vector) return scale(r.vec, l.scalar);
+    return Value::of(l.scalar * r.scalar);
+  }
+
+  static Value div(const Value& l, const Value& r, const Token& op) {
+    if (r.is_vector)
+      throw ExprError{
+          op.offset,
+          fmt::format("expected a scalar divisor after '/', got {} / a vector", kind_name(l))};
+    return guarded(op.offset, [&] {
+      if (r.scalar.is_zero()) throw std::domain_error("division by zero");
+      GiNaC::ex inv = GiNaC::pow(r.scalar, -1);
+      return l.is_vector ? scale(l.vec, inv) : Value::of(l.scalar * inv);
+    });
+  }
+
+  std::vector<Token> toks_;
+  const ParseContext& ctx_;
+  size_t pos_ = 0;
+  int depth_ = 0;
+};
+
+}  // namespace
+
+Value parse_expression(const std::string& text, const ParseContext& ctx) {
+  return Parser(text, ctx).parse();
+}
+
+bool is_builtin_function(const std::string& name) {
+  return builtin_arity().count(name) != 0;
+}
+
+std::vector<std::pair<std::string, size_t>> referenced_names(const std::string& text) {
+  std::vector<std::pair<std::string, size_t>> out;
+  std::vector<Token> toks;
+  try {
+    toks = tokenize(text);
+  } catch (const ExprError&) {
+    return out;
+  }
+  for (size_t i = 0; i < toks.size(); ++i) {
+    if (toks[i].kind != TokenKind::Name) continue;
+    bool component = i > 0 && toks[i - 1].kind == TokenKind::Symbol && toks[i - 1].text == ".";
+    bool function = toks[i + 1].kind == TokenKind::Symbol && toks[i + 1].text == "(";
+    if (!component && !function) out.emplace_back(toks[i].text, toks[i].offset);
+  }
+  return out;
+}
+
+}  // namespace lagrange::model

@@ -1,0 +1,104 @@
+#pragma once
+// The YAML → Model reader's internals, split over read_*.cpp by section (docs/model-language.md).
+
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lagrange/model.hpp"
+#include "model/expression_parser.hpp"
+#include "model/source_text.hpp"
+
+namespace lagrange::model {
+
+/// What a user-chosen name denotes. Derived: NAME_dot / NAME_ddot of a coordinate or input.
+enum class NameKind { Parameter, Coordinate, Input, Point, Constraint, Output, Derived };
+
+/// A declared name: its kind, index in the Model's list of that kind, and where it was written.
+struct NameEntry {
+  NameKind kind;
+  size_t index;
+  SourceLoc loc;
+  std::string owner;  ///< for Derived: the coordinate or input it belongs to
+};
+
+/// Which names an expression may use (bit set); pi and numbers are always allowed.
+enum Allowed : unsigned {
+  kNumbers = 0,
+  kParams = 1,
+  kTime = 2,
+  kCoords = 4,
+  kInputs = 8,
+  kPoints = 16,
+  kAll = 31
+};
+
+/// Reads one YAML document into a Model. Sections are read in dependency order:
+/// parameters, coordinates, inputs, points, then everything that may use them.
+class ModelReader {
+ public:
+  explicit ModelReader(const SourceText& src);
+  Model read(const YAML::Node& root);
+
+ private:
+  // yaml_nodes.cpp — node shape checks, all failing with the node's location.
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const;
+  std::string describe(const YAML::Node& node) const;
+  void expect_map(const YAML::Node& node, const std::string& what) const;
+  void expect_seq(const YAML::Node& node, const std::string& what) const;
+  std::string scalar(const YAML::Node& node, const std::string& what) const;
+  bool boolean(const YAML::Node& node, const std::string& what) const;
+  /// Checks that `map` is a map whose keys are distinct scalars from `valid` (empty: any).
+  void check_keys(const YAML::Node& map, const std::vector<std::string>& valid,
+                  const std::string& where) const;
+
+  // reader_names.cpp — one namespace for parameters, coordinates, inputs, points, constraints,
+  // outputs.
+  void declare(const std::string& name, NameKind kind, size_t index, const YAML::Node& key,
+               const std::string& owner = "");
+  void declare_all(const YAML::Node& root);
+  std::optional<Value> lookup(const std::string& name, size_t offset, unsigned allowed) const;
+  std::string names_of(NameKind kind) const;
+
+  // reader_expressions.cpp — expressions inside YAML scalars.
+  Value parse(const YAML::Node& node, unsigned allowed, const std::string& what) const;
+  GiNaC::ex scalar_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
+  Vec3 vector_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
+  double number(const YAML::Node& node, unsigned allowed, const std::string& what) const;
+  /// The value of `e` at the file's parameter values, if it is a real number.
+  std::optional<double> evaluate(const GiNaC::ex& e) const;
+  /// Fails at `node` if `e` evaluates to a number that is negative (or zero when `strict`).
+  void check_sign(const GiNaC::ex& e, const YAML::Node& node, bool strict,
+                  const std::string& what) const;
+  std::string point_name(const YAML::Node& node, const std::string& what) const;
+
+  // read_declarations.cpp
+  void read_parameters(const YAML::Node& node);
+  void read_coordinates(const YAML::Node& node);
+  void read_inputs(const YAML::Node& node);
+  // read_points.cpp
+  void read_points(const YAML::Node& node);
+  // read_equations.cpp
+  void read_energies(const YAML::Node& root);
+  void read_generalized_forces(const YAML::Node& node);
+  std::vector<NamedExpr> read_named(const YAML::Node& node, const std::string& section);
+  // read_elements.cpp
+  void read_particles(const YAML::Node& node);
+  void read_forces(const YAML::Node& node);
+  void read_springs(const YAML::Node& node);
+  void read_dampers(const YAML::Node& node);
+  std::pair<std::string, std::string> read_between(const YAML::Node& item, const std::string& what);
+  // read_settings.cpp
+  void read_stabilization(const YAML::Node& node);
+  void read_simulate(const YAML::Node& node);
+
+  const SourceText& src_;
+  Model m_;
+  std::map<std::string, NameEntry> names_;
+  std::vector<bool> point_ready_;
+};
+
+}  // namespace lagrange::model

@@ -1,0 +1,72 @@
+#include <fmt/format.h>
+
+#include <iterator>
+
+#include "model/latex_names.hpp"
+#include "model/model_reader.hpp"
+
+namespace lagrange::model {
+
+namespace {
+/// More coordinates than this cannot be derived in reasonable memory (M alone has n² entries).
+constexpr size_t kMaxCoordinates = 2000;
+}  // namespace
+
+void ModelReader::read_parameters(const YAML::Node& node) {
+  for (const auto& kv : node) {
+    const std::string& name = kv.first.Scalar();
+    Parameter p{name, GiNaC::symbol(name, latex_name(name)), 0.0, src_.at(kv.first)};
+    p.value = number(kv.second, kNumbers, fmt::format("parameter '{}'", name));
+    m_.parameters.push_back(p);
+  }
+}
+
+void ModelReader::read_coordinates(const YAML::Node& node) {
+  if (node.size() == 0) fail(node, "expected at least one coordinate in coordinates, got none");
+  if (node.size() > kMaxCoordinates) {
+    auto it = node.begin();
+    std::advance(it, kMaxCoordinates);
+    fail(it->first,
+         fmt::format("expected at most {} coordinates, got {}", kMaxCoordinates, node.size()));
+  }
+  for (const auto& kv : node) {
+    const std::string& name = kv.first.Scalar();
+    std::string what = fmt::format("coordinate '{}'", name);
+    const YAML::Node& spec = kv.second;
+    if (!spec.IsMap())
+      fail(spec.IsNull() ? kv.first : spec,
+           fmt::format("expected a map {{initial: …, rate: …}} for {}, got {}", what,
+                       describe(spec)));
+    check_keys(spec, {"initial", "rate", "fixed"}, what);
+    Coordinate c{name,
+                 GiNaC::symbol(name, latex_name(name)),
+                 GiNaC::symbol(name + "_dot", latex_name(name, "\\dot")),
+                 GiNaC::symbol(name + "_ddot", latex_name(name, "\\ddot")),
+                 0.0,
+                 0.0,
+                 false,
+                 src_.at(kv.first)};
+    if (!spec["initial"]) fail(kv.first, fmt::format("expected 'initial' in {}, got none", what));
+    c.initial = number(spec["initial"], kParams, fmt::format("initial value of {}", what));
+    if (spec["rate"]) c.rate = number(spec["rate"], kParams, fmt::format("rate of {}", what));
+    if (spec["fixed"]) c.fixed = boolean(spec["fixed"], fmt::format("'fixed' of {}", what));
+    m_.coordinates.push_back(c);
+  }
+}
+
+void ModelReader::read_inputs(const YAML::Node& node) {
+  // Symbols first, so that each input's expression is read with every input declared.
+  for (const auto& kv : node) {
+    const std::string& name = kv.first.Scalar();
+    m_.inputs.push_back(Input{name, GiNaC::symbol(name, latex_name(name)),
+                              GiNaC::symbol(name + "_dot", latex_name(name, "\\dot")),
+                              GiNaC::symbol(name + "_ddot", latex_name(name, "\\ddot")), 0,
+                              src_.at(kv.first)});
+  }
+  size_t i = 0;
+  for (const auto& kv : node)
+    m_.inputs[i++].expr =
+        scalar_expr(kv.second, kParams | kTime, fmt::format("input '{}'", kv.first.Scalar()));
+}
+
+}  // namespace lagrange::model

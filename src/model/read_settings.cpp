@@ -1,0 +1,47 @@
+#include <fmt/format.h>
+
+#include "model/model_reader.hpp"
+
+namespace lagrange::model {
+
+void ModelReader::read_stabilization(const YAML::Node& node) {
+  check_keys(node, {"alpha", "project", "gamma"}, "stabilization");
+  Stabilization& s = m_.stabilization;
+  s.loc = src_.at(node);
+  if (node["alpha"]) {
+    s.alpha = number(node["alpha"], kParams, "stabilization alpha");
+    if (s.alpha < 0) fail(node["alpha"], fmt::format("expected alpha >= 0, got {:g}", s.alpha));
+  }
+  if (node["project"]) s.project = boolean(node["project"], "stabilization project");
+  if (node["gamma"]) {
+    s.gamma = number(node["gamma"], kParams, "stabilization gamma");
+    if (s.gamma < 0) fail(node["gamma"], fmt::format("expected gamma >= 0, got {:g}", s.gamma));
+  }
+}
+
+void ModelReader::read_simulate(const YAML::Node& node) {
+  check_keys(node, {"t_end", "output_step", "integrator", "rtol", "atol", "step"}, "simulate");
+  SimulateOptions& o = m_.simulate;
+  o.loc = src_.at(node);
+  auto positive = [&](const char* key, double& out, bool allow_zero) {
+    if (!node[key]) return;
+    out = number(node[key], kParams, fmt::format("simulate {}", key));
+    if (out < 0 || (!allow_zero && out == 0))
+      fail(node[key], fmt::format("expected {} {} 0, got {:g}", key, allow_zero ? ">=" : ">", out));
+  };
+  positive("t_end", o.t_end, false);
+  positive("output_step", o.output_step, false);
+  positive("rtol", o.rtol, false);
+  positive("atol", o.atol, false);
+  positive("step", o.step, true);
+  if (node["integrator"]) {
+    o.integrator = scalar(node["integrator"], "simulate integrator");
+    if (o.integrator != "arkode" && o.integrator != "cvode" && o.integrator != "rk4" &&
+        o.integrator != "ida")
+      fail(node["integrator"],
+           fmt::format("unknown integrator '{}', expected one of: arkode, cvode, rk4, ida",
+                       clip(o.integrator)));
+  }
+}
+
+}  // namespace lagrange::model

@@ -1,0 +1,109 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "model/model_reader.hpp"
+
+namespace lagrange::model {
+
+namespace {
+
+/// YAML's spellings of infinity and not-a-number (.inf, -.Inf, .NaN, …).
+bool is_yaml_nonfinite(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s == ".inf" || s == "+.inf" || s == "-.inf" || s == ".nan";
+}
+
+}  // namespace
+
+Value ModelReader::parse(const YAML::Node& node, unsigned allowed, const std::string& what) const {
+  if (!node.IsScalar() || node.Scalar().find_first_not_of(" \t\r\n") == std::string::npos)
+    fail(node, fmt::format("expected an expression for {}, got {}", what, describe(node)));
+  const std::string& text = node.Scalar();
+  if (is_yaml_nonfinite(text))
+    fail(node, fmt::format("expected a finite number for {}, got '{}'", what, text));
+  ParseContext ctx;
+  ctx.resolve = [this, allowed](const std::string& name, size_t offset) {
+    return lookup(name, offset, allowed);
+  };
+  ctx.time_derivative = [this](const GiNaC::ex& e) { return m_.time_derivative(e); };
+  try {
+    return parse_expression(text, ctx);
+  } catch (const ExprError& e) {
+    throw ModelError(src_.at(node, e.offset), fmt::format("{} (in {})", e.message, what));
+  }
+}
+
+GiNaC::ex ModelReader::scalar_expr(const YAML::Node& node, unsigned allowed,
+                                   const std::string& what) const {
+  Value v = parse(node, allowed, what);
+  if (v.is_vector) fail(node, fmt::format("expected a scalar for {}, got a vector", what));
+  return v.scalar;
+}
+
+Vec3 ModelReader::vector_expr(const YAML::Node& node, unsigned allowed,
+                              const std::string& what) const {
+  if (node.IsSequence()) {
+    if (node.size() != 3)
+      fail(node,
+           fmt::format("expected a vector of 3 components for {}, got {}", what, node.size()));
+    Vec3 out;
+    for (size_t i = 0; i < 3; ++i)
+      out[i] = scalar_expr(node[i], allowed, fmt::format("component {} of {}", i + 1, what));
+    return out;
+  }
+  Value v = parse(node, allowed, what);
+  if (!v.is_vector)
+    fail(node, fmt::format("expected a vector [x, y, z] for {}, got a scalar", what));
+  return v.vec;
+}
+
+std::optional<double> ModelReader::evaluate(const GiNaC::ex& e) const {
+  try {
+    GiNaC::exmap values;
+    for (const Parameter& p : m_.parameters) values[p.sym] = GiNaC::numeric(p.value);
+    GiNaC::ex r = e.subs(values).evalf();
+    if (!GiNaC::is_a<GiNaC::numeric>(r)) return std::nullopt;
+    const auto& n = GiNaC::ex_to<GiNaC::numeric>(r);
+    if (!n.is_real()) return std::nullopt;
+    return n.to_double();
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+double ModelReader::number(const YAML::Node& node, unsigned allowed,
+                           const std::string& what) const {
+  GiNaC::ex e = scalar_expr(node, allowed, what);
+  std::optional<double> v = evaluate(e);
+  if (!v)
+    fail(node, fmt::format("expected a real number for {}, got '{}'", what, clip(node.Scalar())));
+  if (!std::isfinite(*v))
+    fail(node, fmt::format("expected a finite number for {}, got '{}'", what, clip(node.Scalar())));
+  return *v;
+}
+
+void ModelReader::check_sign(const GiNaC::ex& e, const YAML::Node& node, bool strict,
+                             const std::string& what) const {
+  std::optional<double> v = evaluate(e);
+  if (!v) return;
+  if (std::isfinite(*v) && *v > 0) return;
+  if (!strict && *v == 0) return;
+  std::string text = clip(node.Scalar()), value = fmt::format("{:g}", *v);
+  std::string got = text == value ? value : fmt::format("{} = {}", text, value);
+  fail(node,
+       fmt::format("expected a {} {}, got {}", strict ? "positive" : "non-negative", what, got));
+}
+
+std::string ModelReader::point_name(const YAML::Node& node, const std::string& what) const {
+  std::string name = scalar(node, what);
+  auto it = names_.find(name);
+  if (it == names_.end() || it->second.kind != NameKind::Point)
+    fail(node, fmt::format("expected a point name for {}, got '{}' (points: {})", what, clip(name),
+                           names_of(NameKind::Point)));
+  return name;
+}
+
+}  // namespace lagrange::model

@@ -1,0 +1,167 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "model/model_reader.hpp"
+
+namespace lagrange::model {
+
+namespace {
+
+const char* kind_word(NameKind k) {
+  switch (k) {
+    case NameKind::Parameter:
+      return "parameter";
+    case NameKind::Coordinate:
+      return "coordinate";
+    case NameKind::Input:
+      return "input";
+    case NameKind::Point:
+      return "point";
+    case NameKind::Constraint:
+      return "constraint";
+    case NameKind::Output:
+      return "output";
+    case NameKind::Derived:
+      return "derivative";
+  }
+  return "name";
+}
+
+constexpr size_t kMaxNameLength = 100;
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+/// What an expression with these allowed names may contain, for "expected …" messages.
+std::string allowed_words(unsigned allowed) {
+  if (allowed == kNumbers) return "a number";
+  if (allowed == kParams) return "a number or an expression of parameters";
+  if (allowed == (kParams | kTime)) return "an expression of t and parameters";
+  if (allowed == (kParams | kTime | kInputs)) return "an expression of t, parameters and inputs";
+  return "an expression";
+}
+
+}  // namespace
+
+void ModelReader::declare(const std::string& name, NameKind kind, size_t index,
+                          const YAML::Node& key, const std::string& owner) {
+  SourceLoc loc = src_.at(key);
+  const char* what = kind_word(kind);
+  if (!is_identifier(name))
+    fail(key, fmt::format("expected a {} name made of letters, digits and '_', got '{}'", what,
+                          clip(name)));
+  if (name.size() > kMaxNameLength)
+    fail(key, fmt::format("expected a {} name of at most {} characters, got '{}'", what,
+                          kMaxNameLength, clip(name)));
+  if (name == "t" || name == "pi" || is_builtin_function(name))
+    fail(key,
+         fmt::format("expected a {} name that is not reserved, got '{}' (it is {})", what, name,
+                     is_builtin_function(name) ? "a built-in function"
+                     : name == "t"             ? "the time"
+                                               : "the constant pi"));
+  auto it = names_.find(name);
+  if (it != names_.end()) {
+    // Report at whichever of the two is written later in the file, naming the other.
+    NameEntry mine{kind, index, loc, owner};
+    const NameEntry& old = it->second;
+    bool old_first =
+        std::make_pair(old.loc.line, old.loc.column) <= std::make_pair(loc.line, loc.column);
+    const NameEntry& later = old_first ? mine : old;
+    const NameEntry& earlier = old_first ? old : mine;
+    auto kind_of = [](const NameEntry& e) {
+      return e.kind == NameKind::Derived ? fmt::format("derivative of '{}'", e.owner)
+                                         : std::string(kind_word(e.kind));
+    };
+    throw ModelError(
+        later.loc, fmt::format("expected a unique name, got {} '{}' which is already the {} at {}",
+                               kind_of(later), name, kind_of(earlier), earlier.loc.str()));
+  }
+  names_.emplace(name, NameEntry{kind, index, loc, owner});
+}
+
+void ModelReader::declare_all(const YAML::Node& root) {
+  struct Section {
+    const char* key;
+    NameKind kind;
+  };
+  const Section sections[] = {
+      {"parameters", NameKind::Parameter},   {"coordinates", NameKind::Coordinate},
+      {"inputs", NameKind::Input},           {"points", NameKind::Point},
+      {"constraints", NameKind::Constraint}, {"outputs", NameKind::Output}};
+  for (const Section& s : sections) {
+    const YAML::Node node = root[s.key];
+    if (!node || node.IsNull()) continue;
+    check_keys(node, {}, s.key);
+    size_t index = 0;
+    for (const auto& kv : node) {
+      const std::string& name = kv.first.Scalar();
+      declare(name, s.kind, index++, kv.first);
+      if (s.kind == NameKind::Coordinate || s.kind == NameKind::Input) {
+        declare(name + "_dot", NameKind::Derived, 0, kv.first, name);
+        declare(name + "_ddot", NameKind::Derived, 0, kv.first, name);
+      }
+    }
+  }
+}
+
+std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
+                                         unsigned allowed) const {
+  auto refuse = [&](const std::string& got) -> ExprError {
+    return ExprError{offset, fmt::format("expected {}, got {}", allowed_words(allowed), got)};
+  };
+  if (name == "t") {
+    if (!(allowed & kTime)) throw refuse("the time 't'");
+    return Value::of(m_.t);
+  }
+  auto it = names_.find(name);
+  if (it == names_.end()) return std::nullopt;
+  const NameEntry& e = it->second;
+  std::string got = fmt::format("{} '{}'", kind_word(e.kind), name);
+  switch (e.kind) {
+    case NameKind::Parameter:
+      if (!(allowed & kParams)) throw refuse(got);
+      return Value::of(m_.parameters.at(e.index).sym);
+    case NameKind::Coordinate:
+      if (!(allowed & kCoords)) throw refuse(got);
+      return Value::of(m_.coordinates.at(e.index).q);
+    case NameKind::Input:
+      if (!(allowed & kInputs)) throw refuse(got);
+      return Value::of(m_.inputs.at(e.index).u);
+    case NameKind::Point:
+      if (!(allowed & kPoints)) throw refuse(got);
+      if (e.index >= point_ready_.size() || !point_ready_[e.index])
+        throw ExprError{offset, fmt::format("expected a point defined before use, got '{}'", name)};
+      return Value::of(m_.points.at(e.index).pos);
+    case NameKind::Derived:
+      throw ExprError{
+          offset,
+          fmt::format("expected a value, got '{}' (write der({}) for the derivative of '{}')", name,
+                      e.owner, e.owner)};
+    case NameKind::Constraint:
+    case NameKind::Output:
+      throw ExprError{offset,
+                      fmt::format("expected a value, got {} (constraint and output names cannot be "
+                                  "used in expressions)",
+                                  got)};
+  }
+  return std::nullopt;
+}
+
+std::string ModelReader::names_of(NameKind kind) const {
+  std::vector<std::pair<size_t, std::string>> found;
+  for (const auto& [name, e] : names_)
+    if (e.kind == kind) found.emplace_back(e.index, name);
+  std::sort(found.begin(), found.end());
+  std::string out;
+  for (size_t i = 0; i < found.size() && i < 10; ++i) out += (i ? ", " : "") + found[i].second;
+  if (found.size() > 10) out += fmt::format(", ... ({} in all)", found.size());
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace lagrange::model

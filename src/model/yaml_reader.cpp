@@ -1,0 +1,108 @@
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "lagrange/reader.hpp"
+#include "model/model_reader.hpp"
+
+namespace lagrange {
+
+namespace model {
+
+namespace {
+
+const std::vector<std::string>& top_level_keys() {
+  static const std::vector<std::string> keys = {
+      "name",          "parameters", "coordinates", "inputs",      "points",
+      "particles",     "gravity",    "kinetic",     "potential",   "generalized_forces",
+      "forces",        "springs",    "dampers",     "constraints", "outputs",
+      "stabilization", "simulate"};
+  return keys;
+}
+
+/// A section's node, or nothing when the key is absent or has no value.
+std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
+  YAML::Node n = root[key];
+  if (!n || n.IsNull()) return std::nullopt;
+  return n;
+}
+
+}  // namespace
+
+ModelReader::ModelReader(const SourceText& src) : src_(src) {}
+
+Model ModelReader::read(const YAML::Node& root) {
+  if (!root.IsMap())
+    throw ModelError(src_.at(root.IsNull() ? YAML::Mark() : root.Mark()),
+                     fmt::format("expected a map of model keys (name, coordinates, …), got {}",
+                                 root.IsNull() ? "an empty document" : describe(root)));
+  check_keys(root, top_level_keys(), "the model");
+  m_.file = src_.file();
+  m_.name = std::filesystem::path(src_.file()).stem().string();
+  if (root["name"]) m_.name = scalar(root["name"], "name");
+  if (!section(root, "coordinates"))
+    throw ModelError(src_.at(root),
+                     "expected a 'coordinates' key with at least one coordinate, got none");
+  declare_all(root);
+
+  if (auto n = section(root, "parameters")) read_parameters(*n);
+  read_coordinates(root["coordinates"]);
+  if (auto n = section(root, "inputs")) read_inputs(*n);
+  if (auto n = section(root, "points")) read_points(*n);
+  m_.generalized_forces.assign(m_.coordinates.size(), GiNaC::ex(0));
+  read_energies(root);
+  if (auto n = section(root, "generalized_forces")) read_generalized_forces(*n);
+  if (auto n = section(root, "particles")) read_particles(*n);
+  if (auto n = section(root, "gravity"))
+    m_.gravity = vector_expr(*n, kParams | kTime | kInputs, "gravity");
+  if (auto n = section(root, "forces")) read_forces(*n);
+  if (auto n = section(root, "springs")) read_springs(*n);
+  if (auto n = section(root, "dampers")) read_dampers(*n);
+  if (auto n = section(root, "constraints")) m_.constraints = read_named(*n, "constraint");
+  if (auto n = section(root, "outputs")) m_.outputs = read_named(*n, "output");
+  if (auto n = section(root, "stabilization")) read_stabilization(*n);
+  if (auto n = section(root, "simulate")) read_simulate(*n);
+  return m_;
+}
+
+}  // namespace model
+
+Model read_model_string(const std::string& yaml_text, const std::string& file_label) {
+  std::string text = yaml_text.rfind("\xEF\xBB\xBF", 0) == 0 ? yaml_text.substr(3) : yaml_text;
+  model::SourceText src(std::move(text), file_label);
+  model::check_yaml_text(src);
+  YAML::Node root;
+  try {
+    model::check_single_document(src);
+    root = YAML::Load(src.text());
+  } catch (const YAML::Exception& e) {
+    throw ModelError(src.at(e.mark),
+                     fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
+  }
+  try {
+    return model::ModelReader(src).read(root);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(src.at(e.mark), fmt::format("expected a well-formed model, got: {}", e.msg));
+  }
+}
+
+Model read_model_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw ModelError(SourceLoc{path}, "expected a model file, got a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw ModelError(SourceLoc{path},
+                     fmt::format("cannot open the model file: {}", std::strerror(errno)));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ModelError(SourceLoc{path}, "cannot read the model file");
+  return read_model_string(text.str(), path);
+}
+
+}  // namespace lagrange

@@ -1,0 +1,111 @@
+// Fuzz findings kept as regression tests (issue 5): every input in tests/hardening/data/fuzz/
+// that once crashed, hung or ran away in a fuzz target, replayed through the same code path as
+// the target (fuzz/fuzz_model.cpp, fuzz/fuzz_expression.cpp). Each must end in a diagnosed error
+// or a result, quickly. The fuzzers' seed corpora are replayed too.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../fuzz/model_budget.hpp"
+#include "hardening/cli_runner.hpp"
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/reader.hpp"
+#include "model/expression_parser.hpp"
+
+namespace lagrange::hardening {
+namespace {
+
+std::vector<fs::path> inputs_in(const fs::path& dir) {
+  std::vector<fs::path> files;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.is_regular_file()) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+const fs::path kSource = LAGRANGE_SOURCE_DIR;
+
+// fuzz_model's body: read, then derive + compile when small. Returns "ok" or the error message.
+std::string replay_model(const std::string& text) {
+  try {
+    const Model model = read_model_string(text, "fuzz.yaml");
+    if (fuzz::fits(model, fuzz::Budget{})) (void)compile(derive(model));
+    return "ok";
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+}
+
+// fuzz_expression's body, with the same names in scope.
+std::string replay_expression(const std::string& text) {
+  GiNaC::symbol t("t"), x("x"), y("y"), m("m"), l("l");
+  model::ParseContext ctx;
+  ctx.resolve = [&](const std::string& name, size_t) -> std::optional<model::Value> {
+    if (name == "t") return model::Value::of(GiNaC::ex(t));
+    if (name == "x") return model::Value::of(GiNaC::ex(x));
+    if (name == "y") return model::Value::of(GiNaC::ex(y));
+    if (name == "m") return model::Value::of(GiNaC::ex(m));
+    if (name == "l") return model::Value::of(GiNaC::ex(l));
+    if (name == "p") return model::Value::of(Vec3{x, y, 0});
+    if (name == "r") return model::Value::of(Vec3{l * GiNaC::sin(x), -l * GiNaC::cos(x), 0});
+    return std::nullopt;
+  };
+  ctx.time_derivative = [&](const GiNaC::ex& e) { return e.diff(t) + e.diff(x) + e.diff(y); };
+  (void)model::referenced_names(text);
+  try {
+    (void)model::parse_expression(text, ctx);
+    return "ok";
+  } catch (const model::ExprError& e) {
+    return e.message;
+  }
+}
+
+void replay_all(const std::vector<fs::path>& files, std::string (*replay)(const std::string&)) {
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.string());
+    const auto start = std::chrono::steady_clock::now();
+    std::string outcome;
+    EXPECT_NO_THROW(outcome = replay(slurp(file)));
+    EXPECT_FALSE(outcome.empty());
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 10.0) << "slow input";
+  }
+}
+
+TEST(FuzzRegressions, ModelFindingsAreDiagnosed) {
+  replay_all(inputs_in(kSource / "tests/hardening/data/fuzz/model"), replay_model);
+}
+
+TEST(FuzzRegressions, ExpressionFindingsAreDiagnosed) {
+  replay_all(inputs_in(kSource / "tests/hardening/data/fuzz/expression"), replay_expression);
+}
+
+TEST(FuzzRegressions, SeedCorporaReplay) {
+  const auto examples = inputs_in(kSource / "examples");
+  ASSERT_FALSE(examples.empty());
+  for (const auto& file : examples) EXPECT_EQ(replay_model(slurp(file)), "ok") << file;
+  replay_all(inputs_in(kSource / "fuzz/corpus/model"), replay_model);
+  const auto expressions = inputs_in(kSource / "fuzz/corpus/expression");
+  ASSERT_FALSE(expressions.empty());
+  for (const auto& file : expressions) EXPECT_EQ(replay_expression(slurp(file)), "ok") << file;
+}
+
+TEST(FuzzRegressions, DeepNestingIsAnErrorNotAStackOverflow) {
+  const std::string deep = std::string(100000, '(') + "x" + std::string(100000, ')');
+  EXPECT_NE(replay_expression(deep), "ok");
+  EXPECT_NE(replay_expression(std::string(100000, '-') + "x"), "ok");
+  EXPECT_NE(replay_expression(std::string(100000, '[')), "ok");
+  std::string powers = "x";
+  for (int i = 0; i < 50000; ++i) powers += "^x";
+  EXPECT_NO_THROW(replay_expression(powers));
+}
+
+}  // namespace
+}  // namespace lagrange::hardening

@@ -1,0 +1,240 @@
+// Failures at run time, interruption and determinism through the command line (issue 5).
+// A failed run exits 3 with the time, the cause and the offending values, and keeps the rows
+// computed so far under the final name with a sidecar saying "failed"; Ctrl-C keeps them with
+// "interrupted"; no run leaves a ".part" file; the same run twice writes the same bytes.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hardening/cli_runner.hpp"
+
+namespace lagrange::hardening {
+namespace {
+
+std::string example(const std::string& name) {
+  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
+}
+
+/// The CSV parsed into rows of numbers; fails the test on a malformed line.
+std::vector<std::vector<double>> parse_csv(const std::string& text, size_t* columns) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  *columns = static_cast<size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) {
+      size_t used = 0;
+      row.push_back(std::stod(cell, &used));
+      EXPECT_EQ(used, cell.size()) << "bad cell '" << cell << "'";
+    }
+    EXPECT_EQ(row.size(), *columns) << "short row: " << line;
+    rows.push_back(row);
+  }
+  EXPECT_TRUE(text.empty() || text.back() == '\n') << "the CSV does not end with a newline";
+  return rows;
+}
+
+/// A run that must fail: its stderr, sidecar and rows, checked for what every failure must have.
+struct Failure {
+  RunResult result;
+  nlohmann::json sidecar;
+  std::vector<std::vector<double>> rows;
+};
+
+Failure run_failing(const ScratchDir& dir, const std::string& yaml,
+                    std::vector<std::string> extra) {
+  const fs::path model = dir.path() / "model.yaml", csv = dir.path() / "out.csv";
+  spit(model, yaml);
+  std::vector<std::string> args{"simulate", model.string(), "-o", csv.string(), "-q"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  Failure f;
+  f.result = run_lagrange(dir.path(), args);
+  EXPECT_EQ(f.result.exit_code, 3) << f.result.err;
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"model.yaml", "out.csv", "out.csv.json"}));
+  f.sidecar = nlohmann::json::parse(slurp(dir.path() / "out.csv.json"));
+  EXPECT_EQ(f.sidecar.at("status"), "failed");
+  EXPECT_TRUE(f.sidecar.contains("reason"));
+  size_t columns = 0;
+  f.rows = parse_csv(slurp(csv), &columns);
+  EXPECT_EQ(f.sidecar.at("rows").get<size_t>(), f.rows.size());
+  // "simulation failed at t = <time>: <cause>", and the same reason in the sidecar
+  std::smatch m;
+  EXPECT_TRUE(
+      std::regex_search(f.result.err, m, std::regex("simulation failed at t = ([-0-9.e+]+): ")))
+      << f.result.err;
+  if (!m.empty())
+    EXPECT_DOUBLE_EQ(std::stod(m[1].str()), f.sidecar.at("failure_time").get<double>());
+  return f;
+}
+
+const std::string kSqrtThroughZero =
+    "name: sqrt through zero\n"
+    "coordinates:\n  x: {initial: 1, rate: -10}\n"
+    "kinetic: der(x)^2/2\n"
+    "potential: x^(5/2)\n"
+    "simulate: {t_end: 1, output_step: 0.01}\n";
+
+TEST(RuntimeFailure, NanInTheStateKeepsRowsBeforeIt) {
+  ScratchDir dir("nan");
+  const Failure f = run_failing(dir, kSqrtThroughZero, {});
+  // x = 1 − 10 t crosses zero near t = 0.1, where x^(5/2) has no real value
+  const double t = f.sidecar.at("failure_time").get<double>();
+  EXPECT_GT(t, 0.05);
+  EXPECT_LT(t, 0.2);
+  ASSERT_FALSE(f.rows.empty());
+  EXPECT_LE(f.rows.back()[0], t);
+  EXPECT_NE(f.result.err.find("not finite"), std::string::npos) << f.result.err;
+  EXPECT_NE(f.result.err.find("the acceleration of 'x' is not finite"), std::string::npos)
+      << f.result.err;                                                       // the cause
+  EXPECT_NE(f.result.err.find("x = -"), std::string::npos) << f.result.err;  // the state
+}
+
+TEST(RuntimeFailure, NanInTheStateWithFixedStepRk4) {
+  ScratchDir dir("nan-rk4");
+  const Failure f = run_failing(dir, kSqrtThroughZero, {"--integrator", "rk4"});
+  EXPECT_NE(f.result.err.find("the acceleration of 'x' is not finite"), std::string::npos)
+      << f.result.err;
+}
+
+TEST(RuntimeFailure, InfiniteAccelerationOnACollapse) {
+  // Radial fall onto a 1/r well: r reaches 0 in finite time (t = π/(2√2) ≈ 1.11) where the
+  // acceleration −1/r² is no longer finite.
+  ScratchDir dir("collapse");
+  const Failure f =
+      run_failing(dir,
+                  "name: collapse\ncoordinates:\n  r: {initial: 1}\n"
+                  "kinetic: der(r)^2/2\npotential: -1/r\n"
+                  "simulate: {t_end: 3, output_step: 0.01, rtol: 1e-10, atol: 1e-12}\n",
+                  {});
+  const double t = f.sidecar.at("failure_time").get<double>();
+  EXPECT_NEAR(t, 3.14159265358979 / (2 * std::sqrt(2.0)), 1e-3);
+  EXPECT_GT(f.rows.size(), 100u);
+  EXPECT_NE(f.result.err.find("the acceleration of 'r' is not finite"), std::string::npos)
+      << f.result.err;
+}
+
+TEST(RuntimeFailure, IntegratorGivesUpOnAStiffSpring) {
+  // ω = 10¹⁰ rad/s: the explicit method's stable step is far below what max_steps can cover
+  // before the first output sample, so ARKODE gives up with too much work.
+  ScratchDir dir("stiff");
+  const Failure f =
+      run_failing(dir,
+                  "name: stiff\nparameters: {k: 1e20}\ncoordinates:\n  x: {initial: 1}\n"
+                  "kinetic: der(x)^2/2\npotential: k*x^2/2\n"
+                  "simulate: {t_end: 1, output_step: 0.01}\n",
+                  {});
+  EXPECT_LT(f.sidecar.at("failure_time").get<double>(), 0.01);
+  EXPECT_EQ(f.rows.size(), 1u);  // the initial sample
+  EXPECT_NE(f.result.err.find("TOO_MUCH_WORK"), std::string::npos) << f.result.err;
+  // where it gave up, and the largest quantities there (the acceleration −k x)
+  EXPECT_NE(f.result.err.find("last evaluated state at t = "), std::string::npos) << f.result.err;
+  EXPECT_NE(f.result.err.find("largest values: x_ddot = "), std::string::npos) << f.result.err;
+}
+
+TEST(RuntimeFailure, MassMatrixBecomesSingularMidRun) {
+  // M = 1 − t loses definiteness at t = 1: rk4 on a 10 ms grid steps onto it.
+  ScratchDir dir("singular");
+  const Failure f =
+      run_failing(dir,
+                  "name: fading mass\ncoordinates:\n  x: {initial: 0, rate: 1}\n"
+                  "kinetic: (1 - t)*der(x)^2/2\n"
+                  "simulate: {t_end: 2, output_step: 0.01, integrator: rk4, step: 0.001}\n",
+                  {});
+  const double t = f.sidecar.at("failure_time").get<double>();
+  EXPECT_NEAR(t, 1.0, 1e-2);
+  EXPECT_GT(f.rows.size(), 90u);
+  EXPECT_NE(f.result.err.find("mass matrix is singular"), std::string::npos) << f.result.err;
+  EXPECT_NE(f.result.err.find("x_dot = "), std::string::npos) << f.result.err;
+}
+
+TEST(RuntimeFailure, SuccessWritesACompleteSidecarWithStatistics) {
+  ScratchDir dir("complete");
+  const fs::path csv = dir.path() / "out.csv";
+  const RunResult r = run_lagrange(
+      dir.path(), {"simulate", example("pendulum.yaml"), "-o", csv.string(), "--t-end", "1", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"out.csv", "out.csv.json"}));
+  const auto side = nlohmann::json::parse(slurp(dir.path() / "out.csv.json"));
+  EXPECT_EQ(side.at("status"), "complete");
+  EXPECT_EQ(side.at("rows").get<size_t>(), 101u);
+  EXPECT_GT(side.at("steps").get<long>(), 0);
+  EXPECT_GT(side.at("rhs_evaluations").get<long>(), 0);
+}
+
+TEST(Interruption, SigintKeepsACompleteCsvMarkedInterrupted) {
+  ScratchDir dir("sigint");
+  const fs::path csv = dir.path() / "out.csv";
+  Child child(dir.path(), {"simulate", example("double_pendulum.yaml"), "-o", csv.string(),
+                           "--t-end", "1e7", "-q"});
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  child.signal(SIGINT);
+  const RunResult r = child.wait(std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("interrupted at t = "), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"out.csv", "out.csv.json"}));
+  const auto side = nlohmann::json::parse(slurp(dir.path() / "out.csv.json"));
+  EXPECT_EQ(side.at("status"), "interrupted");
+  size_t columns = 0;
+  const auto rows = parse_csv(slurp(csv), &columns);
+  ASSERT_GT(rows.size(), 1u);
+  EXPECT_EQ(side.at("rows").get<size_t>(), rows.size());
+  EXPECT_DOUBLE_EQ(side.at("t_last").get<double>(), rows.back()[0]);
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_NEAR(rows[i][0] - rows[i - 1][0], 0.01, 1e-9);
+  EXPECT_LT(rows.back()[0], 1e7);
+}
+
+TEST(Interruption, SigintBeforeAnyFileLeavesNoPartFile) {
+  // Interrupted while deriving: the run still ends with 130 or a kept trajectory, never a ".part".
+  ScratchDir dir("sigint-early");
+  const fs::path csv = dir.path() / "out.csv";
+  Child child(dir.path(),
+              {"simulate", example("n_link_pendulum_5.yaml"), "-o", csv.string(), "-q"});
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  child.signal(SIGINT);
+  const RunResult r = child.wait(std::chrono::seconds(120));
+  EXPECT_TRUE(r.exit_code == 130 || r.exit_code == 0) << r.exit_code << " " << r.err;
+  for (const auto& name : dir.files()) EXPECT_EQ(name.find(".part"), std::string::npos) << name;
+}
+
+/// Simulates `model` with `extra` options twice and compares the CSV bytes.
+void expect_bit_identical(const std::string& label, const std::string& model,
+                          std::vector<std::string> extra) {
+  ScratchDir dir("determinism-" + label);
+  std::string first;
+  for (int run = 0; run < 2; ++run) {
+    const fs::path csv = dir.path() / ("run" + std::to_string(run) + ".csv");
+    std::vector<std::string> args{"simulate", model, "-o", csv.string(), "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run_lagrange(dir.path(), args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string bytes = slurp(csv);
+    ASSERT_GT(bytes.size(), 1000u);
+    if (run == 0)
+      first = bytes;
+    else
+      EXPECT_TRUE(bytes == first) << label << ": the two CSV files differ";
+  }
+}
+
+TEST(Determinism, SameModelAndOptionsGiveTheSameBytes) {
+  expect_bit_identical("arkode", example("double_pendulum.yaml"), {"--t-end", "5"});
+  expect_bit_identical("cvode", example("five_bar.yaml"),
+                       {"--t-end", "2", "--integrator", "cvode"});
+  expect_bit_identical("ida", example("constrained_pendulum.yaml"),
+                       {"--t-end", "2", "--integrator", "ida"});
+  expect_bit_identical("rk4", example("crane.yaml"),
+                       {"--t-end", "2", "--integrator", "rk4", "--set", "g=9.7"});
+}
+
+}  // namespace
+}  // namespace lagrange::hardening
