@@ -34,8 +34,8 @@ double per_link_length(std::size_t k);
 /// Planar N-link chain in Cartesian coordinates x1, y1, …, xN, yN with a particle of mass m at
 /// each joint and one rod constraint per link,
 ///   rodₖ: ((xₖ − xₖ₋₁)² + (yₖ − yₖ₋₁)² − l²)/2,   x₀ = y₀ = 0,
-/// gravity along −y. The initial state hangs straight at 0.5 rad from the vertical (consistent
-/// with the constraints), at rest. Throws std::invalid_argument when n is 0.
-std::string cartesian_chain_yaml(std::size_t n);
+/// gravity along −y, l = 0.5. The initial state hangs straight at `angle` rad from the vertical
+/// (consistent with the constraints), at rest. Throws std::invalid_argument when n is 0.
+std::string cartesian_chain_yaml(std::size_t n, double angle = 0.5);
 
 }  // namespace lagrange::bench

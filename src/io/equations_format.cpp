@@ -42,6 +42,13 @@ std::string symbol_str(const GiNaC::symbol& s, Style style) {
   return os.str();
 }
 
+// Underscores in names are literal in \\mathrm{}.
+std::string latex_escape(const std::string& name) {
+  std::string r;
+  for (char c : name) r += c == '_' ? std::string("\\_") : std::string(1, c);
+  return r;
+}
+
 std::string format_text(const Equations& eq, Style style) {
   const Model& model = *eq.model;
   const bool tex = style == Style::Latex;
@@ -49,16 +56,31 @@ std::string format_text(const Equations& eq, Style style) {
   auto line = [&](const std::string& lhs, const std::string& rhs) {
     out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
   };
+  bool open = false;  // LaTeX: one align* block per heading
   auto heading = [&](const std::string& h) {
-    out += tex ? fmt::format("\\end{{align*}}\n% {}\n\\begin{{align*}}\n", h)
-               : fmt::format("\n{}\n", h);
+    if (!tex) {
+      out += fmt::format("\n{}\n", h);
+      return;
+    }
+    out += fmt::format("{}% {}\n\\begin{{align*}}\n", open ? "\\end{align*}\n" : "", h);
+    open = true;
+  };
+  auto multiplier = [&](size_t r) {
+    return tex ? fmt::format("\\lambda_{{\\mathrm{{{}}}}}", latex_escape(model.constraints[r].name))
+               : "lambda_" + model.constraints[r].name;
+  };
+  auto cname = [&](size_t r) {
+    return tex ? "\\mathrm{" + latex_escape(model.constraints[r].name) + "}"
+               : model.constraints[r].name;
   };
   if (tex)
-    out += "\\begin{align*}\n";
+    out += fmt::format("% {}: {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
   else
     out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
   // Plain coordinates are named by q, body velocities by their own names (`brick.wx`).
-  auto vname = [&](size_t i) { return i < eq.kin.plain ? eq.kin.q_names[i] : eq.kin.v_names[i]; };
+  auto vname = [&](size_t i) {
+    return symbol_str(i < eq.kin.plain ? eq.kin.q[i] : eq.kin.v[i], style);
+  };
   heading("Energies");
   line("T", str(eq.T, style));
   line("U", str(eq.U, style));
@@ -71,8 +93,7 @@ std::string format_text(const Equations& eq, Style style) {
     std::string extra;
     for (size_t r = 0; r < eq.m; ++r)
       if (!eq.G(r, i).is_zero())
-        extra +=
-            fmt::format(" - ({})*lambda_{}", str(eq.G(r, i), style), model.constraints[r].name);
+        extra += fmt::format(" - ({}){}{}", str(eq.G(r, i), style), tex ? " " : "*", multiplier(r));
     std::string right = rhs.is_zero() && !extra.empty() ? extra.substr(1) : str(rhs, style) + extra;
     line(str(eq.euler_lagrange_lhs(i), style), right);
   }
@@ -96,14 +117,12 @@ std::string format_text(const Equations& eq, Style style) {
     line(fmt::format("(h+Q)_{{{}}}", vname(i)), str(eq.h[i] + eq.Q[i], style));
   if (eq.m > 0) {
     heading(tex ? "Constraints, index-3: C = 0" : "Constraints (index-3 DAE: C = 0)");
-    for (size_t r = 0; r < eq.m; ++r)
-      line("C_{" + model.constraints[r].name + "}", str(eq.C[r], style));
+    for (size_t r = 0; r < eq.m; ++r) line("C_{" + cname(r) + "}", str(eq.C[r], style));
     heading("Constraint Jacobian G = dC/dq");
     for (size_t r = 0; r < eq.m; ++r)
       for (size_t j = 0; j < eq.nv; ++j)
         if (!eq.G(r, j).is_zero())
-          line(fmt::format("G_{{{},{}}}", model.constraints[r].name, vname(j)),
-               str(eq.G(r, j), style));
+          line(fmt::format("G_{{{},{}}}", cname(r), vname(j)), str(eq.G(r, j), style));
     heading(tex ? "Index-1 form: G a + c = 0" : "Index-1 form (C'' = G a + c = 0)");
     for (size_t r = 0; r < eq.m; ++r) {
       std::string lhs;
@@ -116,7 +135,7 @@ std::string format_text(const Equations& eq, Style style) {
     heading(tex ? "Baumgarte: G a + c + 2 alpha Cdot + alpha^2 C = 0"
                 : "Baumgarte-stabilised (C'' + 2 alpha C' + alpha^2 C = 0), with");
     for (size_t r = 0; r < eq.m; ++r)
-      line("Cdot_{" + model.constraints[r].name + "}", str(eq.Cdot[r], style));
+      line((tex ? "\\dot{C}_{" : "Cdot_{") + cname(r) + "}", str(eq.Cdot[r], style));
   }
   if (eq.m == 0 && eq.nv <= 3 && eq.nq == eq.nv) {
     heading("Accelerations a = M^-1 (h + Q)");

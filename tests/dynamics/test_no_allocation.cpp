@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstddef>
 
+#include "n_link_pendulum.hpp"
 #include "support/harness.hpp"
 
 extern "C" void* __libc_malloc(size_t size);  // glibc's allocator behind malloc
@@ -57,23 +58,7 @@ TEST(NoAllocation, FiveBar) {
 }
 
 TEST(NoAllocation, SparseChain) {
-  std::string coords, points, particles, constraints;
-  const int N = 15;
-  for (int i = 1; i <= N; ++i) {
-    coords += "  x" + std::to_string(i) + ": {initial: 0}\n  y" + std::to_string(i) +
-              ": {initial: " + std::to_string(-0.5 * i) + "}\n";
-    points += "  p" + std::to_string(i) + ": [x" + std::to_string(i) + ", y" + std::to_string(i) +
-              ", 0]\n";
-    particles += (i > 1 ? ", p" : "p") + std::to_string(i) + ": m";
-    const std::string px = i > 1 ? "x" + std::to_string(i - 1) : "0";
-    const std::string py = i > 1 ? "y" + std::to_string(i - 1) : "0";
-    constraints += "  rod" + std::to_string(i) + ": ((x" + std::to_string(i) + " - " + px +
-                   ")^2 + (y" + std::to_string(i) + " - " + py + ")^2 - l^2)/2\n";
-  }
-  const std::string yaml = "parameters: {m: 1.0, l: 0.5, g: 9.81}\ncoordinates:\n" + coords +
-                           "points:\n" + points + "particles: {" + particles +
-                           "}\ngravity: [0, -g, 0]\nconstraints:\n" + constraints;
-  EXPECT_EQ(allocations_in_forward(yaml, false), 0);
+  EXPECT_EQ(allocations_in_forward(bench::cartesian_chain_yaml(15), false), 0);
 }
 
 }  // namespace

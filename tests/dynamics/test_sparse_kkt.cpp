@@ -1,38 +1,21 @@
 // The sparse range-space KKT path (diagonal M, banded G) against analytic tensions and the
 // polar formulation of the same chain.
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "n_link_pendulum.hpp"
 #include "support/harness.hpp"
 
 namespace lagrange {
 namespace {
 
-// N point masses on rigid rods of length l, Cartesian coordinates, hanging from the origin
-// at angle theta0 (straight).
-std::string cartesian_chain(int N, double theta0) {
-  std::string coords, points, particles, constraints;
-  for (int i = 1; i <= N; ++i) {
-    coords += fmt::format("  x{0}: {{initial: {1:.17g}}}\n  y{0}: {{initial: {2:.17g}}}\n", i,
-                          i * 0.5 * std::sin(theta0), -i * 0.5 * std::cos(theta0));
-    points += fmt::format("  p{0}: [x{0}, y{0}, 0]\n", i);
-    particles += fmt::format("{}p{}: m", i > 1 ? ", " : "", i);
-    const std::string px = i > 1 ? fmt::format("x{}", i - 1) : "0";
-    const std::string py = i > 1 ? fmt::format("y{}", i - 1) : "0";
-    constraints += fmt::format("  rod{0}: ((x{0} - {1})^2 + (y{0} - {2})^2 - l^2)/2\n", i, px, py);
-  }
-  return fmt::format(
-      "name: chain\nparameters: {{m: 1.0, l: 0.5, g: 9.81}}\ncoordinates:\n{}points:\n{}"
-      "particles: {{{}}}\ngravity: [0, -g, 0]\nconstraints:\n{}",
-      coords, points, particles, constraints);
-}
+using bench::cartesian_chain_yaml;  // l = 0.5, unit masses, g = 9.81
 
 TEST(SparseKkt, HangingChainTensionsAreTheWeightBelow) {
   const int N = 15;  // 30 coordinates: above the sparse threshold
-  auto sys = testing::load_string(cartesian_chain(N, 0.0));
+  auto sys = testing::load_string(cartesian_chain_yaml(N, 0.0));
   const auto& cm = *sys.compiled;
   ASSERT_TRUE(cm.M_diagonal);
   std::vector<double> qd(cm.nq), a(cm.nv), lambda(cm.m);
@@ -45,7 +28,7 @@ TEST(SparseKkt, HangingChainTensionsAreTheWeightBelow) {
 }
 
 TEST(SparseKkt, SwingingChainConservesEnergyAndConstraints) {
-  auto sys = testing::load_string(cartesian_chain(14, 0.7));
+  auto sys = testing::load_string(cartesian_chain_yaml(14, 0.7));
   SimulationOptions so = sys.options();
   so.t_end = 2;
   so.output_step = 0.01;
