@@ -2,6 +2,7 @@
 // intermediate-axis flip, orthonormality drift with and without the correction Ξ, a compound
 // pendulum in SO(3) against the same bar posed by one angle, and a heavy top against Euler angles.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -65,8 +66,8 @@ TEST(RigidBody, FreeBodyConservesEnergyAndWorldAngularMomentum) {
         rotation_at(tr, r, "brick") * I.asDiagonal() * omega_at(tr, r, "brick");
     worst_L = std::max(worst_L, (L - L0).norm() / L0.norm());
   }
-  RecordProperty("energy_relative_drift", std::to_string(worst_T));
-  RecordProperty("momentum_relative_drift", std::to_string(worst_L));
+  RecordProperty("energy_relative_drift", fmt::format("{:.3e}", worst_T));
+  RecordProperty("momentum_relative_drift", fmt::format("{:.3e}", worst_L));
   EXPECT_LT(worst_T, 1e-9);
   EXPECT_LT(worst_L, 1e-9);
 }
@@ -120,7 +121,7 @@ TEST(RigidBody, OrthonormalityCorrectionKeepsRInSO3) {
   so.integrator.atol = 1e-12;
   const std::vector<double> with = orthonormality_errors(sys, 10.0, so);
   const double worst = *std::max_element(with.begin(), with.end());
-  RecordProperty("orthonormality_1000s_gamma10", std::to_string(worst));
+  RecordProperty("orthonormality_1000s_gamma10", fmt::format("{:.3e}", worst));
   EXPECT_LT(worst, 1e-10);
 
   SimulationOptions loose = tight(sys, 100, 10);
@@ -128,8 +129,8 @@ TEST(RigidBody, OrthonormalityCorrectionKeepsRInSO3) {
   loose.integrator.atol = 1e-7;
   const std::vector<double> without = orthonormality_errors(sys, 0.0, loose);
   const std::vector<double> corrected = orthonormality_errors(sys, 1.0, loose);
-  RecordProperty("orthonormality_loose_gamma0", std::to_string(without.back()));
-  RecordProperty("orthonormality_loose_gamma1", std::to_string(corrected.back()));
+  RecordProperty("orthonormality_loose_gamma0", fmt::format("{:.3e}", without.back()));
+  RecordProperty("orthonormality_loose_gamma1", fmt::format("{:.3e}", corrected.back()));
   EXPECT_GT(without.back(), 5 * without[1]);  // grows with time
   EXPECT_GT(without.back(), 1e-5);
   EXPECT_GT(without.back(), 5 * corrected.back());
@@ -165,8 +166,8 @@ TEST(RigidBody, CompoundPendulumSO3MatchesPlanarAndPivotReaction) {
     // Along the bar: tension m(g cos θ + (l/2) θ̇²) pulls the bar towards the pivot.
     EXPECT_NEAR(-lambda.dot(-e), m * (g * std::cos(th) + l / 2 * thd * thd), 1e-6);
   }
-  RecordProperty("so3_vs_planar", std::to_string(worst));
-  RecordProperty("pivot_force_error", std::to_string(worst_force));
+  RecordProperty("so3_vs_planar", fmt::format("{:.3e}", worst));
+  RecordProperty("pivot_force_error", fmt::format("{:.3e}", worst_force));
   EXPECT_LT(worst, 1e-7);
   EXPECT_LT(worst_force, 1e-6);
 }
@@ -188,7 +189,7 @@ TEST(RigidBody, HeavyTopMatchesEulerAnglesAndPrecessesAtTheFastTopRate) {
     const Eigen::Vector3d axis_so3 = rotation_at(a, r, "top").col(2);
     worst = std::max(worst, (axis_so3 - axis_euler).norm());
   }
-  RecordProperty("top_so3_vs_euler", std::to_string(worst));
+  RecordProperty("top_so3_vs_euler", fmt::format("{:.3e}", worst));
   EXPECT_LT(worst, 1e-6);
   // Mean precession rate of the symmetry axis over the run against m g d / (I₃ ω₃).
   const size_t last = a.rows() - 1;
@@ -200,7 +201,7 @@ TEST(RigidBody, HeavyTopMatchesEulerAnglesAndPrecessesAtTheFastTopRate) {
   for (size_t r = 1; r <= last; ++r) total += std::remainder(azimuth(r) - azimuth(r - 1), 2 * M_PI);
   const double rate = total / (a.at(last, "t") - a.at(0, "t"));
   const double predicted = s.m * s.g * s.d / (s.i3 * s.psid);
-  RecordProperty("precession_rate", std::to_string(rate));
+  RecordProperty("precession_rate", fmt::format("{:.3e}", rate));
   EXPECT_NEAR(rate, predicted, 0.01 * predicted);
 }
 
