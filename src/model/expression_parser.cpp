@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -52,6 +53,33 @@ GiNaC::ex number_value(const Token& tok) {
   if (digits.size() > 40 || std::labs(exponent) > 300) return GiNaC::numeric(d);
   GiNaC::numeric n(digits.c_str());
   return n * GiNaC::numeric(10).power(GiNaC::numeric(exponent));
+}
+
+/// Powers GiNaC must not be asked for (fuzz findings, tests/hardening/data/fuzz/expression/):
+/// 0 to a non-positive power makes GiNaC throw from inside pow(), leaking the half-built node,
+/// and a number to a huge integer power is evaluated exactly, which never finishes.
+void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset) {
+  constexpr int kMaxExponent = 1000;
+  constexpr double kMaxDigits = 10000;
+  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
+  const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent);
+  if (base.is_zero() && !(e.is_real() && e.is_positive()))
+    throw ExprError{offset,
+                    "expected a positive exponent of 0, got 0 ^ (a number <= 0, or complex)"};
+  if (GiNaC::abs(e) > kMaxExponent)  // exact comparison: e may be far beyond double's range
+    throw ExprError{offset, fmt::format("expected an exponent of magnitude at most {}, got more",
+                                        kMaxExponent)};
+  const double magnitude = GiNaC::abs(e).to_double();
+  if (GiNaC::is_a<GiNaC::numeric>(base) && e.is_integer()) {
+    const auto& b = GiNaC::ex_to<GiNaC::numeric>(base);
+    if (!b.is_rational()) return;
+    const int bits = std::max(b.numer().int_length(), b.denom().int_length());
+    const double digits = magnitude * bits * std::log10(2.0);
+    if (!(digits <= kMaxDigits))
+      throw ExprError{offset, fmt::format("expected a power of at most {:g} digits, got one of "
+                                          "about {:.3g} digits",
+                                          kMaxDigits, digits)};
+  }
 }
 
 class Parser {
@@ -136,6 +164,7 @@ class Parser {
     if (base.is_vector || exponent.is_vector)
       throw ExprError{op.offset, fmt::format("expected scalar ^ scalar, got {} ^ {}",
                                              kind_name(base), kind_name(exponent))};
+    check_power(base.scalar, exponent.scalar, op.offset);
     return Value::of(
         guarded(op.offset, [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); }));
   }
