@@ -174,7 +174,8 @@ struct Model {
   const Body* find_body(const std::string& name) const;
 
   /// Total time derivative d/dt of an expression in (t, q, v, u, u̇, p):
-  /// Σ ∂e/∂q v + ∂e/∂v a + ∂e/∂u u̇ + ∂e/∂u̇ ü + ∂e/∂t. Fails (std::logic_error) on ü.
+  /// Σ ∂e/∂q v + ∂e/∂v a + ∂e/∂u u̇ + ∂e/∂u̇ ü + ∂e/∂t, with ṙ, ω̇ and Ṙ = RΩ for free bodies
+  /// (DESIGN.md §4.4). Fails (std::logic_error) on q̈, ü and body accelerations.
   GiNaC::ex time_derivative(const GiNaC::ex& e) const;
 };
 

@@ -4,50 +4,17 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/equation_text.hpp"
 #include "lagrange/io.hpp"
 
 namespace lagrange {
 
 namespace {
 
-enum class Style { Text, Latex };
-
-size_t printed_size(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str().size();
-}
-
-// Small expressions are shown in their shortest form among: as derived, expanded, and
-// simplified with sin² + cos² = 1 (lagrange::simplify).
-GiNaC::ex tidy(const GiNaC::ex& e) {
-  if (printed_size(e) > 600) return e;
-  GiNaC::ex best = e;
-  for (const GiNaC::ex& c : {e.expand(), simplify(e), simplify(e).expand()})
-    if (printed_size(c) < printed_size(best)) best = c;
-  return best;
-}
-
-std::string str(const GiNaC::ex& e, Style style) {
-  std::ostringstream os;
-  if (style == Style::Latex) os << GiNaC::latex;
-  os << tidy(e);
-  return os.str();
-}
-
-std::string symbol_str(const GiNaC::symbol& s, Style style) {
-  std::ostringstream os;
-  if (style == Style::Latex) os << GiNaC::latex;
-  os << s;
-  return os.str();
-}
-
-// Underscores in names are literal in \\mathrm{}.
-std::string latex_escape(const std::string& name) {
-  std::string r;
-  for (char c : name) r += c == '_' ? std::string("\\_") : std::string(1, c);
-  return r;
-}
+using io::latex_escape;
+using io::str;
+using io::Style;
+using io::symbol_str;
 
 std::string format_text(const Equations& eq, Style style) {
   const Model& model = *eq.model;
@@ -65,10 +32,7 @@ std::string format_text(const Equations& eq, Style style) {
     out += fmt::format("{}% {}\n\\begin{{align*}}\n", open ? "\\end{align*}\n" : "", h);
     open = true;
   };
-  auto multiplier = [&](size_t r) {
-    return tex ? fmt::format("\\lambda_{{\\mathrm{{{}}}}}", latex_escape(model.constraints[r].name))
-               : "lambda_" + model.constraints[r].name;
-  };
+  auto multiplier = [&](size_t r) { return io::multiplier_str(model.constraints[r].name, style); };
   auto cname = [&](size_t r) {
     return tex ? "\\mathrm{" + latex_escape(model.constraints[r].name) + "}"
                : model.constraints[r].name;
@@ -86,9 +50,10 @@ std::string format_text(const Equations& eq, Style style) {
   line("U", str(eq.U, style));
   line(tex ? "L" : "L",
        eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
-  heading(tex ? "Euler--Lagrange equations"
+  if (eq.kin.plain > 0)
+    heading(tex ? "Euler--Lagrange equations"
               : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
-  for (size_t i = 0; i < eq.nv; ++i) {
+  for (size_t i = 0; i < eq.kin.plain; ++i) {  // body velocities: in their bodies' sections
     GiNaC::ex rhs = eq.Q[i];
     std::string extra;
     for (size_t r = 0; r < eq.m; ++r)
@@ -97,16 +62,7 @@ std::string format_text(const Equations& eq, Style style) {
     std::string right = rhs.is_zero() && !extra.empty() ? extra.substr(1) : str(rhs, style) + extra;
     line(str(eq.euler_lagrange_lhs(i), style), right);
   }
-  if (eq.nq > eq.kin.plain) {
-    heading(tex ? "Rigid-body kinematics (DESIGN.md 4.4)"
-                : "Rigid-body kinematics (DESIGN.md §4.4): r' = v, R' = R (Omega + Xi), "
-                  "Xi = gamma/2 ((R^T R)^-1 - 1); rows above for w are J w' + w x J w + 2P(dV/dR) "
-                  "= F_rot");
-    for (const auto& b : model.bodies)
-      if (b.free)
-        line(b.name + ".R'", b.name + ".R (" + b.name + ".Omega + Xi),  Omega = [" + b.name +
-                                 ".wx, " + b.name + ".wy, " + b.name + ".wz]x");
-  }
+  if (!model.bodies.empty()) io::print_body_equations(eq, style, heading, line);
   heading("Mass matrix M(q)");
   for (size_t i = 0; i < eq.nv; ++i)
     for (size_t j = 0; j <= i; ++j)

@@ -1,5 +1,7 @@
 #include "model/expression_parser.hpp"
 
+#include "model/expression_algebra.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,12 +19,9 @@ const std::map<std::string, int>& builtin_arity() {
   static const std::map<std::string, int> table = {
       {"sin", 1},  {"cos", 1},   {"tan", 1},  {"asin", 1}, {"acos", 1}, {"atan", 1}, {"atan2", 2},
       {"sinh", 1}, {"cosh", 1},  {"tanh", 1}, {"exp", 1},  {"log", 1},  {"sqrt", 1}, {"abs", 1},
-      {"dot", 2},  {"cross", 2}, {"norm", 1}, {"vel", 1},  {"der", 1}};
+      {"dot", 2},  {"cross", 2}, {"norm", 1}, {"vel", 1},  {"der", 1},  {"rot_x", 1}, {"rot_y", 1},
+      {"rot_z", 1}, {"transpose", 1}};
   return table;
-}
-
-const char* kind_name(const Value& v) {
-  return v.is_vector ? "a vector" : "a scalar";
 }
 
 /// An exact GiNaC number for a decimal literal (rational when reasonably sized), finite.
@@ -125,7 +124,7 @@ class Parser {
     while (at("+") || at("-")) {
       const Token& op = next();
       Value rhs = term();
-      lhs = add(lhs, rhs, op);
+      lhs = add(lhs, rhs, op.text, op.offset);
     }
     return lhs;
   }
@@ -135,7 +134,7 @@ class Parser {
     while (at("*") || at("/")) {
       const Token& op = next();
       Value rhs = unary();
-      lhs = op.text == "*" ? mul(lhs, rhs, op) : div(lhs, rhs, op);
+      lhs = op.text == "*" ? multiply(lhs, rhs, op.offset) : divide(lhs, rhs, op.offset);
     }
     return lhs;
   }
@@ -161,7 +160,7 @@ class Parser {
     if (!at("^")) return base;
     const Token& op = next();
     Value exponent = unary();
-    if (base.is_vector || exponent.is_vector)
+    if (base.is_vector || exponent.is_vector || base.is_matrix || exponent.is_matrix)
       throw ExprError{op.offset, fmt::format("expected scalar ^ scalar, got {} ^ {}",
                                              kind_name(base), kind_name(exponent))};
     check_power(base.scalar, exponent.scalar, op.offset);
@@ -180,8 +179,8 @@ class Parser {
                         fmt::format("expected x, y or z after '.', got {}", show(comp))};
       ++pos_;
       if (!v.is_vector)
-        throw ExprError{dot.offset,
-                        fmt::format("expected a vector before '.{}', got a scalar", comp.text)};
+        throw ExprError{dot.offset, fmt::format("expected a vector before '.{}', got {}",
+                                                comp.text, kind_name(v))};
       v = Value::of(v.vec[static_cast<size_t>(comp.text[0] - 'x')]);
     }
     return v;
@@ -200,6 +199,7 @@ class Parser {
         throw ExprError{peek().offset, fmt::format("expected '(' after function '{}', got {}",
                                                    tok.text, show(peek()))};
       if (tok.text == "pi") return Value::of(GiNaC::Pi);
+      if (std::optional<Value> member = dotted(tok)) return *member;
       std::optional<Value> v = ctx_.resolve ? ctx_.resolve(tok.text, tok.offset) : std::nullopt;
       if (!v) throw ExprError{tok.offset, fmt::format("unknown name '{}'", clip(tok.text))};
       return *v;
@@ -213,6 +213,14 @@ class Parser {
     if (at("[")) return vector_literal();
     throw ExprError{tok.offset,
                     fmt::format("expected a number, a name, '(' or '[', got {}", show(tok))};
+  }
+
+  /// `a.b` as one name (a body's r, R or point) when the resolver knows it.
+  std::optional<Value> dotted(const Token& tok) {
+    if (!at(".") || toks_[pos_ + 1].kind != TokenKind::Name || !ctx_.resolve) return std::nullopt;
+    std::optional<Value> v = ctx_.resolve(tok.text + "." + toks_[pos_ + 1].text, tok.offset);
+    if (v) pos_ += 2;
+    return v;
   }
 
   Value vector_literal() {
@@ -229,8 +237,15 @@ class Parser {
     if (items.size() != 3)
       throw ExprError{open.offset,
                       fmt::format("expected a vector of 3 components, got {}", items.size())};
+    if (items[0].is_vector && items[1].is_vector && items[2].is_vector)
+      return Value::of(Mat3{items[0].vec, items[1].vec, items[2].vec});
     Vec3 out;
     for (size_t i = 0; i < 3; ++i) {
+      if (items[i].is_matrix)
+        throw ExprError{open.offset,
+                        fmt::format("expected scalar components or three row vectors, got a "
+                                    "matrix as component {}",
+                                    i + 1)};
       if (items[i].is_vector)
         throw ExprError{
             open.offset,
@@ -258,8 +273,9 @@ class Parser {
     return guarded(name.offset, [&] { return apply(name, args); });
   }
 
+  /// Argument `index` of `f` must be a vector (`vector`) or a scalar (otherwise).
   void require(const Token& f, const Value& v, bool vector, size_t index) const {
-    if (v.is_vector == vector) return;
+    if (v.is_vector == vector && !v.is_matrix) return;
     throw ExprError{f.offset,
                     fmt::format("expected {} as argument {} of '{}', got {}",
                                 vector ? "a vector" : "a scalar", index + 1, f.text, kind_name(v))};
@@ -299,8 +315,16 @@ class Parser {
       for (size_t i = 0; i < 3; ++i) d[i] = derivative(f, a[0].vec[i]);
       return Value::of(d);
     }
+    if (n == "transpose") {
+      if (!a[0].is_matrix)
+        throw ExprError{f.offset, fmt::format("expected a matrix as argument 1 of 'transpose', "
+                                              "got {}",
+                                              kind_name(a[0]))};
+      return Value::of(transpose(a[0].mat));
+    }
     for (size_t i = 0; i < a.size(); ++i) require(f, a[i], false, i);
     const GiNaC::ex& x = a[0].scalar;
+    if (n.rfind("rot_", 0) == 0) return Value::of(axis_rotation(size_t(n[4] - 'x'), x));
     if (n == "der") return Value::of(derivative(f, x));
     if (n == "atan2") return Value::of(GiNaC::atan2(x, a[1].scalar));
     if (n == "sin") return Value::of(GiNaC::sin(x));
@@ -316,49 +340,6 @@ class Parser {
     if (n == "log") return Value::of(GiNaC::log(x));
     if (n == "sqrt") return Value::of(GiNaC::sqrt(x));
     return Value::of(GiNaC::abs(x));  // the only remaining one-argument function
-  }
-
-  static Value negate(const Value& v) {
-    if (!v.is_vector) return Value::of(-v.scalar);
-    return Value::of(Vec3{-v.vec[0], -v.vec[1], -v.vec[2]});
-  }
-
-  static Value add(const Value& l, const Value& r, const Token& op) {
-    if (l.is_vector != r.is_vector)
-      throw ExprError{op.offset,
-                      fmt::format("expected two scalars or two vectors around '{}', got {} {} {}",
-                                  op.text, kind_name(l), op.text, kind_name(r))};
-    bool plus = op.text == "+";
-    if (!l.is_vector) return Value::of(plus ? l.scalar + r.scalar : l.scalar - r.scalar);
-    Vec3 out;
-    for (size_t i = 0; i < 3; ++i) out[i] = plus ? l.vec[i] + r.vec[i] : l.vec[i] - r.vec[i];
-    return Value::of(out);
-  }
-
-  static Value scale(const Vec3& v, const GiNaC::ex& s) {
-    return Value::of(Vec3{v[0] * s, v[1] * s, v[2] * s});
-  }
-
-  static Value mul(const Value& l, const Value& r, const Token& op) {
-    if (l.is_vector && r.is_vector)
-      throw ExprError{
-          op.offset,
-          "expected at most one vector around '*', got two vectors (use dot() or cross())"};
-    if (l.is_vector) return scale(l.vec, r.scalar);
-    if (r.is_vector) return scale(r.vec, l.scalar);
-    return Value::of(l.scalar * r.scalar);
-  }
-
-  static Value div(const Value& l, const Value& r, const Token& op) {
-    if (r.is_vector)
-      throw ExprError{
-          op.offset,
-          fmt::format("expected a scalar divisor after '/', got {} / a vector", kind_name(l))};
-    return guarded(op.offset, [&] {
-      if (r.scalar.is_zero()) throw std::domain_error("division by zero");
-      GiNaC::ex inv = GiNaC::pow(r.scalar, -1);
-      return l.is_vector ? scale(l.vec, inv) : Value::of(l.scalar * inv);
-    });
   }
 
   std::vector<Token> toks_;

@@ -6,8 +6,8 @@
 //   unary   := ('-' | '+') unary | power
 //   power   := postfix ('^' unary)?                       right-associative, above unary minus
 //   postfix := primary ('.' ('x' | 'y' | 'z'))*
-//   primary := number | name | name '(' expr (',' expr)* ')' | '(' expr ')' | '[' expr ',' expr ','
-//   expr ']'
+//   primary := number | name ['.' name] | name '(' expr (',' expr)* ')' | '(' expr ')'
+//            | '[' expr ',' expr ',' expr ']'          a vector, or a matrix when the three are rows
 
 #include <functional>
 #include <optional>
@@ -18,17 +18,22 @@
 
 namespace lagrange::model {
 
-/// The value of an expression: a scalar or a 3-vector.
+/// The value of an expression: a scalar, a 3-vector or a 3×3 matrix (at most one flag set).
 struct Value {
   bool is_vector = false;
   GiNaC::ex scalar;
   Vec3 vec;
+  bool is_matrix = false;
+  Mat3 mat;
 
-  static Value of(const GiNaC::ex& s) { return Value{false, s, {}}; }
-  static Value of(const Vec3& v) { return Value{true, 0, v}; }
+  static Value of(const GiNaC::ex& s) { return Value{false, s, {}, false, {}}; }
+  static Value of(const Vec3& v) { return Value{true, 0, v, false, {}}; }
+  static Value of(const Mat3& m) { return Value{false, 0, {}, true, m}; }
 };
 
 /// Looks up a name at an offset: a value, or nullopt when unknown. May throw ExprError itself.
+/// For `a.b` (a name, a dot, a name) the parser first asks for "a.b" (a body's `r`, `R` or
+/// point); when that is unknown it reads `a` followed by the component `.b`.
 using NameResolver = std::function<std::optional<Value>(const std::string& name, size_t offset)>;
 
 /// Parser settings; `time_derivative` implements der() and vel() (nullptr: those are errors).

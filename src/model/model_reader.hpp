@@ -9,13 +9,25 @@
 #include <vector>
 
 #include "lagrange/model.hpp"
+#include "lagrange/rigid_body.hpp"
 #include "model/expression_parser.hpp"
 #include "model/source_text.hpp"
 
 namespace lagrange::model {
 
-/// What a user-chosen name denotes. Derived: NAME_dot / NAME_ddot of a coordinate or input.
-enum class NameKind { Parameter, Coordinate, Input, Point, Constraint, Output, Derived };
+/// What a user-chosen name denotes. Derived: NAME_dot / NAME_ddot of a coordinate or input;
+/// BodyPoint: `body.point`, a point declared in a body's `points`.
+enum class NameKind {
+  Parameter,
+  Coordinate,
+  Input,
+  Point,
+  Constraint,
+  Output,
+  Derived,
+  Body,
+  BodyPoint
+};
 
 /// A declared name: its kind, index in the Model's list of that kind, and where it was written.
 struct NameEntry {
@@ -61,12 +73,18 @@ class ModelReader {
                const std::string& owner = "");
   void declare_all(const YAML::Node& root);
   std::optional<Value> lookup(const std::string& name, size_t offset, unsigned allowed) const;
+  /// `body.r`, `body.R` for a dotted name whose first part is a body; nullopt otherwise.
+  std::optional<Value> body_member(const std::string& name, size_t offset, unsigned allowed) const;
+  /// Declares `body.point` (the point's own name checked like any other name).
+  void declare_body_point(const std::string& body, const YAML::Node& key, size_t index);
   std::string names_of(NameKind kind) const;
 
   // reader_expressions.cpp — expressions inside YAML scalars.
   Value parse(const YAML::Node& node, unsigned allowed, const std::string& what) const;
   GiNaC::ex scalar_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
   Vec3 vector_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
+  /// A 3×3 matrix: a YAML list of three rows [x, y, z], or one matrix expression.
+  Mat3 matrix_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
   double number(const YAML::Node& node, unsigned allowed, const std::string& what) const;
   /// The value of `e` at the file's parameter values, if it is a real number.
   std::optional<double> evaluate(const GiNaC::ex& e) const;
@@ -91,6 +109,17 @@ class ModelReader {
   void read_springs(const YAML::Node& node);
   void read_dampers(const YAML::Node& node);
   std::pair<std::string, std::string> read_between(const YAML::Node& item, const std::string& what);
+  // read_bodies.cpp — rigid bodies and torques (DESIGN.md §4.4).
+  void read_bodies(const YAML::Node& node);
+  Body read_body(const std::string& name, const YAML::Node& key, const YAML::Node& spec);
+  Mat3 read_inertia(const Body& body, const YAML::Node& spec);
+  Mat3 read_shape(const Body& body, const YAML::Node& shape);
+  void read_body_points(Body& body, const YAML::Node& node);
+  void read_torques(const YAML::Node& node);
+  // read_body_initial.cpp — the initial state of a free body.
+  void read_free_initial(Body& body, const YAML::Node& node);
+  Rotation read_orientation(const Body& body, const YAML::Node& node);
+  std::array<double, 3> numeric_vector(const YAML::Node& node, const std::string& what) const;
   // read_settings.cpp
   void read_stabilization(const YAML::Node& node);
   void read_simulate(const YAML::Node& node);
@@ -99,6 +128,8 @@ class ModelReader {
   Model m_;
   std::map<std::string, NameEntry> names_;
   std::vector<bool> point_ready_;
+  std::vector<Point> body_points_;  ///< `body.point` in the world frame, appended to the points
+  std::vector<bool> body_ready_;
 };
 
 }  // namespace lagrange::model

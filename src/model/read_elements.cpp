@@ -25,14 +25,32 @@ void ModelReader::read_particles(const YAML::Node& node) {
   }
 }
 
+// A body-frame force at a body point is turned to the world frame here: F = R F_b.
 void ModelReader::read_forces(const YAML::Node& node) {
-  expect_seq(node, "forces (a list of {point, force})");
+  expect_seq(node, "forces (a list of {point, force, frame})");
   for (const auto& item : node) {
-    check_keys(item, {"point", "force"}, "a force");
+    check_keys(item, {"point", "force", "frame"}, "a force");
     if (!item["point"] || !item["force"])
       fail(item, "expected 'point' and 'force' in a force, got only one");
     std::string name = point_name(item["point"], "a force");
     Vec3 f = vector_expr(item["force"], kAll, fmt::format("force at '{}'", name));
+    if (item["frame"]) {
+      const std::string frame = scalar(item["frame"], "frame of a force");
+      const NameEntry& e = names_.at(name);
+      if (frame != "world" && frame != "body")
+        fail(item["frame"], fmt::format("expected 'world' or 'body' for the frame of the force at "
+                                        "'{}', got '{}'",
+                                        name, clip(frame)));
+      if (frame == "body" && e.kind != NameKind::BodyPoint)
+        fail(item["frame"], fmt::format("expected a body point (body.point) for a body-frame "
+                                        "force, got point '{}'",
+                                        name));
+      if (frame == "body") {
+        const Mat3 R = m_.find_body(e.owner)->rot();
+        const Vec3 fb = f;
+        for (size_t i = 0; i < 3; ++i) f[i] = R[i][0] * fb[0] + R[i][1] * fb[1] + R[i][2] * fb[2];
+      }
+    }
     m_.forces.push_back(PointForce{name, f, src_.at(item)});
   }
 }

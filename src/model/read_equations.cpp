@@ -24,13 +24,30 @@ void ModelReader::read_generalized_forces(const YAML::Node& node) {
   }
 }
 
+// A vector-valued entry `name: v` stands for three scalars name.x, name.y, name.z (a fixed
+// pivot `pivot: body.r + body.R*[0, 0, -d]` is three constraints with three multipliers).
 std::vector<NamedExpr> ModelReader::read_named(const YAML::Node& node, const std::string& section) {
   std::vector<NamedExpr> out;
   for (const auto& kv : node) {
     const std::string& name = kv.first.Scalar();
-    out.push_back(NamedExpr{name,
-                            scalar_expr(kv.second, kAll, fmt::format("{} '{}'", section, name)),
-                            src_.at(kv.first)});
+    const std::string what = fmt::format("{} '{}'", section, name);
+    const SourceLoc loc = src_.at(kv.first);
+    if (kv.second.IsSequence()) {
+      const Vec3 v = vector_expr(kv.second, kAll, what);
+      for (size_t k = 0; k < 3; ++k)
+        out.push_back(NamedExpr{name + "." + std::string(1, char('x' + k)), v[k], loc});
+      continue;
+    }
+    const Value v = parse(kv.second, kAll, what);
+    if (v.is_matrix) fail(kv.second, fmt::format("expected a scalar or a vector for {}, got a "
+                                                 "matrix",
+                                                 what));
+    if (!v.is_vector) {
+      out.push_back(NamedExpr{name, v.scalar, loc});
+      continue;
+    }
+    for (size_t k = 0; k < 3; ++k)
+      out.push_back(NamedExpr{name + "." + std::string(1, char('x' + k)), v.vec[k], loc});
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "model/expression_algebra.hpp"
 #include "model/model_reader.hpp"
 
 namespace lagrange::model {
@@ -39,7 +40,8 @@ Value ModelReader::parse(const YAML::Node& node, unsigned allowed, const std::st
 GiNaC::ex ModelReader::scalar_expr(const YAML::Node& node, unsigned allowed,
                                    const std::string& what) const {
   Value v = parse(node, allowed, what);
-  if (v.is_vector) fail(node, fmt::format("expected a scalar for {}, got a vector", what));
+  if (v.is_vector || v.is_matrix)
+    fail(node, fmt::format("expected a scalar for {}, got {}", what, kind_name(v)));
   return v.scalar;
 }
 
@@ -56,8 +58,25 @@ Vec3 ModelReader::vector_expr(const YAML::Node& node, unsigned allowed,
   }
   Value v = parse(node, allowed, what);
   if (!v.is_vector)
-    fail(node, fmt::format("expected a vector [x, y, z] for {}, got a scalar", what));
+    fail(node, fmt::format("expected a vector [x, y, z] for {}, got {}", what, kind_name(v)));
   return v.vec;
+}
+
+Mat3 ModelReader::matrix_expr(const YAML::Node& node, unsigned allowed,
+                              const std::string& what) const {
+  if (node.IsSequence()) {
+    if (node.size() != 3)
+      fail(node, fmt::format("expected a 3×3 matrix [[..], [..], [..]] for {}, got {} rows", what,
+                             node.size()));
+    Mat3 out;
+    for (size_t i = 0; i < 3; ++i)
+      out[i] = vector_expr(node[i], allowed, fmt::format("row {} of {}", i + 1, what));
+    return out;
+  }
+  Value v = parse(node, allowed, what);
+  if (!v.is_matrix)
+    fail(node, fmt::format("expected a 3×3 matrix for {}, got {}", what, kind_name(v)));
+  return v.mat;
 }
 
 std::optional<double> ModelReader::evaluate(const GiNaC::ex& e) const {
@@ -100,7 +119,8 @@ void ModelReader::check_sign(const GiNaC::ex& e, const YAML::Node& node, bool st
 std::string ModelReader::point_name(const YAML::Node& node, const std::string& what) const {
   std::string name = scalar(node, what);
   auto it = names_.find(name);
-  if (it == names_.end() || it->second.kind != NameKind::Point)
+  if (it == names_.end() ||
+      (it->second.kind != NameKind::Point && it->second.kind != NameKind::BodyPoint))
     fail(node, fmt::format("expected a point name for {}, got '{}' (points: {})", what, clip(name),
                            names_of(NameKind::Point)));
   return name;

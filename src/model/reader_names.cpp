@@ -25,6 +25,10 @@ const char* kind_word(NameKind k) {
       return "output";
     case NameKind::Derived:
       return "derivative";
+    case NameKind::Body:
+      return "body";
+    case NameKind::BodyPoint:
+      return "body point";
   }
   return "name";
 }
@@ -93,7 +97,8 @@ void ModelReader::declare_all(const YAML::Node& root) {
   const Section sections[] = {
       {"parameters", NameKind::Parameter},   {"coordinates", NameKind::Coordinate},
       {"inputs", NameKind::Input},           {"points", NameKind::Point},
-      {"constraints", NameKind::Constraint}, {"outputs", NameKind::Output}};
+      {"constraints", NameKind::Constraint}, {"outputs", NameKind::Output},
+      {"bodies", NameKind::Body}};
   for (const Section& s : sections) {
     const YAML::Node node = root[s.key];
     if (!node || node.IsNull()) continue;
@@ -120,7 +125,7 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
     return Value::of(m_.t);
   }
   auto it = names_.find(name);
-  if (it == names_.end()) return std::nullopt;
+  if (it == names_.end()) return body_member(name, offset, allowed);
   const NameEntry& e = it->second;
   std::string got = fmt::format("{} '{}'", kind_word(e.kind), name);
   switch (e.kind) {
@@ -138,6 +143,13 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
       if (e.index >= point_ready_.size() || !point_ready_[e.index])
         throw ExprError{offset, fmt::format("expected a point defined before use, got '{}'", name)};
       return Value::of(m_.points.at(e.index).pos);
+    case NameKind::BodyPoint:
+      if (!(allowed & kPoints)) throw refuse(got);
+      return Value::of(body_points_.at(e.index).pos);
+    case NameKind::Body:
+      throw ExprError{offset, fmt::format("expected {0}.r, {0}.R or a point {0}.<name>, got body "
+                                          "'{0}'",
+                                          name)};
     case NameKind::Derived:
       throw ExprError{
           offset,
@@ -153,10 +165,58 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
   return std::nullopt;
 }
 
+// DESIGN.md §4.4: `body.r` is the origin r (free: its symbols; posed: its position), `body.R`
+// the rotation body → world. Points `body.p` are declared names (NameKind::BodyPoint).
+std::optional<Value> ModelReader::body_member(const std::string& name, size_t offset,
+                                              unsigned allowed) const {
+  const size_t dot = name.find('.');
+  if (dot == std::string::npos) return std::nullopt;
+  const std::string owner = name.substr(0, dot), member = name.substr(dot + 1);
+  auto it = names_.find(owner);
+  if (it == names_.end() || it->second.kind != NameKind::Body) return std::nullopt;
+  const size_t index = it->second.index;
+  if (index >= body_ready_.size() || !body_ready_[index])
+    throw ExprError{offset, fmt::format("expected a body defined before use (bodies are read in "
+                                        "order), got '{}'",
+                                        name)};
+  const Body& body = m_.bodies.at(index);
+  if (member == "r" || member == "R") {
+    if (!(allowed & kCoords))
+      throw ExprError{offset, fmt::format("expected {}, got '{}' (a body's pose)",
+                                          allowed_words(allowed), name)};
+    if (member == "r") return Value::of(body.origin());
+    return Value::of(body.rot());
+  }
+  std::string points;
+  for (const auto& p : body_points_)
+    if (p.name.compare(0, dot + 1, owner + ".") == 0)
+      points += (points.empty() ? "" : ", ") + p.name.substr(dot + 1);
+  throw ExprError{offset, fmt::format("expected r, R or a point of body '{}' after '.', got '{}' "
+                                      "(points: {})",
+                                      owner, clip(member), points.empty() ? "none" : points)};
+}
+
+void ModelReader::declare_body_point(const std::string& body, const YAML::Node& key,
+                                     size_t index) {
+  const std::string& name = key.Scalar();
+  if (!is_identifier(name) || name.size() > kMaxNameLength)
+    fail(key, fmt::format("expected a point name made of letters, digits and '_' (at most {} "
+                          "characters) in body '{}', got '{}'",
+                          kMaxNameLength, body, clip(name)));
+  if (name == "r" || name == "R")
+    fail(key, fmt::format("expected a point name other than r and R in body '{}' ({}.r and {}.R "
+                          "are its position and rotation), got '{}'",
+                          body, body, body, name));
+  names_.emplace(body + "." + name, NameEntry{NameKind::BodyPoint, index, src_.at(key), body});
+}
+
 std::string ModelReader::names_of(NameKind kind) const {
   std::vector<std::pair<size_t, std::string>> found;
   for (const auto& [name, e] : names_)
     if (e.kind == kind) found.emplace_back(e.index, name);
+  if (kind == NameKind::Point)  // body points after the points section's
+    for (const auto& [name, e] : names_)
+      if (e.kind == NameKind::BodyPoint) found.emplace_back(names_.size() + e.index, name);
   std::sort(found.begin(), found.end());
   std::string out;
   for (size_t i = 0; i < found.size() && i < 10; ++i) out += (i ? ", " : "") + found[i].second;

@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -18,10 +19,10 @@ namespace {
 
 const std::vector<std::string>& top_level_keys() {
   static const std::vector<std::string> keys = {
-      "name",          "parameters", "coordinates", "inputs",      "points",
-      "particles",     "gravity",    "kinetic",     "potential",   "generalized_forces",
-      "forces",        "springs",    "dampers",     "constraints", "outputs",
-      "stabilization", "simulate"};
+      "name",        "parameters",    "coordinates", "inputs",  "bodies",  "points",
+      "particles",   "gravity",       "kinetic",     "potential", "generalized_forces",
+      "forces",      "torques",       "springs",     "dampers", "constraints",
+      "outputs",     "stabilization", "simulate"};
   return keys;
 }
 
@@ -45,15 +46,20 @@ Model ModelReader::read(const YAML::Node& root) {
   m_.file = src_.file();
   m_.name = std::filesystem::path(src_.file()).stem().string();
   if (root["name"]) m_.name = scalar(root["name"], "name");
-  if (!section(root, "coordinates"))
-    throw ModelError(src_.at(root),
-                     "expected a 'coordinates' key with at least one coordinate, got none");
   declare_all(root);
 
   if (auto n = section(root, "parameters")) read_parameters(*n);
-  read_coordinates(root["coordinates"]);
+  if (auto n = section(root, "coordinates")) read_coordinates(*n);
   if (auto n = section(root, "inputs")) read_inputs(*n);
+  if (auto n = section(root, "bodies")) read_bodies(*n);
+  const bool has_free_body = std::any_of(m_.bodies.begin(), m_.bodies.end(),
+                                         [](const Body& b) { return b.free; });
+  if (m_.coordinates.empty() && !has_free_body)
+    throw ModelError(src_.at(root),
+                     "expected a 'coordinates' key with at least one coordinate (or a body with "
+                     "'frame: free'), got none");
   if (auto n = section(root, "points")) read_points(*n);
+  m_.points.insert(m_.points.end(), body_points_.begin(), body_points_.end());
   m_.generalized_forces.assign(m_.coordinates.size(), GiNaC::ex(0));
   read_energies(root);
   if (auto n = section(root, "generalized_forces")) read_generalized_forces(*n);
@@ -61,6 +67,7 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "gravity"))
     m_.gravity = vector_expr(*n, kParams | kTime | kInputs, "gravity");
   if (auto n = section(root, "forces")) read_forces(*n);
+  if (auto n = section(root, "torques")) read_torques(*n);
   if (auto n = section(root, "springs")) read_springs(*n);
   if (auto n = section(root, "dampers")) read_dampers(*n);
   if (auto n = section(root, "constraints")) m_.constraints = read_named(*n, "constraint");

@@ -1,0 +1,52 @@
+#include "io/equation_text.hpp"
+
+#include <sstream>
+
+namespace lagrange::io {
+
+namespace {
+
+size_t printed_size(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str().size();
+}
+
+// Small expressions are shown in their shortest form among: as derived, expanded, and
+// simplified with sin² + cos² = 1 (lagrange::simplify).
+GiNaC::ex tidy(const GiNaC::ex& e) {
+  if (printed_size(e) > 600) return e;
+  GiNaC::ex best = e;
+  for (const GiNaC::ex& c : {e.expand(), simplify(e), simplify(e).expand()})
+    if (printed_size(c) < printed_size(best)) best = c;
+  return best;
+}
+
+}  // namespace
+
+std::string str(const GiNaC::ex& e, Style style) {
+  std::ostringstream os;
+  if (style == Style::Latex) os << GiNaC::latex;
+  os << tidy(e);
+  return os.str();
+}
+
+std::string symbol_str(const GiNaC::symbol& s, Style style) {
+  std::ostringstream os;
+  if (style == Style::Latex) os << GiNaC::latex;
+  os << s;
+  return os.str();
+}
+
+std::string latex_escape(const std::string& name) {
+  std::string r;
+  for (char c : name) r += c == '_' ? std::string("\\_") : std::string(1, c);
+  return r;
+}
+
+std::string multiplier_str(const std::string& constraint, Style style) {
+  return style == Style::Latex ? "\\lambda_{\\mathrm{" + latex_escape(constraint) + "}}"
+                               : "lambda_" + constraint;
+}
+
+}  // namespace lagrange::io

@@ -1,0 +1,37 @@
+#pragma once
+// Expressions as text or LaTeX for the equation printers (src/io/equations_format.cpp,
+// body_equations.cpp).
+
+#include <ginac/ginac.h>
+
+#include <functional>
+#include <string>
+
+#include "lagrange/equations.hpp"
+
+namespace lagrange::io {
+
+/// Plain text or LaTeX.
+enum class Style { Text, Latex };
+
+/// A small expression in its shortest form among as-derived, expanded and simplified.
+std::string str(const GiNaC::ex& e, Style style);
+/// A symbol's name (its LaTeX name in Latex style).
+std::string symbol_str(const GiNaC::symbol& s, Style style);
+/// Underscores escaped for \mathrm{}.
+std::string latex_escape(const std::string& name);
+/// The multiplier of a named constraint: lambda_name or \lambda_{\mathrm{name}}.
+std::string multiplier_str(const std::string& constraint, Style style);
+
+/// Writes a section heading.
+using HeadingSink = std::function<void(const std::string&)>;
+/// Writes one equation lhs = rhs.
+using LineSink = std::function<void(const std::string&, const std::string&)>;
+
+/// Each rigid body's equations in the seed's form (DESIGN.md §4.4): for a free body
+/// m r̈ + ∂V/∂r = F_r − (∂C/∂r)ᵀλ, J ω̇ + ω × Jω + 2P(∂V/∂R) = F_rot − 2P(∂C/∂R)ᵀλ and
+/// Ṙ = R(Ω + Ξ); for a posed body its pose, ω = unskew(RᵀṘ) and its kinetic energy.
+void print_body_equations(const Equations& eq, Style style, const HeadingSink& heading,
+                          const LineSink& line);
+
+}  // namespace lagrange::io
