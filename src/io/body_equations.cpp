@@ -20,11 +20,17 @@ std::string mat_str(const Mat3& m, Style style) {
                      vec_str(m[2], style));
 }
 
+/// `base` with the body's name as subscript: m_brick or m_{\mathrm{brick}}.
+std::string named(const std::string& base, const Body& b, Style style) {
+  return style == Style::Latex ? base + "_{\\mathrm{" + latex_escape(b.name) + "}}"
+                               : base + "_" + b.name;
+}
+
 // Mass, inertia about the centre of mass (body axes) and the centre of mass in the body frame.
 void print_inertia(const Body& b, Style style, const LineSink& line) {
-  line("m_" + b.name, str(b.mass, style));
-  line("J_" + b.name, mat_str(b.inertia, style));
-  line("c_" + b.name, vec_str(b.com, style));
+  line(named("m", b, style), str(b.mass, style));
+  line(named("J", b, style), mat_str(b.inertia, style));
+  line(named("c", b, style), vec_str(b.com, style));
 }
 
 size_t velocity_index(const Equations& eq, const GiNaC::symbol& v) {
@@ -100,11 +106,15 @@ void print_posed_body(const Equations& eq, const Body& b, Style style, const Hea
     T += b.mass / 2 * v * v;
     for (size_t l = 0; l < 3; ++l) T += w[k] * b.inertia[k][l] * w[l] / 2;
   }
-  line("r_" + b.name, vec_str(b.position, style));
-  line("R_" + b.name, mat_str(R, style));
-  line((style == Style::Latex ? "\\omega_" : "w_") + b.name + " = unskew(R^T R')",
+  const bool tex = style == Style::Latex;
+  line(named("r", b, style), vec_str(b.position, style));
+  line(named("R", b, style), mat_str(R, style));
+  line(named(tex ? "\\omega" : "w", b, style) +
+           (tex ? " = \\mathrm{unskew}(R^T \\dot R)" : " = unskew(R^T R')"),
        vec_str(w, style));
-  line("T_" + b.name + " = m/2 |v_c|^2 + w^T J w/2", str(simplify(T), style));
+  line(named("T", b, style) + (tex ? " = \\tfrac{m}{2} |v_c|^2 + \\tfrac{1}{2} \\omega^T J \\omega"
+                                   : " = m/2 |v_c|^2 + w^T J w/2"),
+       str(simplify(T), style));
 }
 
 }  // namespace

@@ -175,15 +175,16 @@ std::optional<Value> ModelReader::body_member(const std::string& name, size_t of
   auto it = names_.find(owner);
   if (it == names_.end() || it->second.kind != NameKind::Body) return std::nullopt;
   const size_t index = it->second.index;
+  const bool pose = member == "r" || member == "R";
+  if (pose && !(allowed & kCoords))
+    throw ExprError{offset, fmt::format("expected {}, got '{}' (a body's pose)",
+                                        allowed_words(allowed), name)};
   if (index >= body_ready_.size() || !body_ready_[index])
     throw ExprError{offset, fmt::format("expected a body defined before use (bodies are read in "
                                         "order), got '{}'",
                                         name)};
   const Body& body = m_.bodies.at(index);
-  if (member == "r" || member == "R") {
-    if (!(allowed & kCoords))
-      throw ExprError{offset, fmt::format("expected {}, got '{}' (a body's pose)",
-                                          allowed_words(allowed), name)};
+  if (pose) {
     if (member == "r") return Value::of(body.origin());
     return Value::of(body.rot());
   }

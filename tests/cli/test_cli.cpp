@@ -92,6 +92,23 @@ TEST(Cli, DeriveShowsSeedEquation) {
   EXPECT_NE(json.output.find("\"M\""), std::string::npos);
 }
 
+// DESIGN.md §4.4: a free body's equations in the seed's form, a posed body's ω and T.
+TEST(Cli, DeriveShowsBodyEquations) {
+  const Result top = run("derive " + example("heavy_top.yaml"));
+  ASSERT_EQ(top.code, 0) << top.output;
+  for (const char* s : {"Rigid body 'top': free in SO(3)", "m r'' + dV/dr = F_r",
+                        "J w' + w x (J w) + 2P(dV/dR) = F_rot", "R' = R (Omega + Xi)",
+                        "m*top.az+m*g = -lambda_pivot.z", "top.R11' = "})
+    EXPECT_NE(top.output.find(s), std::string::npos) << s << "\n" << top.output;
+  const Result bar = run("derive " + example("compound_pendulum_planar.yaml"));
+  ASSERT_EQ(bar.code, 0) << bar.output;
+  EXPECT_NE(bar.output.find("w_bar = unskew(R^T R') = [0, 0, theta_dot]"), std::string::npos)
+      << bar.output;
+  const Result tex = run("derive " + example("tumbling_brick.yaml") + " --format latex");
+  ASSERT_EQ(tex.code, 0) << tex.output;
+  EXPECT_NE(tex.output.find("J_{\\mathrm{brick}}"), std::string::npos) << tex.output;
+}
+
 struct BadCase {
   const char* name;
   const char* yaml;

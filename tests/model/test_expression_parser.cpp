@@ -148,6 +148,67 @@ TEST(ExpressionParser, ErrorsCarryOffsets) {
   }
 }
 
+// 3×3 matrices: literals of three rows, rot_x/y/z, products, transpose (DESIGN.md §4.4).
+TEST(ExpressionParser, Matrices) {
+  Names n;
+  auto mat = [&](const std::string& text) {
+    Value v = n.parse(text);
+    EXPECT_TRUE(v.is_matrix) << text;
+    return v.mat;
+  };
+  const Mat3 Rz = mat("rot_z(a)");
+  EXPECT_TRUE(same(Rz[0][1], -sin(n.a)));
+  EXPECT_TRUE(same(Rz[1][0], sin(n.a)));
+  EXPECT_TRUE(same(Rz[2][2], 1));
+  const Mat3 Rx = mat("rot_x(a)");
+  EXPECT_TRUE(same(Rx[1][2], -sin(n.a)));
+  const Mat3 Ry = mat("rot_y(a)");
+  EXPECT_TRUE(same(Ry[0][2], sin(n.a)));  // x' = cos a x + sin a z
+  EXPECT_TRUE(same(Ry[2][0], -sin(n.a)));
+  const Mat3 I = mat("transpose(rot_z(a)) * rot_z(a)");
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      EXPECT_TRUE(same((I[i][j] - (i == j ? 1 : 0)).subs(pow(sin(n.a), 2) == 1 - pow(cos(n.a), 2)),
+                       0));
+  const Mat3 L = mat("[[1, 2, 3], [0, b, 0], u]");
+  EXPECT_TRUE(same(L[1][1], n.b));
+  EXPECT_TRUE(same(L[2][0], n.a));
+  const Vec3 Lw = n.vec("[[1, 2, 3], [0, b, 0], u] * w");
+  EXPECT_TRUE(same(Lw[0], 14));
+  EXPECT_TRUE(same(Lw[1], 2 * n.b));
+  EXPECT_TRUE(same(Lw[2], n.a + 2 * n.b + 3 * n.c));
+  const Mat3 S = mat("2*rot_z(0) - rot_z(0)/2 + -rot_z(0)");
+  EXPECT_TRUE(same(S[0][0], GiNaC::numeric(1, 2)));
+  EXPECT_TRUE(same(n.vec("rot_z(pi/2)*[1, 0, 0]")[1], 1));
+}
+
+TEST(ExpressionParser, MatrixTypeErrors) {
+  Names n;
+  struct Case {
+    const char* text;
+    size_t offset;
+    const char* fragment;
+  };
+  const Case cases[] = {
+      {"u * rot_z(a)", 2, "got a vector * a matrix"},
+      {"rot_z(a) + u", 9, "a matrix + a vector"},
+      {"rot_z(a) + 1", 9, "a matrix + a scalar"},
+      {"rot_z(a).x", 8, "expected a vector before '.x', got a matrix"},
+      {"rot_z(a)^2", 8, "scalar ^ scalar"},
+      {"dot(rot_z(a), u)", 0, "expected a vector as argument 1 of 'dot', got a matrix"},
+      {"sin(rot_z(a))", 0, "expected a scalar as argument 1 of 'sin', got a matrix"},
+      {"rot_z(u)", 0, "expected a scalar as argument 1 of 'rot_z'"},
+      {"transpose(u)", 0, "expected a matrix as argument 1 of 'transpose', got a vector"},
+      {"u / rot_z(a)", 2, "scalar divisor"},
+      {"[rot_z(a), u, u]", 0, "got a matrix as component 1"},
+  };
+  for (const Case& c : cases) {
+    ExprError e = error_of(n, c.text);
+    EXPECT_EQ(e.offset, c.offset) << c.text << ": " << e.message;
+    EXPECT_NE(e.message.find(c.fragment), std::string::npos) << c.text << ": " << e.message;
+  }
+}
+
 TEST(ExpressionParser, DeepNestingIsAnErrorNotACrash) {
   Names n;
   std::string deep = std::string(100000, '(') + "a" + std::string(100000, ')');
