@@ -46,9 +46,9 @@ void print_row(const Equations& eq, size_t i, Style style, const LineSink& line)
     const std::string lambda = multiplier_str(eq.model->constraints[r].name, style);
     const bool unit = (g - 1).is_zero() || (g + 1).is_zero();
     const bool plus = (g + 1).is_zero();
-    std::string term = unit ? lambda
-                            : fmt::format("({}){}{}", str(g, style),
-                                          style == Style::Latex ? " " : "*", lambda);
+    std::string term =
+        unit ? lambda
+             : fmt::format("({}){}{}", str(g, style), style == Style::Latex ? " " : "*", lambda);
     rhs += rhs.empty() ? (plus ? "" : "-") + term : (plus ? " + " : " - ") + term;
   }
   line(str(eq.euler_lagrange_lhs(i), style), rhs.empty() ? "0" : rhs);
@@ -79,8 +79,7 @@ void print_free_body(const Equations& eq, const Body& b, Style style, const Head
     const bool mine = std::find(b.r.begin(), b.r.end(), q) != b.r.end() ||
                       std::find(b.R.begin(), b.R.end(), q) != b.R.end();
     if (!mine) continue;
-    line(symbol_str(q, style) + (tex ? "'" : "'"),
-         str(eq.qdot[j].subs(eq.kin.gamma == 0), style));
+    line(symbol_str(q, style) + (tex ? "'" : "'"), str(eq.qdot[j].subs(eq.kin.gamma == 0), style));
   }
 }
 

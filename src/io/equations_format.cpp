@@ -52,7 +52,7 @@ std::string format_text(const Equations& eq, Style style) {
        eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
   if (eq.kin.plain > 0)
     heading(tex ? "Euler--Lagrange equations"
-              : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
+                : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
   for (size_t i = 0; i < eq.kin.plain; ++i) {  // body velocities: in their bodies' sections
     GiNaC::ex rhs = eq.Q[i];
     std::string extra;

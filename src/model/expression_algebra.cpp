@@ -81,8 +81,7 @@ Value divide(const Value& l, const Value& r, size_t offset) {
   if (!is_scalar(r))
     throw ExprError{offset, fmt::format("expected a scalar divisor after '/', got {} / {}",
                                         kind_name(l), kind_name(r))};
-  if (r.scalar.is_zero())
-    throw ExprError{offset, "cannot evaluate this: division by zero"};
+  if (r.scalar.is_zero()) throw ExprError{offset, "cannot evaluate this: division by zero"};
   try {
     return scale(l, GiNaC::pow(r.scalar, -1));
   } catch (const std::exception& e) {

@@ -1,7 +1,5 @@
 #include "model/expression_parser.hpp"
 
-#include "model/expression_algebra.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,6 +8,8 @@
 #include <limits>
 #include <map>
 
+#include "model/expression_algebra.hpp"
+
 namespace lagrange::model {
 
 namespace {
@@ -17,10 +17,10 @@ namespace {
 /// Built-in functions: name → number of arguments.
 const std::map<std::string, int>& builtin_arity() {
   static const std::map<std::string, int> table = {
-      {"sin", 1},  {"cos", 1},   {"tan", 1},  {"asin", 1}, {"acos", 1}, {"atan", 1}, {"atan2", 2},
-      {"sinh", 1}, {"cosh", 1},  {"tanh", 1}, {"exp", 1},  {"log", 1},  {"sqrt", 1}, {"abs", 1},
-      {"dot", 2},  {"cross", 2}, {"norm", 1}, {"vel", 1},  {"der", 1},  {"rot_x", 1}, {"rot_y", 1},
-      {"rot_z", 1}, {"transpose", 1}};
+      {"sin", 1},   {"cos", 1},   {"tan", 1},   {"asin", 1},  {"acos", 1},     {"atan", 1},
+      {"atan2", 2}, {"sinh", 1},  {"cosh", 1},  {"tanh", 1},  {"exp", 1},      {"log", 1},
+      {"sqrt", 1},  {"abs", 1},   {"dot", 2},   {"cross", 2}, {"norm", 1},     {"vel", 1},
+      {"der", 1},   {"rot_x", 1}, {"rot_y", 1}, {"rot_z", 1}, {"transpose", 1}};
   return table;
 }
 
@@ -179,8 +179,8 @@ class Parser {
                         fmt::format("expected x, y or z after '.', got {}", show(comp))};
       ++pos_;
       if (!v.is_vector)
-        throw ExprError{dot.offset, fmt::format("expected a vector before '.{}', got {}",
-                                                comp.text, kind_name(v))};
+        throw ExprError{dot.offset, fmt::format("expected a vector before '.{}', got {}", comp.text,
+                                                kind_name(v))};
       v = Value::of(v.vec[static_cast<size_t>(comp.text[0] - 'x')]);
     }
     return v;

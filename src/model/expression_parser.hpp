@@ -7,7 +7,7 @@
 //   power   := postfix ('^' unary)?                       right-associative, above unary minus
 //   postfix := primary ('.' ('x' | 'y' | 'z'))*
 //   primary := number | name ['.' name] | name '(' expr (',' expr)* ')' | '(' expr ')'
-//            | '[' expr ',' expr ',' expr ']'          a vector, or a matrix when the three are rows
+//            | '[' expr ',' expr ',' expr ']'          a vector; a matrix when all three are rows
 
 #include <functional>
 #include <optional>

@@ -26,10 +26,10 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
          fmt::format("expected a map {{mass, inertia or shape, frame or position/rotation}} for "
                      "{}, got {}",
                      what, describe(spec)));
-  check_keys(spec,
-             {"mass", "inertia", "shape", "com", "frame", "initial", "position", "rotation",
-              "points"},
-             what);
+  check_keys(
+      spec,
+      {"mass", "inertia", "shape", "com", "frame", "initial", "position", "rotation", "points"},
+      what);
   Body body;
   body.name = name;
   body.loc = src_.at(key);
@@ -67,8 +67,10 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
       fail(spec["initial"], fmt::format("expected 'initial' only in a free body, got it in the "
                                         "posed {} (its state follows the coordinates)",
                                         what));
-    if (spec["position"]) body.position = vector_expr(spec["position"], kAll, "position of " + what);
-    if (spec["rotation"]) body.rotation = matrix_expr(spec["rotation"], kAll, "rotation of " + what);
+    if (spec["position"])
+      body.position = vector_expr(spec["position"], kAll, "position of " + what);
+    if (spec["rotation"])
+      body.rotation = matrix_expr(spec["rotation"], kAll, "rotation of " + what);
   }
   if (spec["points"]) read_body_points(body, spec["points"]);
   return body;
@@ -77,8 +79,8 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
 Mat3 ModelReader::read_inertia(const Body& body, const YAML::Node& spec) {
   const std::string what = fmt::format("inertia of body '{}'", body.name);
   if (spec["inertia"] && spec["shape"])
-    fail(spec["shape"], fmt::format("expected either 'inertia' or 'shape' in body '{}', got both",
-                                    body.name));
+    fail(spec["shape"],
+         fmt::format("expected either 'inertia' or 'shape' in body '{}', got both", body.name));
   if (spec["shape"]) return read_shape(body, spec["shape"]);
   if (!spec["inertia"])
     fail(spec, fmt::format("expected 'inertia: [Ixx, Iyy, Izz]', a 3×3 'inertia' or a 'shape' in "
@@ -110,8 +112,8 @@ Mat3 ModelReader::read_shape(const Body& body, const YAML::Node& shape) {
   };
   auto required = [&](const YAML::Node& map, const char* key, const std::string& kind) {
     if (!map[key])
-      fail(map, fmt::format("expected '{}' in the {} of body '{}', got none", key, kind,
-                            body.name));
+      fail(map,
+           fmt::format("expected '{}' in the {} of body '{}', got none", key, kind, body.name));
     return map[key];
   };
   if (const YAML::Node box = shape["box"]) {

@@ -84,7 +84,8 @@ Rotation ModelReader::read_orientation(const Body& body, const YAML::Node& node)
         axis, number(aa["angle"], kParams, "rotation angle of body '" + body.name + "'"));
   }
   if (const YAML::Node eu = node["euler"]) {
-    const auto a = numeric_vector(eu, "Euler angles [roll, pitch, yaw] of body '" + body.name + "'");
+    const auto a =
+        numeric_vector(eu, "Euler angles [roll, pitch, yaw] of body '" + body.name + "'");
     return rotation_from_euler(a[0], a[1], a[2]);
   }
   const YAML::Node qn = node["quaternion"];
@@ -93,11 +94,11 @@ Rotation ModelReader::read_orientation(const Body& body, const YAML::Node& node)
                          qn.IsSequence() ? fmt::format("{} numbers", qn.size()) : describe(qn)));
   std::array<double, 4> q{};
   for (size_t i = 0; i < 4; ++i)
-    q[i] = number(qn[i], kParams, fmt::format("quaternion component {} of body '{}'", i + 1,
-                                              body.name));
+    q[i] = number(qn[i], kParams,
+                  fmt::format("quaternion component {} of body '{}'", i + 1, body.name));
   if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0)
-    fail(qn, fmt::format("expected a non-zero quaternion for body '{}', got [0, 0, 0, 0]",
-                         body.name));
+    fail(qn,
+         fmt::format("expected a non-zero quaternion for body '{}', got [0, 0, 0, 0]", body.name));
   return rotation_from_quaternion(q);
 }
 

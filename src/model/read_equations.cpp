@@ -39,9 +39,10 @@ std::vector<NamedExpr> ModelReader::read_named(const YAML::Node& node, const std
       continue;
     }
     const Value v = parse(kv.second, kAll, what);
-    if (v.is_matrix) fail(kv.second, fmt::format("expected a scalar or a vector for {}, got a "
-                                                 "matrix",
-                                                 what));
+    if (v.is_matrix)
+      fail(kv.second, fmt::format("expected a scalar or a vector for {}, got a "
+                                  "matrix",
+                                  what));
     if (!v.is_vector) {
       out.push_back(NamedExpr{name, v.scalar, loc});
       continue;

@@ -94,11 +94,13 @@ void ModelReader::declare_all(const YAML::Node& root) {
     const char* key;
     NameKind kind;
   };
-  const Section sections[] = {
-      {"parameters", NameKind::Parameter},   {"coordinates", NameKind::Coordinate},
-      {"inputs", NameKind::Input},           {"points", NameKind::Point},
-      {"constraints", NameKind::Constraint}, {"outputs", NameKind::Output},
-      {"bodies", NameKind::Body}};
+  const Section sections[] = {{"parameters", NameKind::Parameter},
+                              {"coordinates", NameKind::Coordinate},
+                              {"inputs", NameKind::Input},
+                              {"points", NameKind::Point},
+                              {"constraints", NameKind::Constraint},
+                              {"outputs", NameKind::Output},
+                              {"bodies", NameKind::Body}};
   for (const Section& s : sections) {
     const YAML::Node node = root[s.key];
     if (!node || node.IsNull()) continue;
@@ -177,8 +179,8 @@ std::optional<Value> ModelReader::body_member(const std::string& name, size_t of
   const size_t index = it->second.index;
   const bool pose = member == "r" || member == "R";
   if (pose && !(allowed & kCoords))
-    throw ExprError{offset, fmt::format("expected {}, got '{}' (a body's pose)",
-                                        allowed_words(allowed), name)};
+    throw ExprError{
+        offset, fmt::format("expected {}, got '{}' (a body's pose)", allowed_words(allowed), name)};
   if (index >= body_ready_.size() || !body_ready_[index])
     throw ExprError{offset, fmt::format("expected a body defined before use (bodies are read in "
                                         "order), got '{}'",
@@ -197,8 +199,7 @@ std::optional<Value> ModelReader::body_member(const std::string& name, size_t of
                                       owner, clip(member), points.empty() ? "none" : points)};
 }
 
-void ModelReader::declare_body_point(const std::string& body, const YAML::Node& key,
-                                     size_t index) {
+void ModelReader::declare_body_point(const std::string& body, const YAML::Node& key, size_t index) {
   const std::string& name = key.Scalar();
   if (!is_identifier(name) || name.size() > kMaxNameLength)
     fail(key, fmt::format("expected a point name made of letters, digits and '_' (at most {} "

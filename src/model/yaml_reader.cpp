@@ -18,11 +18,13 @@ namespace model {
 namespace {
 
 const std::vector<std::string>& top_level_keys() {
+  // clang-format off
   static const std::vector<std::string> keys = {
-      "name",        "parameters",    "coordinates", "inputs",  "bodies",  "points",
-      "particles",   "gravity",       "kinetic",     "potential", "generalized_forces",
-      "forces",      "torques",       "springs",     "dampers", "constraints",
-      "outputs",     "stabilization", "simulate"};
+      "name",        "parameters", "coordinates", "inputs",    "bodies",
+      "points",      "particles",  "gravity",     "kinetic",   "potential",
+      "generalized_forces",        "forces",      "torques",   "springs",
+      "dampers",     "constraints", "outputs",    "stabilization", "simulate"};
+  // clang-format on
   return keys;
 }
 
@@ -52,8 +54,8 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "coordinates")) read_coordinates(*n);
   if (auto n = section(root, "inputs")) read_inputs(*n);
   if (auto n = section(root, "bodies")) read_bodies(*n);
-  const bool has_free_body = std::any_of(m_.bodies.begin(), m_.bodies.end(),
-                                         [](const Body& b) { return b.free; });
+  const bool has_free_body =
+      std::any_of(m_.bodies.begin(), m_.bodies.end(), [](const Body& b) { return b.free; });
   if (m_.coordinates.empty() && !has_free_body)
     throw ModelError(src_.at(root),
                      "expected a 'coordinates' key with at least one coordinate (or a body with "

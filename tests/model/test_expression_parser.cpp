@@ -168,8 +168,8 @@ TEST(ExpressionParser, Matrices) {
   const Mat3 I = mat("transpose(rot_z(a)) * rot_z(a)");
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
-      EXPECT_TRUE(same((I[i][j] - (i == j ? 1 : 0)).subs(pow(sin(n.a), 2) == 1 - pow(cos(n.a), 2)),
-                       0));
+      EXPECT_TRUE(
+          same((I[i][j] - (i == j ? 1 : 0)).subs(pow(sin(n.a), 2) == 1 - pow(cos(n.a), 2)), 0));
   const Mat3 L = mat("[[1, 2, 3], [0, b, 0], u]");
   EXPECT_TRUE(same(L[1][1], n.b));
   EXPECT_TRUE(same(L[2][0], n.a));

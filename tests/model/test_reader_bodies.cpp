@@ -56,8 +56,8 @@ TEST(ReaderBodies, FreeBodyWithShapeAndInitialState) {
   // The body point is r + R p_b in the world frame.
   const Point* p = m.find_point("brick.corner");
   ASSERT_NE(p, nullptr);
-  const Vec3 w = b.world_point({m.parameters[1].sym / 2, m.parameters[2].sym / 2,
-                                m.parameters[3].sym / 2});
+  const Vec3 w =
+      b.world_point({m.parameters[1].sym / 2, m.parameters[2].sym / 2, m.parameters[3].sym / 2});
   for (size_t k = 0; k < 3; ++k) EXPECT_TRUE(same(p->pos[k], w[k]));
 }
 
@@ -86,10 +86,10 @@ TEST(ReaderBodies, OrientationFormsAgree) {
 
 TEST(ReaderBodies, InertiaForms) {
   auto inertia = [](const std::string& spec) {
-    const Model m = read_model_string(
-        "parameters: {r: 0.5, h: 2}\nbodies:\n  b:\n    mass: 3\n    " + spec +
-            "\n    frame: free\n    initial: {}\n",
-        "i.yaml");
+    const Model m =
+        read_model_string("parameters: {r: 0.5, h: 2}\nbodies:\n  b:\n    mass: 3\n    " + spec +
+                              "\n    frame: free\n    initial: {}\n",
+                          "i.yaml");
     std::array<double, 9> out{};
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j) out[3 * i + j] = value(m, m.bodies[0].inertia[i][j]);
@@ -184,8 +184,8 @@ TEST(ReaderBodies, VelocityOfAFreeBodyPoint) {
                  b.w[0] * p[1] - b.w[1] * p[0]};
   const Mat3 R = b.rot();
   for (size_t k = 0; k < 3; ++k)
-    EXPECT_TRUE(same(m.outputs[k].expr,
-                     b.rd[k] + R[k][0] * wxp[0] + R[k][1] * wxp[1] + R[k][2] * wxp[2]))
+    EXPECT_TRUE(
+        same(m.outputs[k].expr, b.rd[k] + R[k][0] * wxp[0] + R[k][1] * wxp[1] + R[k][2] * wxp[2]))
         << m.outputs[k].expr;
 }
 
@@ -227,20 +227,25 @@ std::vector<BadBody> bad_bodies() {
        "expected 'free' for the frame of body 'b'"},
       {"neither free nor posed", kBody + "    inertia: [1, 1, 1]\n", "2:3", "got neither"},
       {"free and posed", kFreeBody + "    position: [0, 0, 0]\n", "7:15", "got both"},
-      {"not a rotation", kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
-                                 "{orientation: {matrix: [[1, 0, 0], [0, 1, 0], [0, 0.1, 1]]}}\n",
+      {"not a rotation",
+       kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
+               "{orientation: {matrix: [[1, 0, 0], [0, 1, 0], [0, 0.1, 1]]}}\n",
        "6:37", "expected a rotation matrix"},
-      {"reflection", kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
-                             "{orientation: {matrix: [[-1, 0, 0], [0, 1, 0], [0, 0, 1]]}}\n",
+      {"reflection",
+       kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
+               "{orientation: {matrix: [[-1, 0, 0], [0, 1, 0], [0, 0, 1]]}}\n",
        "6:37", "det R = -1"},
-      {"two orientations", kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
-                                   "{orientation: {euler: [0, 0, 0], quaternion: [1, 0, 0, 0]}}\n",
+      {"two orientations",
+       kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
+               "{orientation: {euler: [0, 0, 0], quaternion: [1, 0, 0, 0]}}\n",
        "6:28", "expected one of matrix, axis_angle, euler, quaternion"},
-      {"short quaternion", kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
-                                   "{orientation: {quaternion: [1, 0, 0]}}\n",
+      {"short quaternion",
+       kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
+               "{orientation: {quaternion: [1, 0, 0]}}\n",
        "6:41", "quaternion [w, x, y, z] for body 'b', got 3 numbers"},
-      {"zero axis", kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
-                            "{orientation: {axis_angle: {axis: [0, 0, 0], angle: 1}}}\n",
+      {"zero axis",
+       kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: "
+               "{orientation: {axis_angle: {axis: [0, 0, 0], angle: 1}}}\n",
        "6:48", "non-zero rotation axis"},
       {"unknown member", kFreeBody + "outputs:\n  o: b.foo.x\n", "8:6",
        "expected r, R or a point of body 'b' after '.', got 'foo' (points: none)"},
@@ -249,19 +254,22 @@ std::vector<BadBody> bad_bodies() {
        "point name other than r and R"},
       {"unknown body in torque", kFreeBody + "torques:\n  - {body: c, torque: [0, 0, 1]}\n", "8:12",
        "expected a body name for a torque, got 'c' (bodies: b)"},
-      {"torque frame", kFreeBody + "torques:\n  - {body: b, torque: [0, 0, 1], frame: x}\n",
-       "8:41", "'world' or 'body'"},
+      {"torque frame", kFreeBody + "torques:\n  - {body: b, torque: [0, 0, 1], frame: x}\n", "8:41",
+       "'world' or 'body'"},
       {"body-frame force at a plain point",
-       kFreeBody + "points: {p: [0, 0, 0]}\nforces:\n  - {point: p, force: [1, 0, 0], frame: body}\n",
+       kFreeBody +
+           "points: {p: [0, 0, 0]}\nforces:\n  - {point: p, force: [1, 0, 0], frame: body}\n",
        "9:41", "expected a body point (body.point) for a body-frame force"},
-      {"later body", "coordinates: {x: {initial: 0}}\n" + kBody +
-                         "    inertia: [1, 1, 1]\n    position: c.r\n"
-                         "  c:\n    mass: 1\n    inertia: [1, 1, 1]\n    rotation: rot_x(x)\n",
+      {"later body",
+       "coordinates: {x: {initial: 0}}\n" + kBody +
+           "    inertia: [1, 1, 1]\n    position: c.r\n"
+           "  c:\n    mass: 1\n    inertia: [1, 1, 1]\n    rotation: rot_x(x)\n",
        "6:15", "expected a body defined before use"},
       {"matrix for a scalar", "coordinates: {x: {initial: 0}}\nkinetic: rot_z(x)\n", "2:10",
        "expected a scalar for kinetic, got a matrix"},
-      {"vector for a rotation", "coordinates: {x: {initial: 0}}\n" + kBody +
-                                    "    inertia: [1, 1, 1]\n    rotation: [x, 0, 0]\n",
+      {"vector for a rotation",
+       "coordinates: {x: {initial: 0}}\n" + kBody +
+           "    inertia: [1, 1, 1]\n    rotation: [x, 0, 0]\n",
        "6:16", "expected a vector [x, y, z] for row 1 of rotation of body 'b', got a scalar"},
       {"pose in an initial value", kFreeBody + "coordinates: {x: {initial: b.r.x}}\n", "7:28",
        "got 'b.r' (a body's pose)"},

@@ -44,8 +44,9 @@ TEST(BodyExamples, CompoundPendulumFilesAgree) {
   ASSERT_EQ(a.rows(), b.rows());
   double worst = 0;
   for (size_t r = 0; r < a.rows(); ++r) {
-    worst = std::max({worst, std::abs(std::remainder(a.at(r, "angle") - b.at(r, "theta"), 2 * M_PI)),
-                      std::abs(a.at(r, "bar.wz") - b.at(r, "theta_dot"))});
+    worst =
+        std::max({worst, std::abs(std::remainder(a.at(r, "angle") - b.at(r, "theta"), 2 * M_PI)),
+                  std::abs(a.at(r, "bar.wz") - b.at(r, "theta_dot"))});
     ASSERT_LT(b.at(r, "pivot_drift"), 1e-12);
   }
   RecordProperty("so3_vs_planar_files", fmt::format("{:.3e}", worst));
