@@ -24,7 +24,8 @@ bench: build
 	@./bench/run.sh $(BUILD)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer: Debug at -O1 (sanitized -O0 GiNaC code is too slow),
-# the library, the CLI and the tests only, then the whole test suite under the sanitizers.
+# the library, the CLI and the tests only, then the whole test suite under the sanitizers. The
+# build needs the sanitizer settings too: gtest_discover_tests runs each test binary to list it.
 ASAN_BUILD ?= build-asan
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/lsan.supp:print_suppressions=0 \
@@ -32,7 +33,7 @@ SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_
 asan: deps
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
 	  -DLAGRANGE_SANITIZE=ON -DLAGRANGE_BUILD_BENCH=OFF >/dev/null
-	@cmake --build $(ASAN_BUILD) -j $(JOBS)
+	@$(SANITIZER_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS)
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
 
 # libFuzzer targets of the model reader (fuzz/), built with clang; each runs FUZZ_SECONDS on its

@@ -23,7 +23,7 @@ void BM_ChainForward(benchmark::State& state) {
   const lagrange::CompiledModel& cm = *b.compiled;
   lagrange::Dynamics& dyn = *b.dynamics;
   const std::vector<double> q = cm.q0, v = cm.v0;
-  std::vector<double> qdot(cm.n), a(cm.n), lambda(cm.m);
+  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
   for (auto _ : state) {
     dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
     benchmark::DoNotOptimize(a.data());

@@ -122,7 +122,7 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
                                  model.parameters[j].name, dyn.parameters()[j]);
       const Coordinate& c = model.coordinates[i];
       std::ostringstream entry;
-      entry << Mii;
+      entry << simplify(Mii);
       throw ModelError(c.loc,
                        fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
                                    "matrix entry M[{},{}] = {} is 0{}; expected positive masses "

@@ -107,6 +107,8 @@ std::vector<BadModel> bad_models() {
                "c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: [*c, *c, *c, *c, *c, *c, *c, *c]\n",
        "'a'"},
       {"lone comma (yaml-cpp loops)", ",\n", "','"},
+      {"number to a huge power (fuzz finding)", kBase + "potential: 2^1e30*x\n", "exponent"},
+      {"zero to a negative power (fuzz finding)", kBase + "potential: x + 0^-1\n", "exponent of 0"},
       // expressions
       {"expression syntax error", kBase + "potential: x +* 2\n", "'*'"},
       {"unbalanced parenthesis", kBase + "potential: sin(x\n", "')'"},
