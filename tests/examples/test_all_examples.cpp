@@ -35,8 +35,8 @@ TEST_P(Example, RunsAndKeepsItsInvariants) {
       ASSERT_LT(tr.at(r, "constraint_rate_residual"), 1e-9) << "t = " << tr.at(r, "t");
     }
   }
-  const bool conservative =
-      sys.model->dampers.empty() && sys.model->forces.empty() && sys.model->inputs.empty();
+  const bool conservative = sys.model->dampers.empty() && sys.model->forces.empty() &&
+                            sys.model->torques.empty() && sys.model->inputs.empty();
   if (conservative) {
     const double e0 = tr.at(0, "energy");
     const double e1 = tr.at(tr.rows() - 1, "energy");
