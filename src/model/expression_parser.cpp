@@ -46,7 +46,10 @@ GiNaC::ex number_value(const Token& tok) {
       if (fraction) --exponent;
     }
   }
-  if (i < s.size()) exponent += std::strtol(s.c_str() + i + 1, nullptr, 10);
+  // strtol saturates at LONG_MIN/MAX; clamp so that adding the fraction's digits cannot overflow
+  // (a fuzz finding: '.1e-3209…'). |exponent| > 300 takes the double path below anyway.
+  if (i < s.size())
+    exponent += std::clamp(std::strtol(s.c_str() + i + 1, nullptr, 10), -100000L, 100000L);
   size_t nz = digits.find_first_not_of('0');
   digits = nz == std::string::npos ? "0" : digits.substr(nz);
   if (digits.size() > 40 || std::labs(exponent) > 300) return GiNaC::numeric(d);
@@ -164,6 +167,14 @@ class Parser {
       throw ExprError{op.offset, fmt::format("expected scalar ^ scalar, got {} ^ {}",
                                              kind_name(base), kind_name(exponent))};
     check_power(base.scalar, exponent.scalar, op.offset);
+    // number ^ number where GiNaC evaluates the result anyway: do it on the numbers, so that a
+    // CLN exception (underflow, overflow) does not leak pow()'s half-built node (fuzz finding).
+    if (GiNaC::is_a<GiNaC::numeric>(base.scalar) && GiNaC::is_a<GiNaC::numeric>(exponent.scalar)) {
+      const auto& b = GiNaC::ex_to<GiNaC::numeric>(base.scalar);
+      const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent.scalar);
+      if (e.is_integer() || !b.is_rational())
+        return Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); }));
+    }
     return Value::of(
         guarded(op.offset, [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); }));
   }

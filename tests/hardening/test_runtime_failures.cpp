@@ -72,8 +72,9 @@ Failure run_failing(const ScratchDir& dir, const std::string& yaml,
   EXPECT_TRUE(
       std::regex_search(f.result.err, m, std::regex("simulation failed at t = ([-0-9.e+]+): ")))
       << f.result.err;
-  if (!m.empty())
+  if (!m.empty()) {
     EXPECT_DOUBLE_EQ(std::stod(m[1].str()), f.sidecar.at("failure_time").get<double>());
+  }
   return f;
 }
 
