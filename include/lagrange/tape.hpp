@@ -11,6 +11,10 @@
 
 namespace lagrange {
 
+namespace tape_detail {
+struct TapeCode;
+}
+
 /// An immutable straight-line program mapping a flat input array to a flat output array.
 class Tape {
  public:
@@ -58,6 +62,8 @@ class Tape {
   };
 
  private:
+  /// Adopt the arrays a TapeBuilder finished (shared by compile and specialize).
+  static Tape from_code(tape_detail::TapeCode&& code);
   size_t num_inputs_ = 0;
   size_t num_registers_ = 0;
   std::vector<Instr> code_;

@@ -190,7 +190,10 @@ Tape Tape::compile(const std::vector<GiNaC::ex>& outputs,
   std::vector<std::uint32_t> out;
   out.reserve(rewritten.size());
   for (const GiNaC::ex& e : rewritten) out.push_back(compiler.value(e));
-  tape_detail::TapeCode code = builder.finish(out);
+  return from_code(builder.finish(out));
+}
+
+Tape Tape::from_code(tape_detail::TapeCode&& code) {
   Tape t;
   t.num_inputs_ = code.num_inputs;
   t.num_registers_ = code.num_registers;

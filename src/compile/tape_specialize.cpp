@@ -75,15 +75,7 @@ Tape Tape::specialize(size_t first, const std::vector<double>& values) const {
   std::vector<std::uint32_t> out;
   out.reserve(outputs_.size());
   for (std::uint32_t o : outputs_) out.push_back(val[o]);
-  tape_detail::TapeCode code = b.finish(out);
-  Tape t;
-  t.num_inputs_ = code.num_inputs;
-  t.num_registers_ = code.num_registers;
-  t.code_ = std::move(code.code);
-  t.args_ = std::move(code.args);
-  t.coeffs_ = std::move(code.coeffs);
-  t.outputs_ = std::move(code.outputs);
-  return t;
+  return from_code(b.finish(out));
 }
 
 }  // namespace lagrange

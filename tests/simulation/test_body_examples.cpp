@@ -14,23 +14,9 @@ namespace {
 
 using testing::load_example;
 using testing::load_string;
-
-SimulationOptions tight(const testing::Loaded& sys, double t_end, double step) {
-  SimulationOptions so = sys.options();
-  so.t_end = t_end;
-  so.output_step = step;
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
-  return so;
-}
-
-Eigen::Matrix3d rotation_at(const Trajectory& tr, size_t r, const std::string& body) {
-  Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      R(i, j) = tr.at(r, body + ".R" + std::to_string(i + 1) + std::to_string(j + 1));
-  return R;
-}
+using testing::omega_at;
+using testing::rotation_at;
+using testing::tight;
 
 // compound_pendulum.yaml (SO(3) + pivot constraint) and compound_pendulum_planar.yaml (one
 // angle, posed by rot_z) describe the same bar: same angle and rate over 10 s.

@@ -15,28 +15,9 @@ namespace lagrange {
 namespace {
 
 using testing::load_model;
-
-Eigen::Matrix3d rotation_at(const Trajectory& tr, size_t r, const std::string& body) {
-  Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      R(i, j) = tr.at(r, body + ".R" + std::to_string(i + 1) + std::to_string(j + 1));
-  return R;
-}
-
-Eigen::Vector3d omega_at(const Trajectory& tr, size_t r, const std::string& body) {
-  return {tr.at(r, body + ".wx"), tr.at(r, body + ".wy"), tr.at(r, body + ".wz")};
-}
-
-SimulationOptions tight(const testing::Loaded& sys, double t_end, double step) {
-  SimulationOptions so = sys.options();
-  so.t_end = t_end;
-  so.output_step = step;
-  so.integrator.method = "arkode";
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
-  return so;
-}
+using testing::omega_at;
+using testing::rotation_at;
+using testing::tight;
 
 TEST(RigidBody, CsvColumnsOfAFreeBody) {
   auto sys = load_model(testing::free_brick(2, 3, 4, {0, 1, 0}));

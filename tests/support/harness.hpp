@@ -3,6 +3,7 @@
 
 #include <ginac/ginac.h>
 
+#include <Eigen/Dense>
 #include <memory>
 #include <string>
 
@@ -68,6 +69,30 @@ inline Loaded load_model(std::unique_ptr<Model> model) {
   l.dynamics = std::make_unique<Dynamics>(l.compiled, l.compiled->parameter_defaults);
   l.dynamics->set_baumgarte(l.model->stabilization.alpha);
   return l;
+}
+
+/// The model's own settings with tight tolerances (rtol 1e-12, atol 1e-14), t_end and step.
+inline SimulationOptions tight(const Loaded& sys, double t_end, double step) {
+  SimulationOptions so = sys.options();
+  so.t_end = t_end;
+  so.output_step = step;
+  so.integrator.rtol = 1e-12;
+  so.integrator.atol = 1e-14;
+  return so;
+}
+
+/// A free body's rotation matrix R at row r (columns <body>.R11 … .R33).
+inline Eigen::Matrix3d rotation_at(const Trajectory& tr, size_t r, const std::string& body) {
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      R(i, j) = tr.at(r, body + ".R" + std::to_string(i + 1) + std::to_string(j + 1));
+  return R;
+}
+
+/// A free body's body-frame angular velocity at row r.
+inline Eigen::Vector3d omega_at(const Trajectory& tr, size_t r, const std::string& body) {
+  return {tr.at(r, body + ".wx"), tr.at(r, body + ".wy"), tr.at(r, body + ".wz")};
 }
 
 inline Loaded load_example(const std::string& name) {
