@@ -163,6 +163,9 @@ class ExprCompiler {
     if (name == "atan2" && f.nops() == 2) {
       return b_.binary(Op::Atan2, value(f.op(0)), value(f.op(1)));
     }
+    // Every tape value is real: conjugate and real part are the identity (they appear in
+    // GiNaC's derivative of abs when an expression holds complex-domain symbols).
+    if ((name == "conjugate" || name == "real_part") && f.nops() == 1) return value(f.op(0));
     const auto& table = unary_functions();
     if (auto it = table.find(name); it != table.end() && f.nops() == 1) {
       return b_.unary(it->second, value(f.op(0)));

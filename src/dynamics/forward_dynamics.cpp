@@ -55,11 +55,14 @@ Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model,
   a_.setZero(cm.nv);
   gamma_.setZero(cm.m);
   lambda_.setZero(cm.m);
-  llt_M_ = Eigen::LLT<Eigen::MatrixXd>(cm.nv);
-  llt_S_ = Eigen::LLT<Eigen::MatrixXd>(cm.m);
+  // Reserve the factorisations' storage by factorising identities (a moved-from, never
+  // computed Eigen 3.4 LLT carries an uninitialised status, which UBSan rightly reports).
+  llt_M_.compute(Eigen::MatrixXd::Identity(static_cast<long>(cm.nv), static_cast<long>(cm.nv)));
+  llt_S_.compute(Eigen::MatrixXd::Identity(static_cast<long>(cm.m), static_cast<long>(cm.m)));
   K_.setZero(cm.nv + cm.m, cm.nv + cm.m);
   kkt_rhs_.setZero(cm.nv + cm.m);
-  lu_K_ = Eigen::PartialPivLU<Eigen::MatrixXd>(cm.nv + cm.m);
+  lu_K_.compute(
+      Eigen::MatrixXd::Identity(static_cast<long>(cm.nv + cm.m), static_cast<long>(cm.nv + cm.m)));
   // A diagonal M with many constraints (chains in Cartesian coordinates) takes the sparse
   // range-space path; small systems stay dense, where it is faster.
   if (cm.M_diagonal && cm.m > 0 && cm.nv >= kSparseThreshold && cm.M_pattern.size() == cm.nv &&

@@ -25,9 +25,9 @@ class SparseRangeSpace {
 
  private:
   struct Contribution {
-    int value;   // index into S's value array
-    int g1, g2;  // G entries (same column j)
-    int column;  // j
+    size_t value;  // index into the envelope's values
+    int g1, g2;    // G entries (same column j)
+    int column;    // j
   };
   size_t n_, m_;
   std::vector<std::pair<size_t, size_t>> G_;  // (row, column) per G value

@@ -104,3 +104,31 @@ TEST(SeedEquations, RheonomicConstraintDifferentiatesInputs) {
 
 }  // namespace
 }  // namespace lagrange
+
+namespace lagrange {
+namespace {
+
+TEST(SeedEquations, AbsPotentialCompilesToSignForce) {
+  // d/dx |x| = sign(x). GiNaC writes it with conjugate(x); model symbols are real, so the tape
+  // and simplify() treat conjugate as the identity.
+  auto sys = testing::load_string(R"(
+parameters: {m: 2.0, k: 3.0}
+coordinates:
+  x: {initial: 0.3}
+points: {p: [x, 0, 0]}
+particles: {p: m}
+potential: k*abs(x)
+)");
+  const Equations eq = derive(*sys.model);
+  const GiNaC::ex x = testing::sym(*sys.model, "x"), k = testing::sym(*sys.model, "k");
+  EXPECT_TRUE(testing::same(eq.h[0], -k * x / abs(x))) << eq.h[0];
+  for (double x : {0.3, -0.3}) {
+    double qd, a;
+    const double v = 0.0;
+    sys.dynamics->forward(0.0, &x, &v, &qd, &a, nullptr);
+    EXPECT_DOUBLE_EQ(a, x > 0 ? -1.5 : 1.5);
+  }
+}
+
+}  // namespace
+}  // namespace lagrange
