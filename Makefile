@@ -2,21 +2,28 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+MAKEFLAGS += --no-print-directory
 
-.PHONY: deps build demo test bench asan fuzz clean
+.PHONY: deps configure build demo test bench asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
 
-build: deps
+configure: deps
 	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) >/dev/null
+
+build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo needs only the command-line tool.
+demo: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target lagrange
 	@mkdir -p out
 	$(BUILD)/lagrange simulate examples/double_pendulum.yaml -o out/double_pendulum.csv --plot out/double_pendulum.svg
 
+# The benchmarks are built too (not run), so that API changes cannot leave them broken.
 test: build
+	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
