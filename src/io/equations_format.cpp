@@ -33,6 +33,11 @@ std::string format_text(const Equations& eq, Style style) {
     open = true;
   };
   auto multiplier = [&](size_t r) { return io::multiplier_str(model.constraints[r].name, style); };
+  // Constraint rates are shown on SO(3), where the drift correction Ξ vanishes (γ → 0); the
+  // tape keeps the full expressions (DESIGN.md §4.4).
+  auto on_manifold = [&](const GiNaC::ex& e) {
+    return eq.kin.has_gamma ? e.subs(eq.kin.gamma == 0) : e;
+  };
   auto cname = [&](size_t r) {
     return tex ? "\\mathrm{" + latex_escape(model.constraints[r].name) + "}"
                : model.constraints[r].name;
@@ -86,12 +91,12 @@ std::string format_text(const Equations& eq, Style style) {
         if (!eq.G(r, j).is_zero())
           lhs += fmt::format("{}({})*{}", lhs.empty() ? "" : " + ", str(eq.G(r, j), style),
                              symbol_str(eq.kin.a[j], style));
-      line(lhs + " + " + str(eq.c[r], style), "0");
+      line(lhs + " + " + str(on_manifold(eq.c[r]), style), "0");
     }
     heading(tex ? "Baumgarte: G a + c + 2 alpha Cdot + alpha^2 C = 0"
                 : "Baumgarte-stabilised (C'' + 2 alpha C' + alpha^2 C = 0), with");
     for (size_t r = 0; r < eq.m; ++r)
-      line((tex ? "\\dot{C}_{" : "Cdot_{") + cname(r) + "}", str(eq.Cdot[r], style));
+      line((tex ? "\\dot{C}_{" : "Cdot_{") + cname(r) + "}", str(on_manifold(eq.Cdot[r]), style));
   }
   if (eq.m == 0 && eq.nv <= 3 && eq.nq == eq.nv) {
     heading("Accelerations a = M^-1 (h + Q)");
