@@ -63,6 +63,10 @@ GiNaC::ex number_value(const Token& tok) {
 void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset) {
   constexpr int kMaxExponent = 1000;
   constexpr double kMaxDigits = 10000;
+  // 0 to a symbolic power: its derivative holds log(0), on which GiNaC throws mid-construction
+  // and leaks (fuzz finding "der(0^y)").
+  if (base.is_zero() && !GiNaC::is_a<GiNaC::numeric>(exponent))
+    throw ExprError{offset, "expected a numeric positive exponent of 0, got a symbolic one"};
   if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
   const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent);
   if (base.is_zero() && !(e.is_real() && e.is_positive()))
