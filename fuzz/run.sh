@@ -2,6 +2,9 @@
 # Runs each libFuzzer target on its corpus for a while: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]
 # Inputs that crash, hang (> 10 s) or use more than 2 GB are written to BUILD_DIR/fuzz/artifacts/;
 # the script fails if any target found one. New corpus entries stay in BUILD_DIR/fuzz/corpus/.
+# With FUZZ_RUNS=N each target instead executes exactly N inputs from seed 1 with address
+# randomisation off (GiNaC's term order, hence coverage, depends on load addresses): the same
+# build and corpus then explore the same inputs, so CI's short run is reproducible.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:?usage: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]}
@@ -14,8 +17,16 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 mkdir -p "$build/fuzz/artifacts"
 status=0
 for t in "${targets[@]}"; do
-  echo "fuzz: fuzz_$t for ${seconds} s on $build/fuzz/corpus/$t"
-  if ! "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  budget=(-max_total_time="$seconds")
+  runner=()
+  if [ -n "${FUZZ_RUNS:-}" ]; then
+    budget=(-runs="$FUZZ_RUNS" -seed=1)
+    runner=(setarch "$(uname -m)" -R)
+    echo "fuzz: fuzz_$t for $FUZZ_RUNS inputs (seed 1) on $build/fuzz/corpus/$t"
+  else
+    echo "fuzz: fuzz_$t for ${seconds} s on $build/fuzz/corpus/$t"
+  fi
+  if ! "${runner[@]}" "$build/fuzz/fuzz_$t" "${budget[@]}" -timeout=10 -rss_limit_mb=2048 \
       -dict="fuzz/$t.dict" -print_final_stats=1 -artifact_prefix="$build/fuzz/artifacts/$t-" \
       "$build/fuzz/corpus/$t" 2>"$build/fuzz/fuzz_$t.log"; then
     echo "fuzz: fuzz_$t found a failing input (see $build/fuzz/artifacts/ and $build/fuzz/fuzz_$t.log):"
