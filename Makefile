@@ -43,16 +43,18 @@ asan: deps
 	@$(SANITIZER_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS)
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer targets of the model reader (fuzz/), built with clang; each runs FUZZ_SECONDS on its
+# libFuzzer targets of the model reader (fuzz/), built with clang; each runs FUZZ_SECONDS (or
+# exactly FUZZ_RUNS inputs from a fixed seed, reproducibly, as CI does) on its
 # corpus (seeded from examples/ and fuzz/corpus/). Findings land in $(FUZZ_BUILD)/fuzz/artifacts/.
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 600
+FUZZ_RUNS ?=
 fuzz:
 	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
 	  -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression
-	@./fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+	@FUZZ_RUNS=$(FUZZ_RUNS) ./fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD) out
