@@ -21,7 +21,7 @@ for t in "${targets[@]}"; do
   runner=()
   if [ -n "${FUZZ_RUNS:-}" ]; then
     budget=(-runs="$FUZZ_RUNS" -seed=1)
-    runner=(setarch "$(uname -m)" -R)
+    if setarch "$(uname -m)" -R true 2>/dev/null; then runner=(setarch "$(uname -m)" -R); fi
     echo "fuzz: fuzz_$t for $FUZZ_RUNS inputs (seed 1) on $build/fuzz/corpus/$t"
   else
     echo "fuzz: fuzz_$t for ${seconds} s on $build/fuzz/corpus/$t"
