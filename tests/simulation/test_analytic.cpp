@@ -83,10 +83,7 @@ std::vector<double> zero_crossings(const Trajectory& tr, const std::string& q) {
 
 TEST(Analytic, LargeAmplitudePendulumPeriod) {
   auto sys = load_example("pendulum.yaml");
-  SimulationOptions so = sys.options();
-  so.output_step = 0.002;
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
+  const SimulationOptions so = testing::tight(sys, sys.model->simulate.t_end, 0.002);
   const Trajectory tr = sys.run(so);
   ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
   const auto z = zero_crossings(tr, "theta");

@@ -48,11 +48,7 @@ TEST(Constrained, CartesianPendulumTensionOracle) {
 TEST(Constrained, PolarAndCartesianPendulumAgree) {
   auto polar = load_example("pendulum.yaml");
   auto cart = load_example("cartesian_pendulum.yaml");
-  SimulationOptions so = polar.options();
-  so.t_end = 10;
-  so.output_step = 0.01;
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
+  const SimulationOptions so = testing::tight(polar, 10, 0.01);
   std::vector<double> q0{1.0}, v0{0.0};
   const Trajectory a = simulate(*polar.dynamics, so, q0, v0);
   const Trajectory b = simulate(*cart.dynamics, so, {std::sin(1.0), -std::cos(1.0)}, {0.0, 0.0});
@@ -66,10 +62,7 @@ TEST(Constrained, PolarAndCartesianPendulumAgree) {
 TEST(Constrained, DoublePendulumPolarAndCartesianAgree) {
   auto polar = load_example("double_pendulum.yaml");
   auto cart = load_example("double_pendulum_cartesian.yaml");
-  SimulationOptions so = polar.options();
-  so.t_end = 10;
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
+  const SimulationOptions so = testing::tight(polar, 10, polar.model->simulate.output_step);
   const Trajectory a = simulate(*polar.dynamics, so, {0.5, 1.0}, {0.0, 0.0});
   const Trajectory b = cart.run(so);
   ASSERT_EQ(b.status, Trajectory::Status::Complete) << b.message;
