@@ -54,6 +54,9 @@ class Dynamics {
   void observe(double t, const double* q, const double* v, double* out);
   /// Constraint values C and Ċ at (t, q, v).
   void constraints(double t, const double* q, const double* v, double* C, double* Cdot);
+  /// C and Ċ at the state of the last forward() or constraints() call, without a new
+  /// evaluation (the dynamics tape computes them alongside M and h).
+  void last_constraints(double* C, double* Cdot) const;
 
   /// Project (q, v) onto C = 0 (Gauss–Newton, least-squares change of the non-fixed
   /// coordinates) and then Ċ = 0. Throws SimulationError when it does not converge.

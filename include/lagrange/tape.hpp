@@ -38,7 +38,9 @@ class Tape {
 
   /// C99 source of `void NAME(const double* in, double* out)`, self-contained (<math.h> only),
   /// computing exactly what eval computes.
-  std::string to_c(const std::string& function_name) const;
+  /// With `file_local`, the preamble (comment, #include) is left out and the function is
+  /// `static`, for embedding in a larger generated file.
+  std::string to_c(const std::string& function_name, bool file_local = false) const;
 
   /// Instruction set (public so tests and the emitter can inspect it). Operand layouts:
   /// Const c; Input in[a]; Sum Σᵢ coeffs_[a+i]·r[args_[a+i]] (i < b), then + c if c ≠ 0;

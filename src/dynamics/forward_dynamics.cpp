@@ -256,8 +256,12 @@ void Dynamics::observe(double t, const double* q, const double* v, double* out) 
 }
 
 void Dynamics::constraints(double t, const double* q, const double* v, double* C, double* Cdot) {
-  const CompiledModel& cm = *model_;
   eval_dynamics(t, q, v);
+  last_constraints(C, Cdot);
+}
+
+void Dynamics::last_constraints(double* C, double* Cdot) const {
+  const CompiledModel& cm = *model_;
   for (size_t r = 0; r < cm.m; ++r) {
     C[r] = out_[cm.C_out() + r];
     Cdot[r] = out_[cm.Cdot_out() + r];

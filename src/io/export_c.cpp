@@ -107,19 +107,6 @@ int lagrange_dynamics(double t, const double* q, const double* v, const double* 
 }
 )C";
 
-// A tape's C function as a file-local definition: the preamble (comment, #include) is
-// dropped because the enclosing file has its own.
-std::string static_function(const Tape& tape, const std::string& name) {
-  std::string code = tape.to_c(name);
-  const std::string include = "#include <math.h>\n";
-  const size_t inc = code.find(include);
-  if (inc != std::string::npos) code.erase(0, inc + include.size());
-  const std::string entry = "\nvoid " + name + "(";
-  const size_t at = code.find(entry);
-  if (at != std::string::npos) code.insert(at + 1, "static ");
-  return code;
-}
-
 }  // namespace
 
 void export_c(const CompiledModel& cm, const std::string& dir) {
@@ -161,9 +148,9 @@ void export_c(const CompiledModel& cm, const std::string& dir) {
       cm.G_pattern.size());
   source += pattern_array("M", cm.M_pattern);
   if (cm.m > 0) source += pattern_array("G", cm.G_pattern);
-  source += "\n" + static_function(cm.dynamics, "lagrange_tape") + "\n";
+  source += "\n" + cm.dynamics.to_c("lagrange_tape", true) + "\n";
   if (cm.k > 0) {
-    source += static_function(cm.inputs, "lagrange_input_tape") + "\n";
+    source += cm.inputs.to_c("lagrange_input_tape", true) + "\n";
     source += fmt::format(
         "void lagrange_inputs(double t, const double* p, double* u) {{\n"
         "  double in[{0}] = {{0}};\n  double out[{1}];\n  int i;\n  in[0] = t;\n"

@@ -52,30 +52,39 @@ double max_abs(const std::vector<double>& x) {
   return r;
 }
 
-// One output row: t, q, v, T, U, T + U, outputs, λ, max|C|, max|Ċ|.
-void append_row(Dynamics& dyn, double t, const double* q, const double* v,
-                std::vector<double>& scratch, Trajectory& traj) {
-  const CompiledModel& cm = dyn.model();
-  const size_t nq = cm.nq, nv = cm.nv, m = cm.m;
-  std::vector<double>& row = scratch;
-  row.clear();
-  row.push_back(t);
-  row.insert(row.end(), q, q + nq);
-  row.insert(row.end(), v, v + nv);
-  std::vector<double> obs(cm.observables.num_outputs());
-  dyn.observe(t, q, v, obs.data());
-  row.insert(row.end(), {obs[0], obs[1], obs[0] + obs[1]});
-  row.insert(row.end(), obs.begin() + 2, obs.end());
-  if (m > 0) {
-    std::vector<double> qdot(nq), a(nv), lambda(m), C(m), Cdot(m);
-    dyn.forward(t, q, v, qdot.data(), a.data(), lambda.data());
-    dyn.constraints(t, q, v, C.data(), Cdot.data());
-    row.insert(row.end(), lambda.begin(), lambda.end());
-    row.push_back(max_abs(C));
-    row.push_back(max_abs(Cdot));
+// One output row: t, q, v, T, U, T + U, outputs, λ, max|C|, max|Ċ|. Buffers are sized once;
+// one forward() gives λ together with C and Ċ.
+class RowWriter {
+ public:
+  explicit RowWriter(const CompiledModel& cm)
+      : obs_(cm.observables.num_outputs()),
+        qdot_(cm.nq),
+        a_(cm.nv),
+        lambda_(cm.m),
+        C_(cm.m),
+        Cdot_(cm.m) {}
+
+  void append(Dynamics& dyn, double t, const double* q, const double* v, Trajectory& traj) {
+    const CompiledModel& cm = dyn.model();
+    std::vector<double>& d = traj.data;
+    d.push_back(t);
+    d.insert(d.end(), q, q + cm.nq);
+    d.insert(d.end(), v, v + cm.nv);
+    dyn.observe(t, q, v, obs_.data());
+    d.insert(d.end(), {obs_[0], obs_[1], obs_[0] + obs_[1]});
+    d.insert(d.end(), obs_.begin() + 2, obs_.end());
+    if (cm.m > 0) {
+      dyn.forward(t, q, v, qdot_.data(), a_.data(), lambda_.data());
+      dyn.last_constraints(C_.data(), Cdot_.data());
+      d.insert(d.end(), lambda_.begin(), lambda_.end());
+      d.push_back(max_abs(C_));
+      d.push_back(max_abs(Cdot_));
+    }
   }
-  traj.data.insert(traj.data.end(), row.begin(), row.end());
-}
+
+ private:
+  std::vector<double> obs_, qdot_, a_, lambda_, C_, Cdot_;
+};
 
 // Initial state: check C = 0 and Ċ = 0, project if needed (DESIGN.md §4.3) and say what moved.
 void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<double>& q,
@@ -164,7 +173,9 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         fmt::format("simulate: expected {} positions and {} velocities, "
                     "got {} and {}",
                     nq, nv, q0.size(), v0.size()));
-  std::vector<double> row, C(m), Cdot(m), lambda(m);
+  std::vector<double> C(m), Cdot(m), lambda(m);
+  const std::vector<bool> none_fixed(nq, false);  // drift projection may move every coordinate
+  RowWriter rows(cm);
   const bool dae = opt.integrator.method == "ida";
   LastEvaluation last;
   last.q.resize(nq);
@@ -184,7 +195,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     if (m > 0 && opt.project) {
       dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
       if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
-        dyn.project(t, yy, yy + nq, std::vector<bool>(nq, false), 1e-13);
+        dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
         if (dae) {  // keep (λ, y') consistent with the projected state
           dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
           std::fill(yp + n, yp + n + m, 0.0);
@@ -192,7 +203,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         action = ObserverAction::StateChanged;
       }
     }
-    append_row(dyn, t, yy, yy + nq, row, traj);
+    rows.append(dyn, t, yy, yy + nq, traj);
     if (opt.progress) opt.progress(t);
     if (opt.interrupt != nullptr && opt.interrupt->load()) {
       traj.status = Trajectory::Status::Interrupted;

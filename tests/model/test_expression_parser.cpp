@@ -53,6 +53,22 @@ ExprError error_of(const Names& n, const std::string& text) {
   return ExprError{0, ""};
 }
 
+// An expression that must fail, the byte offset the error points at, and a message fragment.
+struct Case {
+  const char* text;
+  size_t offset;
+  const char* fragment;
+};
+
+template <size_t N>
+void expect_errors(const Names& n, const Case (&cases)[N]) {
+  for (const Case& c : cases) {
+    ExprError e = error_of(n, c.text);
+    EXPECT_EQ(e.offset, c.offset) << c.text << ": " << e.message;
+    EXPECT_NE(e.message.find(c.fragment), std::string::npos) << c.text << ": " << e.message;
+  }
+}
+
 TEST(ExpressionParser, NumbersAreExact) {
   Names n;
   EXPECT_EQ(n.scalar("2.5"), GiNaC::numeric(5, 2));
@@ -114,11 +130,6 @@ TEST(ExpressionParser, VectorAlgebra) {
 
 TEST(ExpressionParser, ErrorsCarryOffsets) {
   Names n;
-  struct Case {
-    const char* text;
-    size_t offset;
-    const char* fragment;
-  };
   const Case cases[] = {
       {"a + foo", 4, "unknown name 'foo'"},
       {"bar(a)", 0, "unknown function 'bar'"},
@@ -141,11 +152,7 @@ TEST(ExpressionParser, ErrorsCarryOffsets) {
       {"u^2", 1, "scalar ^ scalar"},
       {"[[1,2,3], 0, 0]", 0, "got a vector as component 1"},
   };
-  for (const Case& c : cases) {
-    ExprError e = error_of(n, c.text);
-    EXPECT_EQ(e.offset, c.offset) << c.text << ": " << e.message;
-    EXPECT_NE(e.message.find(c.fragment), std::string::npos) << c.text << ": " << e.message;
-  }
+  expect_errors(n, cases);
 }
 
 // 3×3 matrices: literals of three rows, rot_x/y/z, products, transpose (DESIGN.md §4.4).
@@ -184,11 +191,6 @@ TEST(ExpressionParser, Matrices) {
 
 TEST(ExpressionParser, MatrixTypeErrors) {
   Names n;
-  struct Case {
-    const char* text;
-    size_t offset;
-    const char* fragment;
-  };
   const Case cases[] = {
       {"u * rot_z(a)", 2, "got a vector * a matrix"},
       {"rot_z(a) + u", 9, "a matrix + a vector"},
@@ -202,11 +204,7 @@ TEST(ExpressionParser, MatrixTypeErrors) {
       {"u / rot_z(a)", 2, "scalar divisor"},
       {"[rot_z(a), u, u]", 0, "got a matrix as component 1"},
   };
-  for (const Case& c : cases) {
-    ExprError e = error_of(n, c.text);
-    EXPECT_EQ(e.offset, c.offset) << c.text << ": " << e.message;
-    EXPECT_NE(e.message.find(c.fragment), std::string::npos) << c.text << ": " << e.message;
-  }
+  expect_errors(n, cases);
 }
 
 TEST(ExpressionParser, DeepNestingIsAnErrorNotACrash) {
