@@ -1,5 +1,5 @@
 // N-link planar pendulum (absolute angles, point masses at the link ends): derivation +
-// compilation time, tape sizes and forward-dynamics time per call (DESIGN.md §8).
+// compilation time, tape sizes and forward-dynamics time per call (docs/theory.md §8).
 //
 // Extra mode for cross-checking against the SymPy peer (bench/run.sh):
 //   bench_pendulum --accelerations N   prints "accelerations N a1 … aN" at the benchmark state.

@@ -1,5 +1,5 @@
 #pragma once
-// Model generators for the benchmark families (DESIGN.md §8, PEERS.md): YAML text for any N.
+// Model generators for the benchmark families (docs/theory.md §8, PEERS.md): YAML text for any N.
 
 #include <cstddef>
 #include <string>
@@ -12,7 +12,7 @@ enum class PendulumParameters {
   /// such as Σₖ m fold to (N − j)·m during derivation.
   Shared,
   /// Per-link masses m1..mN and lengths l1..lN with distinct values: nothing folds
-  /// symbolically, the harder and fairer case for a symbolic engine (DESIGN.md §8).
+  /// symbolically, the harder and fairer case for a symbolic engine (docs/theory.md §8).
   PerLink,
 };
 

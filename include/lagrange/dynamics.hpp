@@ -36,16 +36,16 @@ class Dynamics {
   const std::vector<double>& parameters() const { return params_; }
   /// Change parameter values: re-specialises the tapes (no new derivation).
   void set_parameters(const std::vector<double>& values);
-  /// Baumgarte rate α (DESIGN.md §4.3): constraint errors decay like exp(−α t).
+  /// Baumgarte rate α (docs/theory.md §4.3): constraint errors decay like exp(−α t).
   void set_baumgarte(double alpha) { alpha_ = alpha; }
   double baumgarte() const { return alpha_; }
 
   /// Forward dynamics at (t, q, v): q̇, accelerations a and multipliers λ (m of them) from
-  ///   [M Gᵀ; G 0][a; λ] = [h + Q; −c − 2αĊ − α²C]   (DESIGN.md §4.3).
+  ///   [M Gᵀ; G 0][a; λ] = [h + Q; −c − 2αĊ − α²C]   (docs/theory.md §4.3).
   /// Throws SimulationError naming t and the state when M or G M⁻¹Gᵀ is singular.
   void forward(double t, const double* q, const double* v, double* qdot, double* a, double* lambda);
 
-  /// Residual of the index-1 DAE in (q, v, λ) used with IDA (DESIGN.md §4.3):
+  /// Residual of the index-1 DAE in (q, v, λ) used with IDA (docs/theory.md §4.3):
   ///   r_q = q' − q̇(q, v),  r_v = M v' + Gᵀλ − (h + Q),  r_λ = G v' + c + 2αĊ + α²C.
   void dae_residual(double t, const double* q, const double* v, const double* qp, const double* vp,
                     const double* lambda, double* r);

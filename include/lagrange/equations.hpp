@@ -1,5 +1,5 @@
 #pragma once
-// Derived equations of motion (DESIGN.md §4.1–4.3), symbolic in the parameters.
+// Derived equations of motion (docs/theory.md §4.1–4.3), symbolic in the parameters.
 
 #include <ginac/ginac.h>
 
@@ -10,7 +10,7 @@
 
 namespace lagrange {
 
-/// State layout and kinematics q̇ = K(q) v (DESIGN.md §2): the model's plain coordinates
+/// State layout and kinematics q̇ = K(q) v (docs/theory.md §2): the model's plain coordinates
 /// first (q̇ = v), then each free body's r, R (9 entries) and ṙ, ω (body frame) (§4.4).
 struct Kinematics {
   const Model* model = nullptr;
@@ -25,12 +25,12 @@ struct Kinematics {
 };
 
 /// The kinematics of a model: plain coordinates, then free bodies with
-/// Ṙ = R(Ω + Ξ), Ξ = (γ/2)((RᵀR)⁻¹ − 1) (DESIGN.md §4.4).
+/// Ṙ = R(Ω + Ξ), Ξ = (γ/2)((RᵀR)⁻¹ − 1) (docs/theory.md §4.4).
 Kinematics kinematics(const Model& model);
 
 /// The equations of motion of a model in the form
 ///   M(q,t) a = h(q,v,t) + Q(q,v,t) − Gᵀλ,   C(q,t) = 0,   C̈ = G a + c,
-/// with state (q, v), q̇ = qdot(q, v) (DESIGN.md §2), all symbolic in (t, q, v, u, u̇, ü, p).
+/// with state (q, v), q̇ = qdot(q, v) (docs/theory.md §2), all symbolic in (t, q, v, u, u̇, ü, p).
 struct Equations {
   const Model* model = nullptr;  ///< the model these were derived from (symbols live there)
   Kinematics kin;                ///< state layout, q̇ = K(q) v
@@ -61,7 +61,7 @@ struct Equations {
 };
 
 /// Derive the equations of motion of `model`: particles and point masses through point
-/// Jacobians (M = Σ m JᵀJ, DESIGN.md §8), user energies through ∂²L/∂v∂vᵀ (§4.1), forces and
+/// Jacobians (M = Σ m JᵀJ, docs/theory.md §8), user energies through ∂²L/∂v∂vᵀ (§4.1), forces and
 /// dampers by virtual work (§4.2), constraints twice differentiated (§4.3).
 Equations derive(const Model& model);
 

@@ -58,7 +58,7 @@ struct Particle {
   SourceLoc loc;
 };
 
-/// A world-frame force applied at a point; turned into Q by virtual work (DESIGN.md §4.2).
+/// A world-frame force applied at a point; turned into Q by virtual work (docs/theory.md §4.2).
 struct PointForce {
   std::string point;
   Vec3 force;
@@ -79,7 +79,7 @@ struct Damper {
   SourceLoc loc;
 };
 
-/// A rigid body (DESIGN.md §4.4). Free bodies own their coordinates: q ⊃ r (3) and the nine
+/// A rigid body (docs/theory.md §4.4). Free bodies own their coordinates: q ⊃ r (3) and the nine
 /// entries of R (row-major), v ⊃ ṙ (3) and the body-frame ω (3). Posed bodies follow
 /// `position` and `rotation`, expressions of the model's coordinates and t.
 struct Body {
@@ -108,7 +108,7 @@ struct Body {
 };
 
 /// A torque on a body, in the world frame or the body frame; enters by virtual power
-/// τ·ω (DESIGN.md §4.2, §4.4: F_rot = 2P(F_R)).
+/// τ·ω (docs/theory.md §4.2, §4.4: F_rot = 2P(F_R)).
 struct BodyTorque {
   std::string body;
   Vec3 torque;
@@ -123,11 +123,11 @@ struct NamedExpr {
   SourceLoc loc;
 };
 
-/// Constraint stabilisation settings (DESIGN.md §4.3).
+/// Constraint stabilisation settings (docs/theory.md §4.3).
 struct Stabilization {
   double alpha = 20.0;  ///< Baumgarte: both eigenvalues of the constraint error at −α
   bool project = true;  ///< project onto C = 0, Ċ = 0 after each output step
-  double gamma = 1.0;   ///< SO(3) orthonormality drift correction rate (DESIGN.md §4.4)
+  double gamma = 1.0;   ///< SO(3) orthonormality drift correction rate (docs/theory.md §4.4)
   SourceLoc loc;
 };
 
@@ -175,7 +175,7 @@ struct Model {
 
   /// Total time derivative d/dt of an expression in (t, q, v, u, u̇, p):
   /// Σ ∂e/∂q v + ∂e/∂v a + ∂e/∂u u̇ + ∂e/∂u̇ ü + ∂e/∂t, with ṙ, ω̇ and Ṙ = RΩ for free bodies
-  /// (DESIGN.md §4.4). Fails (std::logic_error) on q̈, ü and body accelerations.
+  /// (docs/theory.md §4.4). Fails (std::logic_error) on q̈, ü and body accelerations.
   GiNaC::ex time_derivative(const GiNaC::ex& e) const;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The YAML model reader (DESIGN.md §5): file → Model, with file:line:column errors.
+// The YAML model reader (docs/model-language.md): file → Model, with file:line:column errors.
 
 #include <string>
 

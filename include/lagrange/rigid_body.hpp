@@ -1,5 +1,5 @@
 #pragma once
-// Rigid-body helpers (DESIGN.md §4.4, §4.8): inertia of shapes, the parallel-axis theorem,
+// Rigid-body helpers (docs/theory.md §4.4, §4.8): inertia of shapes, the parallel-axis theorem,
 // physical-inertia checks and initial orientations.
 
 #include <array>

@@ -46,7 +46,7 @@ class Tape {
   /// Const c; Input in[a]; Sum Σᵢ coeffs_[a+i]·r[args_[a+i]] (i < b), then + c if c ≠ 0;
   /// Prod c·Πᵢ r[args_[a+i]]; PowInt r[a]^c by repeated multiplication (1/… if c < 0);
   /// Div, Pow, Atan2 of (r[a], r[b]); unary ops of r[a]. SumProd is the fused sum of
-  /// products of DESIGN.md §8: b terms starting at args_[a], each stored as its factor count
+  /// products of docs/theory.md §8: b terms starting at args_[a], each stored as its factor count
   /// k = args_[p], coefficient coeffs_[p] and factor registers args_[p+1 … p+k]; the value is
   /// Σ coeff·r[f₁]·…·r[f_k] (left to right), then + c if c ≠ 0.
   // clang-format off

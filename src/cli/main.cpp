@@ -1,4 +1,4 @@
-// The `lagrange` command (DESIGN.md §6): derive, simulate, export, check.
+// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>

@@ -96,7 +96,7 @@ class FactorCollector : public GiNaC::map_function {
     return ex(GiNaC::dynallocate<GiNaC::mul>(std::move(parts)));
   }
 
-  /// Σ cᵢ·aᵢ·X + rest → X·Σ cᵢ·aᵢ + rest (DESIGN.md §8): each term a·X, a a plain symbol
+  /// Σ cᵢ·aᵢ·X + rest → X·Σ cᵢ·aᵢ + rest (docs/theory.md §8): each term a·X, a a plain symbol
   /// factor, joins the remainder X shared by the most terms; single-member groups stay as
   /// they were. Cost: O(terms · factors²) hashing, GiNaC objects only for rewritten groups.
   static ex group_sum(const GiNaC::add& s) {

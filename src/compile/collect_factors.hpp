@@ -1,5 +1,5 @@
 #pragma once
-// GiNaC-level rewrite Σᵢ cᵢ·aᵢ·X → X·(Σᵢ cᵢ·aᵢ) applied before a tape is emitted (DESIGN.md §8).
+// GiNaC-level rewrite Σᵢ cᵢ·aᵢ·X → X·(Σᵢ cᵢ·aᵢ) applied before a tape is emitted (docs/theory.md §8).
 
 #include <ginac/ginac.h>
 

@@ -1,7 +1,7 @@
 #pragma once
 // SSA construction of a tape with constant folding and value numbering, then dead-code
 // elimination and register allocation. Used by both Tape::compile and Tape::specialize, so
-// compile-time and specialisation-time folding follow the same rules (DESIGN.md §8).
+// compile-time and specialisation-time folding follow the same rules (docs/theory.md §8).
 
 #include <cstdint>
 #include <string>

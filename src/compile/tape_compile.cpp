@@ -119,7 +119,7 @@ class ExprCompiler {
   }
 
   /// The factors of a sum's term rest: a once-used product is spliced into the sum (the fused
-  /// sum of products of DESIGN.md §8), anything else is one factor.
+  /// sum of products of docs/theory.md §8), anything else is one factor.
   Term term(const ex& rest, const ex& coeff) {
     Term t{to_double(coeff), {}};
     if (GiNaC::is_a<GiNaC::mul>(rest) && uses_[rest] <= 1 && !memo_.count(rest)) {

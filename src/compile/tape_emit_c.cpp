@@ -1,5 +1,5 @@
 // Tape::to_c: the tape as C99, one statement per instruction, with eval's operation order so
-// that the compiled C and the interpreter agree bit for bit (DESIGN.md §8: tape-as-C compiles
+// that the compiled C and the interpreter agree bit for bit (docs/theory.md §8: tape-as-C compiles
 // in seconds where C of the raw expressions takes minutes).
 
 #include <fmt/format.h>

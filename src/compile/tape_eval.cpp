@@ -1,4 +1,4 @@
-// Tape::eval: the switch-dispatch interpreter (DESIGN.md §8: ~2–3 ns per instruction).
+// Tape::eval: the switch-dispatch interpreter (docs/theory.md §8: ~2–3 ns per instruction).
 
 #include "compile/tape_code.hpp"
 #include "lagrange/tape.hpp"

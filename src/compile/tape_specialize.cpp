@@ -1,4 +1,4 @@
-// Tape::specialize: constant folding on the tape itself (DESIGN.md §8: linear in tape size,
+// Tape::specialize: constant folding on the tape itself (docs/theory.md §8: linear in tape size,
 // instead of GiNaC subs on the expression DAG).
 
 #include <fmt/format.h>

@@ -84,7 +84,7 @@ void Dynamics::set_parameters(const std::vector<double>& values) {
         fmt::format("expected {} parameter values, got {}", cm.np, values.size()));
   params_ = values;
   std::copy(params_.begin(), params_.end(), in_.begin() + static_cast<long>(cm.p_offset()));
-  // DESIGN.md §8: specialise the tapes to the parameter values by constant folding.
+  // docs/theory.md §8: specialise the tapes to the parameter values by constant folding.
   dyn_ = cm.dynamics.specialize(cm.p_offset(), params_);
   obs_ = cm.observables.specialize(cm.p_offset(), params_);
   sig_ = cm.inputs.specialize(cm.p_offset(), params_);
@@ -148,7 +148,7 @@ void Dynamics::fail_redundant(double t) const {
                                qr.rank(), cm.m, names));
 }
 
-// DESIGN.md §4.3, range-space solution of the KKT system:
+// docs/theory.md §4.3, range-space solution of the KKT system:
 //   a₀ = M⁻¹(h + Q), Y = M⁻¹Gᵀ, (G Y) λ = G a₀ − γ, a = a₀ − Y λ,  γ = −c − 2αĊ − α²C.
 // When M alone is singular (a coordinate whose inertia only the constraints supply) the
 // whole symmetric KKT matrix is factorised instead.
@@ -208,7 +208,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   }
 }
 
-// [M Gᵀ; G 0][a; λ] = [h + Q; γ] by LU with partial pivoting (DESIGN.md §4.3).
+// [M Gᵀ; G 0][a; λ] = [h + Q; γ] by LU with partial pivoting (docs/theory.md §4.3).
 void Dynamics::solve_full_kkt(double t) {
   const CompiledModel& cm = *model_;
   const long n = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);

@@ -18,7 +18,7 @@ double max_abs(const double* x, size_t n) {
 
 }  // namespace
 
-// DESIGN.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
+// docs/theory.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
 // free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation (∂C/∂q) Δq = −C),
 // then the minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free
 // body's R moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back.

@@ -9,7 +9,7 @@
 
 namespace lagrange::dynamics {
 
-/// Range-space KKT solve when M is diagonal (DESIGN.md §4.3):
+/// Range-space KKT solve when M is diagonal (docs/theory.md §4.3):
 ///   S = G M⁻¹ Gᵀ (sparse, pattern fixed at construction), S λ = G M⁻¹(h + Q) − γ,
 ///   a = M⁻¹(h + Q − Gᵀ λ).
 /// S is factorised by an envelope Cholesky in the constraints' natural order, so the cost per

@@ -57,7 +57,7 @@ void print_row(const Equations& eq, size_t i, Style style, const LineSink& line)
 void print_free_body(const Equations& eq, const Body& b, Style style, const HeadingSink& heading,
                      const LineSink& line) {
   const bool tex = style == Style::Latex;
-  heading(fmt::format("Rigid body '{}': free in SO(3) (DESIGN.md 4.4)", b.name));
+  heading(fmt::format("Rigid body '{}': free in SO(3) (docs/theory.md §4.4)", b.name));
   print_inertia(b, style, line);
   heading(tex ? "translation: m \\ddot r + \\partial V/\\partial r = F_r - (\\partial C/\\partial "
                 "r)^T \\lambda"
@@ -83,11 +83,11 @@ void print_free_body(const Equations& eq, const Body& b, Style style, const Head
   }
 }
 
-// DESIGN.md §4.4: ω = unskew(RᵀṘ), T = ½ m |ẋ_c|² + ½ ωᵀ I ω.
+// docs/theory.md §4.4: ω = unskew(RᵀṘ), T = ½ m |ẋ_c|² + ½ ωᵀ I ω.
 void print_posed_body(const Equations& eq, const Body& b, Style style, const HeadingSink& heading,
                       const LineSink& line) {
   const Model& model = *eq.model;
-  heading(fmt::format("Rigid body '{}': posed by coordinates (DESIGN.md 4.4)", b.name));
+  heading(fmt::format("Rigid body '{}': posed by coordinates (docs/theory.md §4.4)", b.name));
   print_inertia(b, style, line);
   const Mat3& R = b.rotation;
   Mat3 Rd;

@@ -28,7 +28,7 @@ using HeadingSink = std::function<void(const std::string&)>;
 /// Writes one equation lhs = rhs.
 using LineSink = std::function<void(const std::string&, const std::string&)>;
 
-/// Each rigid body's equations in the seed's form (DESIGN.md §4.4): for a free body
+/// Each rigid body's equations in the seed's form (docs/theory.md §4.4): for a free body
 /// m r̈ + ∂V/∂r = F_r − (∂C/∂r)ᵀλ, J ω̇ + ω × Jω + 2P(∂V/∂R) = F_rot − 2P(∂C/∂R)ᵀλ and
 /// Ṙ = R(Ω + Ξ); for a posed body its pose, ω = unskew(RᵀṘ) and its kinetic energy.
 void print_body_equations(const Equations& eq, Style style, const HeadingSink& heading,

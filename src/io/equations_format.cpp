@@ -34,7 +34,7 @@ std::string format_text(const Equations& eq, Style style) {
   };
   auto multiplier = [&](size_t r) { return io::multiplier_str(model.constraints[r].name, style); };
   // Constraint rates are shown on SO(3), where the drift correction Ξ vanishes (γ → 0); the
-  // tape keeps the full expressions (DESIGN.md §4.4).
+  // tape keeps the full expressions (docs/theory.md §4.4).
   auto on_manifold = [&](const GiNaC::ex& e) {
     return eq.kin.has_gamma ? e.subs(eq.kin.gamma == 0) : e;
   };

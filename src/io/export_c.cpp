@@ -21,7 +21,7 @@ std::string pattern_array(const char* name, const std::vector<std::pair<size_t, 
       cols);
 }
 
-// The dense range-space KKT solve of DESIGN.md §4.3 in plain C (Cholesky of M, then of
+// The dense range-space KKT solve of docs/theory.md §4.3 in plain C (Cholesky of M, then of
 // G M⁻¹ Gᵀ), mirroring Dynamics::forward.
 const char* kSolverC = R"C(
 /* Cholesky factorisation in place (lower triangle of A, n×n row-major); 1 when not SPD. */

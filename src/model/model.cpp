@@ -39,7 +39,7 @@ GiNaC::ex Model::time_derivative(const GiNaC::ex& e) const {
     if (e.has(c.a)) throw std::logic_error("time derivative of an acceleration is not supported");
     d += e.diff(c.q) * c.v + e.diff(c.v) * c.a;
   }
-  for (const auto& b : bodies) {  // ṙ, and Ṙ = RΩ on SO(3) (DESIGN.md §4.4)
+  for (const auto& b : bodies) {  // ṙ, and Ṙ = RΩ on SO(3) (docs/theory.md §4.4)
     if (!b.free) continue;
     for (size_t k = 0; k < 3; ++k) {
       if (e.has(b.rdd[k]) || e.has(b.wd[k]))

@@ -109,7 +109,7 @@ class ModelReader {
   void read_springs(const YAML::Node& node);
   void read_dampers(const YAML::Node& node);
   std::pair<std::string, std::string> read_between(const YAML::Node& item, const std::string& what);
-  // read_bodies.cpp — rigid bodies and torques (DESIGN.md §4.4).
+  // read_bodies.cpp — rigid bodies and torques (docs/theory.md §4.4).
   void read_bodies(const YAML::Node& node);
   Body read_body(const std::string& name, const YAML::Node& key, const YAML::Node& spec);
   Mat3 read_inertia(const Body& body, const YAML::Node& spec);

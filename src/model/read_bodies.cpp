@@ -16,7 +16,7 @@ void ModelReader::read_bodies(const YAML::Node& node) {
   }
 }
 
-// DESIGN.md §4.4: a free body owns r ∈ R³, R ∈ SO(3) and ṙ, ω; a posed body follows
+// docs/theory.md §4.4: a free body owns r ∈ R³, R ∈ SO(3) and ṙ, ω; a posed body follows
 // position and rotation, expressions of the other coordinates.
 Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
                             const YAML::Node& spec) {
@@ -98,7 +98,7 @@ Mat3 ModelReader::read_inertia(const Body& body, const YAML::Node& spec) {
   return matrix_expr(node, kParams, what);
 }
 
-// DESIGN.md §4.8: box I_xx = m(b² + c²)/12 (cyclic), cylinder along z, solid sphere.
+// docs/theory.md §4.8: box I_xx = m(b² + c²)/12 (cyclic), cylinder along z, solid sphere.
 Mat3 ModelReader::read_shape(const Body& body, const YAML::Node& shape) {
   const std::string what = fmt::format("shape of body '{}'", body.name);
   check_keys(shape, {"box", "cylinder", "sphere"}, what);
@@ -145,7 +145,7 @@ void ModelReader::read_body_points(Body& body, const YAML::Node& node) {
   }
 }
 
-// Torques by virtual power τ·ω (DESIGN.md §4.4: F_rot = 2P(F_R)).
+// Torques by virtual power τ·ω (docs/theory.md §4.4: F_rot = 2P(F_R)).
 void ModelReader::read_torques(const YAML::Node& node) {
   expect_seq(node, "torques (a list of {body, torque, frame})");
   for (const auto& item : node) {

@@ -26,7 +26,7 @@ std::array<double, 3> ModelReader::numeric_vector(const YAML::Node& node,
   return out;
 }
 
-// DESIGN.md §4.4: q₀ ⊃ r₀, R₀ (row-major); v₀ ⊃ ṙ₀ (world frame) and ω₀ (body frame).
+// docs/theory.md §4.4: q₀ ⊃ r₀, R₀ (row-major); v₀ ⊃ ṙ₀ (world frame) and ω₀ (body frame).
 void ModelReader::read_free_initial(Body& body, const YAML::Node& node) {
   const std::string what = fmt::format("the initial state of body '{}'", body.name);
   check_keys(node, {"position", "orientation", "velocity", "omega"}, what);

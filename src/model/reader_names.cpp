@@ -167,7 +167,7 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
   return std::nullopt;
 }
 
-// DESIGN.md §4.4: `body.r` is the origin r (free: its symbols; posed: its position), `body.R`
+// docs/theory.md §4.4: `body.r` is the origin r (free: its symbols; posed: its position), `body.R`
 // the rotation body → world. Points `body.p` are declared names (NameKind::BodyPoint).
 std::optional<Value> ModelReader::body_member(const std::string& name, size_t offset,
                                               unsigned allowed) const {

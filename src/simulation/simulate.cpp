@@ -86,7 +86,7 @@ class RowWriter {
   std::vector<double> obs_, qdot_, a_, lambda_, C_, Cdot_;
 };
 
-// Initial state: check C = 0 and Ċ = 0, project if needed (DESIGN.md §4.3) and say what moved.
+// Initial state: check C = 0 and Ċ = 0, project if needed (docs/theory.md §4.3) and say what moved.
 void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<double>& q,
                      std::vector<double>& v, Trajectory& traj) {
   const CompiledModel& cm = dyn.model();
@@ -181,7 +181,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   last.q.resize(nq);
   last.v.resize(nv);
   last.a.resize(nv);
-  // At each output sample: check the state is finite, project drift away (DESIGN.md §4.3),
+  // At each output sample: check the state is finite, project drift away (docs/theory.md §4.3),
   // record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;

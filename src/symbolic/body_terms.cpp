@@ -29,7 +29,7 @@ bool is_zero(const Vec3& v) {
 
 }  // namespace
 
-// DESIGN.md §4.4: Ω = RᵀṘ, ω = U(Ω) = ½(Ω₃₂ − Ω₂₃, Ω₁₃ − Ω₃₁, Ω₂₁ − Ω₁₂).
+// docs/theory.md §4.4: Ω = RᵀṘ, ω = U(Ω) = ½(Ω₃₂ − Ω₂₃, Ω₁₃ − Ω₃₁, Ω₂₁ − Ω₁₂).
 Vec3 body_angular_velocity(const Kinematics& kin, const Body& body) {
   if (body.free) return {body.w[0], body.w[1], body.w[2]};
   const Mat3 R = body.rotation;
@@ -43,7 +43,7 @@ Vec3 body_angular_velocity(const Kinematics& kin, const Body& body) {
           simplify((Omega(1, 0) - Omega(0, 1)) / 2)};
 }
 
-// DESIGN.md §4.4 by virtual power (Kane's form): with the centre of mass x_c = r + R c,
+// docs/theory.md §4.4 by virtual power (Kane's form): with the centre of mass x_c = r + R c,
 // J_c = ∂ẋ_c/∂v, b_c = dẋ_c/dt at a = 0, J_ω = ∂ω/∂v and α_b = dω/dt at a = 0,
 //   M += m J_cᵀJ_c + J_ωᵀ I J_ω,   h += m J_cᵀ(g − b_c) − J_ωᵀ(I α_b + ω × Iω).
 // For a free body J_ω selects ω and α_b = 0, which gives J ω̇ + ω × Jω = F_rot; forces on
@@ -92,7 +92,7 @@ void add_body_terms(const Kinematics& kin, MechanicalTerms& terms) {
         if (i != j) terms.M(j, i) += mij;
       }
     }
-    // Torques by virtual power τ·ω_world = (Rᵀτ)·ω (DESIGN.md §4.4: F_rot = 2P(F_R)).
+    // Torques by virtual power τ·ω_world = (Rᵀτ)·ω (docs/theory.md §4.4: F_rot = 2P(F_R)).
     for (const auto& tq : model.torques) {
       if (tq.body != body.name) continue;
       for (const auto& e : tq.torque)

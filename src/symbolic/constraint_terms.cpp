@@ -4,7 +4,7 @@
 
 namespace lagrange::symbolic {
 
-// DESIGN.md §4.3, index reduction: Ċ = Σⱼ ∂C/∂qⱼ q̇ⱼ + ∂ₜC, G = ∂Ċ/∂v (for q̇ = v this is
+// docs/theory.md §4.3, index reduction: Ċ = Σⱼ ∂C/∂qⱼ q̇ⱼ + ∂ₜC, G = ∂Ċ/∂v (for q̇ = v this is
 // ∂C/∂q; for a free body's ω it is the row 2P(∂C/∂R) of §4.4), C̈ = G a + c with
 // c = dĊ/dt at a = 0. ∂C/∂q is kept for the position projection.
 void add_constraint_terms(const Kinematics& kin, Equations& eq) {

@@ -23,7 +23,7 @@ GiNaC::ex spring_potential(const Model& model) {
 
 }  // namespace
 
-// DESIGN.md §4.1: M = ∂²L/∂v∂vᵀ, h = ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂ₜ(∂L/∂v) over the plain
+// docs/theory.md §4.1: M = ∂²L/∂v∂vᵀ, h = ∂L/∂q − (∂²L/∂v∂qᵀ) v − ∂ₜ(∂L/∂v) over the plain
 // coordinates; for free-body coordinates h −= Kᵀ ∂U/∂q (§4.4, the 2P(∂U/∂R) rows).
 void add_energy_terms(const Kinematics& kin, MechanicalTerms& terms) {
   const Model& model = *kin.model;

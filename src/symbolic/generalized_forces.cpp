@@ -14,7 +14,7 @@ const Point& lookup(const Model& model, const std::string& name, const SourceLoc
 
 }  // namespace
 
-// DESIGN.md §4.2: a force F at x(q) gives Q = JᵀF with J = ∂ẋ/∂v; a damper with rate ḋ of
+// docs/theory.md §4.2: a force F at x(q) gives Q = JᵀF with J = ∂ẋ/∂v; a damper with rate ḋ of
 // the distance d between its points gives Q = −c ḋ ∂ḋ/∂v (Rayleigh D = ½ c ḋ²).
 void add_generalized_forces(const Kinematics& kin, MechanicalTerms& terms) {
   const Model& model = *kin.model;

@@ -16,7 +16,7 @@ using SparseGradient = std::vector<std::pair<size_t, GiNaC::ex>>;
 
 /// Gradients of sums are sums of their terms' gradients, and terms are memoised by value, so
 /// that a chain point (its parent's terms plus one link) costs O(1) new differentiations:
-/// DESIGN.md §8, "build each point's Jacobian from its parent's" — O(N²) for N-link chains.
+/// docs/theory.md §8, "build each point's Jacobian from its parent's" — O(N²) for N-link chains.
 class GradientCache {
  public:
   explicit GradientCache(const Kinematics& kin);

@@ -9,7 +9,7 @@ Mat3 skew(const Vec3& w) {
   return {Vec3{0, -w[2], w[1]}, Vec3{w[2], 0, -w[0]}, Vec3{-w[1], w[0], 0}};
 }
 
-// DESIGN.md §4.4: Ξ = (γ/2)((RᵀR)⁻¹ − 1), with (RᵀR)⁻¹ = adj(S)/det(S) for S = RᵀR.
+// docs/theory.md §4.4: Ξ = (γ/2)((RᵀR)⁻¹ − 1), with (RᵀR)⁻¹ = adj(S)/det(S) for S = RᵀR.
 Mat3 drift_correction(const Mat3& R, const GiNaC::ex& gamma) {
   Mat3 S;
   for (size_t i = 0; i < 3; ++i)

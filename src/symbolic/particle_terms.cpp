@@ -26,7 +26,7 @@ Vec3 vec_of(const GiNaC::ex& key, size_t offset = 0) {
 
 }  // namespace
 
-// DESIGN.md §8: M = Σₖ mₖ JₖᵀJₖ and h = Σₖ mₖ Jₖᵀ(g − bₖ). Columns of different particles
+// docs/theory.md §8: M = Σₖ mₖ JₖᵀJₖ and h = Σₖ mₖ Jₖᵀ(g − bₖ). Columns of different particles
 // that are the same expression (a chain point is its parent plus one link, so ∂x/∂θᵢ is
 // shared by every point below link i) are grouped: Mᵢⱼ = Σ_(cols) (Σ m)·(colᵢ·colⱼ) and
 // hᵢ = Σ_(col) col·(Σ m (g − b)), which keeps the expression size O(N²) for chains.

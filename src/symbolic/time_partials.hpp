@@ -1,5 +1,5 @@
 #pragma once
-// Time derivatives used throughout the derivation (DESIGN.md §2, §4.1, §4.3).
+// Time derivatives used throughout the derivation (docs/theory.md §2, §4.1, §4.3).
 
 #include <ginac/ginac.h>
 

@@ -92,7 +92,7 @@ TEST(Cli, DeriveShowsSeedEquation) {
   EXPECT_NE(json.output.find("\"M\""), std::string::npos);
 }
 
-// DESIGN.md §4.4: a free body's equations in the seed's form, a posed body's ω and T.
+// docs/theory.md §4.4: a free body's equations in the seed's form, a posed body's ω and T.
 TEST(Cli, DeriveShowsBodyEquations) {
   const Result top = run("derive " + example("heavy_top.yaml"));
   ASSERT_EQ(top.code, 0) << top.output;

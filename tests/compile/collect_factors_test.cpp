@@ -1,4 +1,4 @@
-// collect_common_factors: Σ mₖ·X → X·Σ mₖ (DESIGN.md §8), value unchanged.
+// collect_common_factors: Σ mₖ·X → X·Σ mₖ (docs/theory.md §8), value unchanged.
 
 #include "compile/collect_factors.hpp"
 

@@ -154,7 +154,7 @@ TEST(TapeCse, KnownInstructionCounts) {
   symbol x("x"), y("y"), z("z");
   // sin x·cos x + sin x: Input, Sin, Cos, one fused SumProd.
   EXPECT_EQ(Tape::compile({sin(x) * cos(x) + sin(x)}, {x}).num_instructions(), 4u);
-  // x·y + x·z → x·(y + z) (DESIGN.md §8): three Inputs, Sum, Prod.
+  // x·y + x·z → x·(y + z) (docs/theory.md §8): three Inputs, Sum, Prod.
   EXPECT_EQ(Tape::compile({x * y + x * z}, {x, y, z}).num_instructions(), 5u);
   // x/y: two Inputs and one Div, no separate Inv.
   EXPECT_EQ(Tape::compile({x / y}, {x, y}).num_instructions(), 3u);

@@ -1,4 +1,4 @@
-// Measured interpreter cost per instruction on the 10-link pendulum (DESIGN.md §8 expects
+// Measured interpreter cost per instruction on the 10-link pendulum (docs/theory.md §8 expects
 // ~2–3 ns); asserted only loosely so the test is robust on loaded machines.
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Forward dynamics never allocates (DESIGN.md §2: the integrator's right-hand side is
+// Forward dynamics never allocates (docs/theory.md §2: the integrator's right-hand side is
 // allocation-free). malloc is interposed in this test binary and counted around the calls.
 
 #include <gtest/gtest.h>

@@ -155,7 +155,7 @@ TEST(ExpressionParser, ErrorsCarryOffsets) {
   expect_errors(n, cases);
 }
 
-// 3×3 matrices: literals of three rows, rot_x/y/z, products, transpose (DESIGN.md §4.4).
+// 3×3 matrices: literals of three rows, rot_x/y/z, products, transpose (docs/theory.md §4.4).
 TEST(ExpressionParser, Matrices) {
   Names n;
   auto mat = [&](const std::string& text) {

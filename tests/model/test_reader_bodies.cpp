@@ -1,4 +1,4 @@
-// The bodies and torques sections (DESIGN.md §4.4): inertia forms, initial orientations, posed
+// The bodies and torques sections (docs/theory.md §4.4): inertia forms, initial orientations, posed
 // bodies, body points everywhere a point is accepted, and errors at file:line:column.
 
 #include <gtest/gtest.h>
@@ -43,7 +43,7 @@ TEST(ReaderBodies, FreeBodyWithShapeAndInitialState) {
   const Body& b = m.bodies[0];
   EXPECT_TRUE(b.free);
   EXPECT_TRUE(m.coordinates.empty());
-  // Box: I_xx = m(b² + c²)/12 and cyclic (DESIGN.md §4.8).
+  // Box: I_xx = m(b² + c²)/12 and cyclic (docs/theory.md §4.8).
   EXPECT_NEAR(value(m, b.inertia[0][0]), 2 * (0.04 + 0.01) / 12, 1e-15);
   EXPECT_NEAR(value(m, b.inertia[1][1]), 2 * (0.09 + 0.01) / 12, 1e-15);
   EXPECT_NEAR(value(m, b.inertia[2][2]), 2 * (0.09 + 0.04) / 12, 1e-15);
@@ -175,7 +175,7 @@ outputs:
   EXPECT_TRUE(m.potential.has(q2));
 }
 
-// For a free body, vel(body.p) = ṙ + R(ω × p) through Ṙ = RΩ (DESIGN.md §4.4).
+// For a free body, vel(body.p) = ṙ + R(ω × p) through Ṙ = RΩ (docs/theory.md §4.4).
 TEST(ReaderBodies, VelocityOfAFreeBodyPoint) {
   const Model m = read_model_string(kFree + "outputs:\n  v: vel(brick.corner)\n", "m.yaml");
   const Body& b = m.bodies[0];

@@ -1,5 +1,5 @@
 #pragma once
-// Rigid-body models built through the C++ model API (DESIGN.md §4.4), shared by the tests:
+// Rigid-body models built through the C++ model API (docs/theory.md §4.4), shared by the tests:
 // a free brick, a compound pendulum (SO(3) + pivot constraint, and planar with one angle) and
 // a heavy top (SO(3) + pivot constraint, and Euler angles with hand-written energies).
 

@@ -1,4 +1,4 @@
-// Rigid bodies read from model files (DESIGN.md §4.4): the bundled body examples against each
+// Rigid bodies read from model files (docs/theory.md §4.4): the bundled body examples against each
 // other and against the physics they illustrate, and torques and body-point elements from YAML.
 
 #include <fmt/format.h>

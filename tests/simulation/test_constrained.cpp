@@ -1,4 +1,4 @@
-// Constrained systems (DESIGN.md §4.3): multiplier oracles from seed 000, agreement between
+// Constrained systems (docs/theory.md §4.3): multiplier oracles from seed 000, agreement between
 // formulations, drift with and without stabilisation, projection of inconsistent states.
 
 #include <gtest/gtest.h>

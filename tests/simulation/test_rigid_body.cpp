@@ -1,4 +1,4 @@
-// Rigid bodies in SO(3) (DESIGN.md §4.4): conservation laws of a free body, the
+// Rigid bodies in SO(3) (docs/theory.md §4.4): conservation laws of a free body, the
 // intermediate-axis flip, orthonormality drift with and without the correction Ξ, a compound
 // pendulum in SO(3) against the same bar posed by one angle, and a heavy top against Euler angles.
 
@@ -93,7 +93,7 @@ std::vector<double> orthonormality_errors(testing::Loaded& sys, double gamma,
   return e;
 }
 
-// DESIGN.md §4.4: Ξ = (γ/2)((RᵀR)⁻¹ − 1) makes RᵀR − 1 decay like exp(−γ t), so R stays
+// docs/theory.md §4.4: Ξ = (γ/2)((RᵀR)⁻¹ − 1) makes RᵀR − 1 decay like exp(−γ t), so R stays
 // orthonormal; without it the integrator's error accumulates.
 TEST(RigidBody, OrthonormalityCorrectionKeepsRInSO3) {
   auto sys = load_model(testing::free_brick(2, 3, 4, {0.3, 5.0, 0.2}));

@@ -1,5 +1,5 @@
-// Inertia of shapes and the parallel-axis theorem against hand values (DESIGN.md §4.8), the
-// physical-inertia check naming the body, and initial orientations (DESIGN.md §4.4).
+// Inertia of shapes and the parallel-axis theorem against hand values (docs/theory.md §4.8), the
+// physical-inertia check naming the body, and initial orientations (docs/theory.md §4.4).
 
 #include <gtest/gtest.h>
 
