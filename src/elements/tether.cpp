@@ -100,9 +100,9 @@ std::vector<Num3> initial_shape(ModelReader& r, const Tether& t, const Num3& a, 
   std::vector<Num3> x(n + 1);
   const Num3 down = down_direction(r);
   if (b == nullptr) {
-    for (size_t j = 0; j <= n; ++j) x[j] = lerp(a, {a[0] + length * down[0], a[1] + length * down[1],
-                                                    a[2] + length * down[2]},
-                                                static_cast<double>(j) / n);
+    for (size_t j = 0; j <= n; ++j)
+      x[j] = lerp(a, {a[0] + length * down[0], a[1] + length * down[1], a[2] + length * down[2]},
+                  static_cast<double>(j) / n);
     return x;
   }
   const Num3 chord{(*b)[0] - a[0], (*b)[1] - a[1], (*b)[2] - a[2]};
@@ -224,8 +224,10 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
     t.mass_per_length = required_positive(r, spec, "mass_per_length", what, true);
     if (spec["drag"]) {
       const std::string drag = r.scalar(spec["drag"], "drag of " + what);
-      if (drag == "simple") t.drag = Tether::Drag::Simple;
-      else if (drag == "fine") t.drag = Tether::Drag::Fine;
+      if (drag == "simple")
+        t.drag = Tether::Drag::Simple;
+      else if (drag == "fine")
+        t.drag = Tether::Drag::Fine;
       else if (drag != "none")
         r.fail(spec["drag"], fmt::format("expected 'none', 'simple' or 'fine' for the drag of {}, "
                                          "got '{}'",
@@ -243,16 +245,16 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
     for (Winch& w : ctx.winches)
       if (w.tether == t.name) {
         if (winch != nullptr)
-          r.fail(w.key, fmt::format("expected one winch per tether, got a second one for {}",
-                                    what));
+          r.fail(w.key,
+                 fmt::format("expected one winch per tether, got a second one for {}", what));
         winch = &w;
         w.used = true;
       }
     double length0 = 0;
     if (winch != nullptr) {
       if (spec["length"])
-        r.fail(spec["length"], fmt::format("expected no 'length' in {}: winch '{}' sets it", what,
-                                           winch->name));
+        r.fail(spec["length"],
+               fmt::format("expected no 'length' in {}: winch '{}' sets it", what, winch->name));
       t.length = r.model().coordinates[winch->coordinate].q;
       t.variable_length = true;
       length0 = winch->initial;
@@ -265,8 +267,8 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
         r.fail(spec["length"], fmt::format("expected a positive length for {} at t = 0", what));
       length0 = *l0;
     }
-    if (t.variable_length && (depends_on_free_body(r.model(), a.pos) ||
-                              depends_on_free_body(r.model(), b.pos)))
+    if (t.variable_length &&
+        (depends_on_free_body(r.model(), a.pos) || depends_on_free_body(r.model(), b.pos)))
       r.fail(between, fmt::format("expected ends of {} that are not points of free bodies: a "
                                   "tether of varying length is written through its kinetic "
                                   "energy, which may not use a free body's coordinates",
@@ -296,8 +298,8 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       }
       Vec3 pos;
       for (size_t k = 0; k < 3; ++k)
-        pos[k] = r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k], 0.0, kv.first)
-                     .q;
+        pos[k] =
+            r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k], 0.0, kv.first).q;
       r.add_point(name, pos, kv.first);
       t.nodes.push_back(name);
     }
@@ -337,8 +339,8 @@ void add_variable_length_energy(ModelReader& r, const Tether& t) {
   if (!t.full) {
     const GiNaC::ex mj = t.mass_per_length * t.length / (N + 1);
     for (size_t j = 0; j <= n; ++j) {
-      const Vec3 v = material_velocity(m, r_j[j], ldot, static_cast<double>(j) / n,
-                                       tangent(j == 0 ? 1 : j));
+      const Vec3 v =
+          material_velocity(m, r_j[j], ldot, static_cast<double>(j) / n, tangent(j == 0 ? 1 : j));
       T += mj / 2 * dot3(v, v);
       U -= mj * dot3(g, r_j[j]);
     }
@@ -389,8 +391,10 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
     const size_t n = t.segments;
     const GiNaC::ex seg = t.length / GiNaC::numeric(static_cast<int>(n));
     const SourceLoc loc = r.source().at(t.node);
-    if (t.variable_length) add_variable_length_energy(r, t);
-    else add_constant_length_masses(r, t);
+    if (t.variable_length)
+      add_variable_length_energy(r, t);
+    else
+      add_constant_length_masses(r, t);
     // docs/theory.md §4.5: Cⱼ = ½(|rⱼ − rⱼ₋₁|² − (ℓ/N)²); the segment's tension is λⱼ ℓ/N.
     for (size_t j = 1; j <= n; ++j) {
       const Vec3 d = sub(m.find_point(t.nodes[j])->pos, m.find_point(t.nodes[j - 1])->pos);

@@ -15,10 +15,10 @@ struct Tether {
   size_t segments = 1;
   bool full = false;  ///< full model: each segment a uniform rod; else lumped node masses
   enum class Drag { None, Simple, Fine } drag = Drag::None;
-  GiNaC::ex length;           ///< ℓ: constant, ℓ(t) or a winch's coordinate
+  GiNaC::ex length;  ///< ℓ: constant, ℓ(t) or a winch's coordinate
   bool variable_length = false;
   GiNaC::ex mass_per_length, diameter = 0, cd = GiNaC::numeric(6, 5), air_density;
-  GiNaC::ex damping = 0;      ///< viscous damping per unit length, N·s/m² (on node velocities)
+  GiNaC::ex damping = 0;  ///< viscous damping per unit length, N·s/m² (on node velocities)
   std::vector<std::string> nodes;  ///< point names of r₀ … r_N
   YAML::Node node;                 ///< the tether's map, for locations
 };

@@ -20,12 +20,11 @@ void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx
     const YAML::Node& spec = kv.second;
     r.expect_map(spec, what + " (a map {tether, radius, inertia, …})");
     r.check_keys(spec,
-                 {"tether", "radius", "inertia", "total_length", "initial", "torque",
-                  "reeled_out"},
+                 {"tether", "radius", "inertia", "total_length", "initial", "torque", "reeled_out"},
                  what);
     if (!spec["tether"])
-      r.fail(kv.first, fmt::format("expected 'tether' (the tether it reels) in {}, got none",
-                                   what));
+      r.fail(kv.first,
+             fmt::format("expected 'tether' (the tether it reels) in {}, got none", what));
     w.tether = r.scalar(spec["tether"], "tether of " + what);
     auto positive = [&](const char* key, bool strict) {
       if (!spec[key]) r.fail(kv.first, fmt::format("expected '{}' in {}, got none", key, what));
@@ -98,16 +97,16 @@ void lower_winches(ModelReader& r, ElementContext& ctx) {
     if (tether == nullptr) {
       std::string names;
       for (const Tether& t : ctx.tethers) names += (names.empty() ? "" : ", ") + t.name;
-      r.fail(w.node["tether"], fmt::format("expected the name of a tether for {}, got '{}' "
-                                           "(tethers: {})",
-                                           what, model::clip(w.tether),
-                                           names.empty() ? "none" : names));
+      r.fail(w.node["tether"],
+             fmt::format("expected the name of a tether for {}, got '{}' "
+                         "(tethers: {})",
+                         what, model::clip(w.tether), names.empty() ? "none" : names));
     }
     const Coordinate& c = m.coordinates[w.coordinate];
     const SourceLoc loc = r.source().at(w.key);
     const GiNaC::ex stored = w.total_length.is_zero() ? GiNaC::ex(0) : w.total_length - c.q;
-    m.kinetic += (w.inertia / (w.radius * w.radius) + tether->mass_per_length * stored) / 2 * c.v *
-                 c.v;
+    m.kinetic +=
+        (w.inertia / (w.radius * w.radius) + tether->mass_per_length * stored) / 2 * c.v * c.v;
     m.outputs.push_back(NamedExpr{w.name + ".speed", c.v, loc});
     m.outputs.push_back(NamedExpr{w.name + ".angle", c.q / w.radius, loc});
     if (w.torque || w.node["torque"]) {

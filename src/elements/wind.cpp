@@ -58,16 +58,18 @@ void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContex
   using model::kParams;
   using model::kTime;
   reader.expect_map(node, "wind (a map {profile, speed, direction, …})");
-  reader.check_keys(node,
-                    {"profile", "speed", "direction", "reference_height", "roughness", "exponent",
-                     "gust"},
-                    "wind");
+  reader.check_keys(
+      node, {"profile", "speed", "direction", "reference_height", "roughness", "exponent", "gust"},
+      "wind");
   Wind w;
   const std::string profile =
       node["profile"] ? reader.scalar(node["profile"], "wind profile") : "uniform";
-  if (profile == "uniform") w.profile = Wind::Profile::Uniform;
-  else if (profile == "logarithmic") w.profile = Wind::Profile::Logarithmic;
-  else if (profile == "power_law") w.profile = Wind::Profile::PowerLaw;
+  if (profile == "uniform")
+    w.profile = Wind::Profile::Uniform;
+  else if (profile == "logarithmic")
+    w.profile = Wind::Profile::Logarithmic;
+  else if (profile == "power_law")
+    w.profile = Wind::Profile::PowerLaw;
   else
     reader.fail(node["profile"],
                 fmt::format("expected 'uniform', 'logarithmic' or 'power_law' for the wind "
@@ -77,9 +79,9 @@ void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContex
   w.speed = reader.scalar_expr(node["speed"], kParams, "wind speed");
   reader.check_sign(w.speed, node["speed"], false, "wind speed");
   if (node["direction"])
-    w.direction = unit(reader, node["direction"],
-                       reader.vector_expr(node["direction"], kParams, "wind direction"),
-                       "wind direction");
+    w.direction =
+        unit(reader, node["direction"],
+             reader.vector_expr(node["direction"], kParams, "wind direction"), "wind direction");
   const Model& m = reader.model();
   if (m.gravity) {
     const Vec3& g = *m.gravity;
@@ -94,8 +96,7 @@ void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContex
   if (node["reference_height"]) {
     w.reference_height =
         reader.scalar_expr(node["reference_height"], kParams, "wind reference height");
-    reader.check_sign(w.reference_height, node["reference_height"], true,
-                      "wind reference height");
+    reader.check_sign(w.reference_height, node["reference_height"], true, "wind reference height");
   }
   if (node["roughness"]) {
     w.roughness = reader.scalar_expr(node["roughness"], kParams, "wind roughness length z0");
