@@ -316,8 +316,8 @@ namespace {
 
 // docs/theory.md §4.5–4.6: the material velocity of the tether at node j, for a tether reeled
 // out at the first end with speed ℓ̇: v = ṙⱼ + ℓ̇ (1 − j/N) t̂, t̂ the unit tangent of the segment.
-Vec3 material_velocity(const Model& m, const Vec3& pos, const GiNaC::ex& ldot, double frac,
-                       const Vec3& tangent) {
+Vec3 material_velocity(const Model& m, const Vec3& pos, const GiNaC::ex& ldot,
+                       const GiNaC::ex& frac, const Vec3& tangent) {
   Vec3 v;
   for (size_t k = 0; k < 3; ++k) v[k] = m.time_derivative(pos[k]) + ldot * (1 - frac) * tangent[k];
   return v;
@@ -339,8 +339,9 @@ void add_variable_length_energy(ModelReader& r, const Tether& t) {
   if (!t.full) {
     const GiNaC::ex mj = t.mass_per_length * t.length / (N + 1);
     for (size_t j = 0; j <= n; ++j) {
-      const Vec3 v =
-          material_velocity(m, r_j[j], ldot, static_cast<double>(j) / n, tangent(j == 0 ? 1 : j));
+      const Vec3 v = material_velocity(m, r_j[j], ldot,
+                                       GiNaC::numeric(static_cast<int>(j), static_cast<int>(n)),
+                                       tangent(j == 0 ? 1 : j));
       T += mj / 2 * dot3(v, v);
       U -= mj * dot3(g, r_j[j]);
     }
@@ -348,8 +349,10 @@ void add_variable_length_energy(ModelReader& r, const Tether& t) {
     const GiNaC::ex ms = t.mass_per_length * t.length / N;
     for (size_t j = 1; j <= n; ++j) {
       const Vec3 tj = tangent(j);
-      const Vec3 va = material_velocity(m, r_j[j - 1], ldot, static_cast<double>(j - 1) / n, tj);
-      const Vec3 vb = material_velocity(m, r_j[j], ldot, static_cast<double>(j) / n, tj);
+      const Vec3 va = material_velocity(
+          m, r_j[j - 1], ldot, GiNaC::numeric(static_cast<int>(j - 1), static_cast<int>(n)), tj);
+      const Vec3 vb = material_velocity(
+          m, r_j[j], ldot, GiNaC::numeric(static_cast<int>(j), static_cast<int>(n)), tj);
       T += ms / 6 * (dot3(va, va) + dot3(vb, vb) + dot3(va, vb));
       U -= ms * dot3(g, scale(GiNaC::numeric(1, 2), add(r_j[j - 1], r_j[j])));
     }
@@ -421,6 +424,30 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
       m.forces.push_back(PointForce{t.nodes[j], force[j], loc});
       for (size_t k = 0; k < 3; ++k) power += force[j][k] * m.time_derivative(pos[k]);
     }
+    ElementSummary summary{
+        fmt::format("Tether '{}': {} segments, {} model{}", t.name, n, t.full ? "full" : "lumped",
+                    t.variable_length ? ", varying length" : ""),
+        {},
+        {}};
+    summary.notes.push_back(fmt::format("nodes r_0 = {}, r_{} = {}; segment 1 of {} shown",
+                                        t.nodes[0], n, t.nodes[n], n));
+    summary.equations.emplace_back("l_s", seg);
+    summary.equations.emplace_back(
+        t.full ? "m_segment" : "m_node",
+        t.mass_per_length * t.length / GiNaC::numeric(static_cast<int>(t.full ? n : n + 1)));
+    summary.equations.emplace_back("C_1", m.constraints[m.constraints.size() - n].expr);
+    for (size_t k = 0; k < 3; ++k)
+      if (!force[0][k].is_zero() || !force[1][k].is_zero())
+        summary.equations.emplace_back(fmt::format("F_node1.{}", "xyz"[k]), force[1][k]);
+    summary.notes.push_back(fmt::format("{}.tension_j = lambda_j * l_s (N); drag: {}", t.name,
+                                        t.drag == Tether::Drag::None     ? "none"
+                                        : t.drag == Tether::Drag::Simple ? "simple"
+                                                                         : "fine"));
+    if (t.variable_length)
+      summary.notes.push_back(
+          "T and U use the material velocity r_j' + l' (1 - j/N) t_j "
+          "(docs/theory.md §4.6)");
+    m.element_summaries.push_back(std::move(summary));
     m.outputs.push_back(NamedExpr{t.name + ".length", t.length, loc});
     m.outputs.push_back(NamedExpr{t.name + ".mass", t.mass_per_length * t.length, loc});
     if (!power.is_zero()) m.outputs.push_back(NamedExpr{t.name + ".drag_power", power, loc});

@@ -105,21 +105,29 @@ void lower_winches(ModelReader& r, ElementContext& ctx) {
     const Coordinate& c = m.coordinates[w.coordinate];
     const SourceLoc loc = r.source().at(w.key);
     const GiNaC::ex stored = w.total_length.is_zero() ? GiNaC::ex(0) : w.total_length - c.q;
-    m.kinetic +=
+    const GiNaC::ex drum =
         (w.inertia / (w.radius * w.radius) + tether->mass_per_length * stored) / 2 * c.v * c.v;
+    m.kinetic += drum;
+    ElementSummary summary{fmt::format("Winch '{}' reeling tether '{}'", w.name, w.tether), {}, {}};
+    summary.notes.push_back(
+        fmt::format("coordinate {} = l (reeled-out length), angle = l/R", c.name));
+    summary.equations.emplace_back("T_drum", drum);
     m.outputs.push_back(NamedExpr{w.name + ".speed", c.v, loc});
     m.outputs.push_back(NamedExpr{w.name + ".angle", c.q / w.radius, loc});
     if (w.torque || w.node["torque"]) {
       const GiNaC::ex tau = r.scalar_expr(w.node["torque"], model::kAll, "torque of " + what);
       m.generalized_forces[w.coordinate] += tau / w.radius;
+      summary.equations.emplace_back("Q_" + c.name, tau / w.radius);
       m.outputs.push_back(NamedExpr{w.name + ".power", tau * c.v / w.radius, loc});
     } else if (w.reeled_out) {
       m.constraints.push_back(NamedExpr{w.name + ".reel", c.q - *w.reeled_out, loc});
+      summary.equations.emplace_back("C_reel", m.constraints.back().expr);
       // The reel force on ℓ is −λ; its power −λ ℓ̇.
       m.reactions.push_back(Reaction{w.name + ".power", m.constraints.size() - 1, -c.v, loc});
     } else {
       m.outputs.push_back(NamedExpr{w.name + ".power", GiNaC::ex(0), loc});
     }
+    m.element_summaries.push_back(std::move(summary));
   }
 }
 

@@ -85,3 +85,24 @@ INSTANTIATE_TEST_SUITE_P(Elements, BadElementModel, ::testing::ValuesIn(bad_elem
 
 }  // namespace
 }  // namespace lagrange::hardening
+
+namespace lagrange::hardening {
+namespace {
+
+// `derive` shows what a tether and a winch lowered into the model, one segment's terms.
+TEST(ElementDerive, ShowsOneSegmentAndTheDrum) {
+  ScratchDir dir("element-derive");
+  const RunResult r = run_lagrange(
+      dir.path(), {"derive", std::string(LAGRANGE_SOURCE_DIR) + "/examples/winch.yaml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Tether 'line': 10 segments, lumped model, varying length"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("  l_s = 1/10*drum.reeled_out"), std::string::npos) << r.out.substr(0, 800);
+  EXPECT_NE(r.out.find("  C_1 = "), std::string::npos);
+  EXPECT_EQ(r.out.find("  C_2 = "), std::string::npos);
+  EXPECT_NE(r.out.find("Winch 'drum' reeling tether 'line'"), std::string::npos);
+  EXPECT_NE(r.out.find("  T_drum = "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lagrange::hardening
