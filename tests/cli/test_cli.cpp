@@ -150,7 +150,15 @@ INSTANTIATE_TEST_SUITE_P(
                 "'k'"},
         BadCase{"wrong_vector_size", "coordinates:\n  q: {initial: 1}\npoints:\n  p: [q, 0]\n",
                 "4:", "3"},
-        BadCase{"missing_initial", "coordinates:\n  q: {rate: 1}\n", "2:", "initial"}),
+        BadCase{"missing_initial", "coordinates:\n  q: {rate: 1}\n", "2:", "initial"},
+        BadCase{"tab_indent", "coordinates:\n\tq: {initial: 1}\n",
+                "2:1: ", "YAML forbids tabs for indentation"},
+        BadCase{"tab_after_spaces",
+                "parameters: {m: 1}\ncoordinates:\n  q: {initial: 1}\n  \tp: {initial: 2}\n",
+                "4:3: ", "YAML forbids tabs for indentation"},
+        BadCase{"tab_before_comment",
+                "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\n\t# note\n",
+                "4:1: ", "YAML forbids tabs for indentation"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Cli, MissingFileIsAModelError) {
