@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 
+#include "compile/canonical_order.hpp"
 #include "compile/collect_factors.hpp"
 #include "compile/ginac_util.hpp"
 #include "compile/tape_builder.hpp"
@@ -49,11 +51,16 @@ const std::unordered_map<std::string, Op>& unary_functions() {
   return table;
 }
 
-/// Walks the expression DAG and emits one SSA value per distinct subexpression.
+/// Walks the expression DAG and emits one SSA value per distinct canonical subexpression R(e)
+/// (compile/canonical_order.hpp), visiting the operands of sums and products in canonical order
+/// and with the signs of the canonical form; GiNaC's order and signs depend on load addresses
+/// and symbol creation order. So the tape is the same in every process.
 class ExprCompiler {
  public:
-  /// A compiler emitting into `b`, with inputs[i] read as input i.
-  ExprCompiler(TapeBuilder& b, const std::vector<GiNaC::symbol>& inputs) : b_(b) {
+  /// A compiler emitting into `b`, with inputs[i] read as input i, operands taken in `order`.
+  ExprCompiler(TapeBuilder& b, const std::vector<GiNaC::symbol>& inputs,
+               tape_detail::CanonicalOrder& order)
+      : b_(b), order_(order), memo_(order), uses_(order) {
     for (size_t i = 0; i < inputs.size(); ++i) {
       if (!input_index_.emplace(inputs[i], static_cast<std::uint32_t>(i)).second) {
         throw std::invalid_argument(
@@ -62,7 +69,8 @@ class ExprCompiler {
     }
   }
 
-  /// Counts how many parents reference each distinct subexpression of e (first visit recurses).
+  /// Counts how many parents reference each distinct canonical subexpression of e (first visit
+  /// recurses).
   void count_uses(const ex& e) {
     if (e.nops() == 0) return;
     if (uses_[e]++ > 0) return;
@@ -76,16 +84,22 @@ class ExprCompiler {
     }
   }
 
-  /// The SSA value of e, compiled once per distinct expression.
+  /// The SSA value of e: that of its canonical form R(e), negated when e = −R(e).
   std::uint32_t value(const ex& e) {
-    if (auto it = memo_.find(e); it != memo_.end()) return it->second;
-    const std::uint32_t v = build(e);
-    memo_.emplace(e, v);
-    return v;
+    const std::uint32_t v = canonical_value(e);
+    return order_.sign(e) < 0 ? b_.unary(Op::Neg, v) : v;
   }
 
  private:
-  /// Compiles e from its children (no memo lookup).
+  /// The SSA value of R(e), compiled once per canonical form.
+  std::uint32_t canonical_value(const ex& e) {
+    if (const std::uint32_t* v = memo_.find(e)) return *v;
+    const std::uint32_t v = build(e);
+    memo_[e] = v;
+    return v;
+  }
+
+  /// Compiles R(e) from its children (no memo lookup).
   std::uint32_t build(const ex& e) {
     if (GiNaC::is_a<GiNaC::numeric>(e)) return b_.constant(to_double(e));
     if (GiNaC::is_a<GiNaC::constant>(e)) return b_.constant(to_double(e.evalf()));
@@ -98,61 +112,75 @@ class ExprCompiler {
       }
       return b_.input(it->second);
     }
-    if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(GiNaC::ex_to<GiNaC::add>(e));
-    if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(GiNaC::ex_to<GiNaC::mul>(e));
+    if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(e);
+    if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(e);
     if (GiNaC::is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1));
     if (GiNaC::is_a<GiNaC::function>(e)) return build_function(GiNaC::ex_to<GiNaC::function>(e));
     throw std::invalid_argument(fmt::format("cannot compile expression {}", text(e)));
   }
 
-  /// base^exponent: integer exponents by PowInt/Inv, 1/2 by Sqrt, anything else by Pow.
+  /// R(base^exponent): integer exponents (whose sign the canonical form moves out) of R(base)
+  /// by PowInt/Inv, or Pow beyond kMaxPowInt; 1/2 by Sqrt and anything else by Pow of base.
   std::uint32_t power(const ex& base, const ex& exponent) {
-    if (exponent.is_equal(GiNaC::ex(1))) return value(base);
+    if (exponent.is_equal(GiNaC::ex(1))) return canonical_value(base);
     if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
       const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
       if (n.is_integer() && abs(n) <= tape_detail::kMaxPowInt) {
-        return b_.pow_int(value(base), n.to_int());
+        return b_.pow_int(canonical_value(base), n.to_int());
       }
+      if (n.is_integer()) return b_.binary(Op::Pow, canonical_value(base), value(exponent));
       if (n.is_equal(GiNaC::numeric(1, 2))) return b_.unary(Op::Sqrt, value(base));
     }
     return b_.binary(Op::Pow, value(base), value(exponent));
   }
 
-  /// The factors of a sum's term rest: a once-used product is spliced into the sum (the fused
+  /// The term coef·R(rest) of a sum: a once-used product is spliced into the sum (the fused
   /// sum of products of docs/theory.md §8), anything else is one factor.
-  Term term(const ex& rest, const ex& coeff) {
-    Term t{to_double(coeff), {}};
-    if (GiNaC::is_a<GiNaC::mul>(rest) && uses_[rest] <= 1 && !memo_.count(rest)) {
+  Term term(const ex& rest, double coef) {
+    Term t{coef, {}};
+    const int* uses = uses_.find(rest);
+    if (GiNaC::is_a<GiNaC::mul>(rest) && uses != nullptr && *uses <= 1 && !memo_.find(rest)) {
       const auto& m = GiNaC::ex_to<GiNaC::mul>(rest);
-      t.coef *= to_double(PairAccess::overall(m));
-      for (const GiNaC::expair& f : PairAccess::pairs(m)) {
-        t.factors.push_back(power(f.rest, f.coeff));
+      t.coef *= std::fabs(to_double(PairAccess::overall(m)));
+      const GiNaC::epvector& factors = PairAccess::pairs(m);
+      for (std::uint32_t i : order_.pair_order(rest)) {
+        t.factors.push_back(power(factors[i].rest, factors[i].coeff));
       }
     } else {
-      t.factors.push_back(value(rest));
+      t.factors.push_back(canonical_value(rest));
     }
     return t;
   }
 
-  /// add → Sum / SumProd: Σ coeffᵢ·restᵢ + overall constant.
-  std::uint32_t build_sum(const GiNaC::add& s) {
+  /// R(add) → Sum / SumProd: Σ coeffᵢ·R(restᵢ) + constant, signs as the canonical form has them.
+  std::uint32_t build_sum(const ex& e) {
+    const auto& s = GiNaC::ex_to<GiNaC::add>(e);
+    const GiNaC::epvector& pairs = PairAccess::pairs(s);
+    const int sign = order_.sign(e);
     std::vector<Term> terms;
-    terms.reserve(PairAccess::pairs(s).size());
-    for (const GiNaC::expair& p : PairAccess::pairs(s)) terms.push_back(term(p.rest, p.coeff));
-    return b_.sum(terms, to_double(PairAccess::overall(s)));
+    terms.reserve(pairs.size());
+    for (std::uint32_t i : order_.pair_order(e)) {
+      const double c = to_double(pairs[i].coeff);
+      terms.push_back(term(pairs[i].rest, sign * order_.sign(pairs[i].rest) < 0 ? -c : c));
+    }
+    const double constant = to_double(PairAccess::overall(s));
+    return b_.sum(terms, sign < 0 ? -constant : constant);
   }
 
-  /// mul → Prod, or Div(c·numerators, denominators) when some factors have exponent −1.
-  std::uint32_t build_product(const GiNaC::mul& m) {
+  /// R(mul) → Prod, or Div(|c|·numerators, denominators) when some factors have exponent −1.
+  std::uint32_t build_product(const ex& e) {
+    const auto& m = GiNaC::ex_to<GiNaC::mul>(e);
+    const GiNaC::epvector& pairs = PairAccess::pairs(m);
     std::vector<std::uint32_t> num, den;
-    for (const GiNaC::expair& f : PairAccess::pairs(m)) {
+    for (std::uint32_t i : order_.pair_order(e)) {
+      const GiNaC::expair& f = pairs[i];
       if (GiNaC::ex_to<GiNaC::numeric>(f.coeff).is_equal(-1)) {
-        den.push_back(value(f.rest));
+        den.push_back(canonical_value(f.rest));
       } else {
         num.push_back(power(f.rest, f.coeff));
       }
     }
-    const std::uint32_t top = b_.prod(to_double(PairAccess::overall(m)), num);
+    const std::uint32_t top = b_.prod(std::fabs(to_double(PairAccess::overall(m))), num);
     if (den.empty()) return top;
     return b_.binary(Op::Div, top, b_.prod(1.0, den));
   }
@@ -177,9 +205,10 @@ class ExprCompiler {
   }
 
   TapeBuilder& b_;
+  tape_detail::CanonicalOrder& order_;
   ExMap<std::uint32_t> input_index_;
-  ExMap<std::uint32_t> memo_;
-  ExMap<int> uses_;
+  tape_detail::CanonicalMap<std::uint32_t> memo_;  ///< R(e) → SSA value
+  tape_detail::CanonicalMap<int> uses_;            ///< R(e) → number of parents
 };
 
 }  // namespace
@@ -187,8 +216,9 @@ class ExprCompiler {
 Tape Tape::compile(const std::vector<GiNaC::ex>& outputs,
                    const std::vector<GiNaC::symbol>& inputs) {
   tape_detail::TapeBuilder builder(inputs.size());
-  ExprCompiler compiler(builder, inputs);
-  const std::vector<GiNaC::ex> rewritten = lagrange::collect_common_factors(outputs);
+  tape_detail::CanonicalOrder order(inputs);
+  ExprCompiler compiler(builder, inputs, order);
+  const std::vector<GiNaC::ex> rewritten = lagrange::collect_common_factors(outputs, order);
   for (const GiNaC::ex& e : rewritten) compiler.count_uses(e);
   std::vector<std::uint32_t> out;
   out.reserve(rewritten.size());
