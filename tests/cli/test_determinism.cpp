@@ -26,7 +26,8 @@ std::vector<std::string> example_names() {
 /// each, as (file name, content) pairs.
 std::vector<std::pair<std::string, std::string>> outputs_of(const std::string& name,
                                                             const fs::path& dir) {
-  const std::string model = (fs::path(LAGRANGE_SOURCE_DIR) / "examples" / (name + ".yaml")).string();
+  const std::string model =
+      (fs::path(LAGRANGE_SOURCE_DIR) / "examples" / (name + ".yaml")).string();
   const fs::path c_dir = dir / "c", csv = dir / "run.csv";
   const RunResult exported = run_lagrange(dir, {"export", model, "--c", c_dir.string()});
   EXPECT_EQ(exported.exit_code, 0) << exported.err;
