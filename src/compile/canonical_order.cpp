@@ -4,6 +4,7 @@
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <typeinfo>
 
 namespace lagrange::tape_detail {
 
@@ -16,6 +17,14 @@ using GiNaC::numeric;
 enum class Kind : std::uint8_t { Numeric, Symbol, Constant, Add, Mul, Power, Function, Other };
 
 Kind kind_of(const ex& e) {
+  // Pointer comparison of type_info first: std::type_info's operator== compares names with
+  // strcmp whenever the objects differ, and this runs once per node of large DAGs.
+  const std::type_info& t = typeid(GiNaC::ex_to<GiNaC::basic>(e));
+  if (&t == &typeid(GiNaC::symbol)) return Kind::Symbol;
+  if (&t == &typeid(numeric)) return Kind::Numeric;
+  if (&t == &typeid(GiNaC::mul)) return Kind::Mul;
+  if (&t == &typeid(GiNaC::add)) return Kind::Add;
+  if (&t == &typeid(GiNaC::power)) return Kind::Power;
   if (GiNaC::is_exactly_a<numeric>(e)) return Kind::Numeric;
   if (GiNaC::is_a<GiNaC::symbol>(e)) return Kind::Symbol;
   if (GiNaC::is_exactly_a<GiNaC::constant>(e)) return Kind::Constant;
@@ -66,6 +75,7 @@ numeric times(const numeric& n, int s) {
 
 /// Hash of the value s·n, rounded to double (exact equality is left to the comparison).
 std::uint64_t numeric_hash(const numeric& n, int s = 1) {
+  if (n.is_real()) return combine(double_bits(s * n.to_double()), 0);
   return combine(double_bits(s * n.real().to_double()), double_bits(s * n.imag().to_double()));
 }
 
@@ -102,11 +112,11 @@ CanonicalOrder::CanonicalOrder(const std::vector<GiNaC::symbol>& inputs) {
     input_index_.emplace(inputs[i], static_cast<std::uint32_t>(i));
 }
 
-const CanonicalOrder::Entry& CanonicalOrder::entry(const ex& e) {
+CanonicalOrder::Entry& CanonicalOrder::entry(const ex& e) {
   const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
   if (auto it = memo_.find(node); it != memo_.end()) return it->second;
-  Entry en{e, 0, 1, {}};
   const Kind k = kind_of(e);
+  Entry en{e, 0, 1, static_cast<std::uint8_t>(k), kNoId, {}};
   std::uint64_t h = mix(static_cast<std::uint64_t>(k));
   switch (k) {
     case Kind::Numeric:
@@ -145,17 +155,22 @@ void CanonicalOrder::fill_pairs(Entry& en, bool is_sum) {
   const auto& s = GiNaC::ex_to<GiNaC::expairseq>(en.e);
   const GiNaC::epvector& pairs = PairAccess::pairs(s);
   const numeric& overall = GiNaC::ex_to<numeric>(PairAccess::overall(s));
-  // Sort keys that do not depend on the signs GiNaC chose: canonical rest, |coefficient| of a
-  // term; canonical rest, exponent (and the base's sign unless the exponent is an integer).
-  std::vector<std::uint64_t> sort_key(pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
+  // Each rest's entry once; sort keys that do not depend on the signs GiNaC chose: canonical
+  // rest and |coefficient| of a term; canonical rest and exponent of a factor (and the base's
+  // sign unless the exponent is an integer).
+  const size_t n = pairs.size();
+  std::vector<std::uint64_t> rest_key(n), sort_key(n);
+  std::vector<int> rest_sign(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Entry& r = entry(pairs[i].rest);
+    rest_key[i] = r.key;
+    rest_sign[i] = r.sign;
     const numeric& c = GiNaC::ex_to<numeric>(pairs[i].coeff);
     if (is_sum) {
-      sort_key[i] = combine(key(pairs[i].rest), numeric_hash(c, sign_of(c)));
+      sort_key[i] = combine(r.key, numeric_hash(c, sign_of(c)));
     } else {
-      const std::uint64_t base =
-          is_integer(c) ? 0 : static_cast<std::uint64_t>(sign(pairs[i].rest) + 2);
-      sort_key[i] = combine(combine(key(pairs[i].rest), numeric_hash(c)), base);
+      const std::uint64_t base = is_integer(c) ? 0 : static_cast<std::uint64_t>(r.sign + 2);
+      sort_key[i] = combine(combine(r.key, numeric_hash(c)), base);
     }
     en.order.push_back(static_cast<std::uint32_t>(i));
   }
@@ -165,25 +180,36 @@ void CanonicalOrder::fill_pairs(Entry& en, bool is_sum) {
   });
   // The sign: a sum's first term gets a positive coefficient; a product's sign is that of its
   // coefficient times those of its odd integer powers.
-  if (is_sum && !en.order.empty()) {
-    const GiNaC::expair& first = pairs[en.order.front()];
-    en.sign = sign_of(GiNaC::ex_to<numeric>(first.coeff)) * sign(first.rest);
+  if (is_sum && n > 0) {
+    const std::uint32_t first = en.order.front();
+    en.sign = sign_of(GiNaC::ex_to<numeric>(pairs[first].coeff)) * rest_sign[first];
   } else if (!is_sum) {
     en.sign = sign_of(overall);
-    for (const GiNaC::expair& p : pairs)
-      if (is_integer(p.coeff)) en.sign *= power_sign(sign(p.rest), p.coeff);
+    for (size_t i = 0; i < n; ++i)
+      if (is_integer(pairs[i].coeff)) en.sign *= power_sign(rest_sign[i], pairs[i].coeff);
   }
   std::uint64_t h = 0;
   for (std::uint32_t i : en.order) {
     if (is_sum) {  // the coefficient of R(rest) in R(sum)
-      const int s = en.sign * sign(pairs[i].rest);
-      h = combine(
-          h, combine(key(pairs[i].rest), numeric_hash(GiNaC::ex_to<numeric>(pairs[i].coeff), s)));
+      const numeric& c = GiNaC::ex_to<numeric>(pairs[i].coeff);
+      h = combine(h, combine(rest_key[i], numeric_hash(c, en.sign * rest_sign[i])));
     } else {
       h = combine(h, sort_key[i]);
     }
   }
   en.key = combine(h, numeric_hash(overall, is_sum ? en.sign : sign_of(overall)));
+}
+
+std::uint32_t CanonicalOrder::id(const ex& e) {
+  Entry& en = entry(e);
+  if (en.id != kNoId) return en.id;
+  auto& same_key = ids_[en.key];
+  for (const auto& [other, id] : same_key) {
+    if (compare(other, e) == 0) return en.id = id;
+  }
+  en.id = next_id_++;
+  same_key.emplace_back(e, en.id);
+  return en.id;
 }
 
 std::uint64_t CanonicalOrder::signed_key(const ex& e) {
@@ -243,8 +269,8 @@ int CanonicalOrder::compare(const ex& a, const ex& b) {
   if (GiNaC::are_ex_trivially_equal(a, b)) return 0;
   if (const int c = three_way(key(a), key(b)); c != 0) return c;
   // Equal keys: almost always equal structure; compare in full so that the order is total.
-  const Kind k = kind_of(a);
-  if (const int c = three_way(k, kind_of(b)); c != 0) return c;
+  const auto k = static_cast<Kind>(entry(a).kind);
+  if (const int c = three_way(entry(a).kind, entry(b).kind); c != 0) return c;
   switch (k) {
     case Kind::Numeric:
       return GiNaC::ex_to<numeric>(a).compare(GiNaC::ex_to<numeric>(b));

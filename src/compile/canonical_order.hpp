@@ -38,16 +38,22 @@ class CanonicalOrder {
   int compare(const GiNaC::ex& a, const GiNaC::ex& b);
   /// The indices of the (rest, coeff) pairs of an add or mul, in canonical order.
   const std::vector<std::uint32_t>& pair_order(const GiNaC::ex& e) { return entry(e).order; }
+  /// A dense number (0, 1, 2, … in order of first request) naming R(e): the same for two
+  /// expressions exactly when their canonical forms are equal, whatever signs GiNaC gave them.
+  std::uint32_t id(const GiNaC::ex& e);
 
  private:
   struct Entry {
     GiNaC::ex e;                       ///< keeps the node (and so its address) alive
     std::uint64_t key = 0;             ///< structural hash of R(e)
     int sign = 1;                      ///< e = sign·R(e)
+    std::uint8_t kind = 0;             ///< node kind (numeric, symbol, add, mul, …)
+    std::uint32_t id = kNoId;          ///< id() once requested
     std::vector<std::uint32_t> order;  ///< add/mul: pair indices in canonical order
   };
+  static constexpr std::uint32_t kNoId = 0xffffffffu;
   /// The memoised entry of e, computed on first use.
-  const Entry& entry(const GiNaC::ex& e);
+  Entry& entry(const GiNaC::ex& e);
   /// Fills key, sign and order of an add or a mul.
   void fill_pairs(Entry& en, bool is_sum);
   /// The key of an operand whose sign is part of the structure (function arguments, bases
@@ -63,33 +69,9 @@ class CanonicalOrder {
 
   ExMap<std::uint32_t> input_index_;
   std::unordered_map<const GiNaC::basic*, Entry> memo_;
-};
-
-/// A map keyed on canonical forms: two expressions share an entry when R(a) = R(b), whatever
-/// sign GiNaC gave them in this process.
-template <class T>
-class CanonicalMap {
- public:
-  explicit CanonicalMap(CanonicalOrder& order) : order_(order) {}
-  /// The entry of R(e), or nullptr.
-  T* find(const GiNaC::ex& e) {
-    auto it = buckets_.find(order_.key(e));
-    if (it == buckets_.end()) return nullptr;
-    for (auto& [k, v] : it->second)
-      if (GiNaC::are_ex_trivially_equal(k, e) || order_.compare(k, e) == 0) return &v;
-    return nullptr;
-  }
-  /// The entry of R(e), value-initialised when new.
-  T& operator[](const GiNaC::ex& e) {
-    if (T* v = find(e)) return *v;
-    auto& bucket = buckets_[order_.key(e)];
-    bucket.emplace_back(e, T{});
-    return bucket.back().second;
-  }
-
- private:
-  CanonicalOrder& order_;
-  std::unordered_map<std::uint64_t, std::vector<std::pair<GiNaC::ex, T>>> buckets_;
+  /// Key → (expression, id) of each canonical form with that key.
+  std::unordered_map<std::uint64_t, std::vector<std::pair<GiNaC::ex, std::uint32_t>>> ids_;
+  std::uint32_t next_id_ = 0;
 };
 
 }  // namespace lagrange::tape_detail

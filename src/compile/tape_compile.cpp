@@ -60,7 +60,7 @@ class ExprCompiler {
   /// A compiler emitting into `b`, with inputs[i] read as input i, operands taken in `order`.
   ExprCompiler(TapeBuilder& b, const std::vector<GiNaC::symbol>& inputs,
                tape_detail::CanonicalOrder& order)
-      : b_(b), order_(order), memo_(order), uses_(order) {
+      : b_(b), order_(order) {
     for (size_t i = 0; i < inputs.size(); ++i) {
       if (!input_index_.emplace(inputs[i], static_cast<std::uint32_t>(i)).second) {
         throw std::invalid_argument(
@@ -73,7 +73,7 @@ class ExprCompiler {
   /// recurses).
   void count_uses(const ex& e) {
     if (e.nops() == 0) return;
-    if (uses_[e]++ > 0) return;
+    if (slot(uses_, order_.id(e), 0)++ > 0) return;
     if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
       for (const GiNaC::expair& p : PairAccess::pairs(GiNaC::ex_to<GiNaC::expairseq>(e))) {
         count_uses(p.rest);
@@ -84,18 +84,31 @@ class ExprCompiler {
     }
   }
 
-  /// The SSA value of e: that of its canonical form R(e), negated when e = −R(e).
+  /// The SSA value of e: that of its canonical form R(e), or of −R(e) when e = −R(e) (a sum
+  /// or product with its signs flipped rather than an extra negation).
   std::uint32_t value(const ex& e) {
-    const std::uint32_t v = canonical_value(e);
-    return order_.sign(e) < 0 ? b_.unary(Op::Neg, v) : v;
+    if (order_.sign(e) > 0) return canonical_value(e);
+    const std::uint32_t id = order_.id(e);
+    if (const std::uint32_t v = slot(negated_, id, kNone); v != kNone) return v;
+    std::uint32_t v = 0;
+    if (GiNaC::is_a<GiNaC::add>(e)) {
+      v = build_sum(e, -1);
+    } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+      v = build_product(e, -1);
+    } else {
+      v = b_.unary(Op::Neg, canonical_value(e));
+    }
+    slot(negated_, id, kNone) = v;
+    return v;
   }
 
  private:
   /// The SSA value of R(e), compiled once per canonical form.
   std::uint32_t canonical_value(const ex& e) {
-    if (const std::uint32_t* v = memo_.find(e)) return *v;
+    const std::uint32_t id = order_.id(e);
+    if (const std::uint32_t v = slot(memo_, id, kNone); v != kNone) return v;
     const std::uint32_t v = build(e);
-    memo_[e] = v;
+    slot(memo_, id, kNone) = v;
     return v;
   }
 
@@ -112,8 +125,8 @@ class ExprCompiler {
       }
       return b_.input(it->second);
     }
-    if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(e);
-    if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(e);
+    if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(e, 1);
+    if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(e, 1);
     if (GiNaC::is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1));
     if (GiNaC::is_a<GiNaC::function>(e)) return build_function(GiNaC::ex_to<GiNaC::function>(e));
     throw std::invalid_argument(fmt::format("cannot compile expression {}", text(e)));
@@ -138,8 +151,9 @@ class ExprCompiler {
   /// sum of products of docs/theory.md §8), anything else is one factor.
   Term term(const ex& rest, double coef) {
     Term t{coef, {}};
-    const int* uses = uses_.find(rest);
-    if (GiNaC::is_a<GiNaC::mul>(rest) && uses != nullptr && *uses <= 1 && !memo_.find(rest)) {
+    const std::uint32_t id = order_.id(rest);
+    if (GiNaC::is_a<GiNaC::mul>(rest) && slot(uses_, id, 0) <= 1 &&
+        slot(memo_, id, kNone) == kNone) {
       const auto& m = GiNaC::ex_to<GiNaC::mul>(rest);
       t.coef *= std::fabs(to_double(PairAccess::overall(m)));
       const GiNaC::epvector& factors = PairAccess::pairs(m);
@@ -152,11 +166,11 @@ class ExprCompiler {
     return t;
   }
 
-  /// R(add) → Sum / SumProd: Σ coeffᵢ·R(restᵢ) + constant, signs as the canonical form has them.
-  std::uint32_t build_sum(const ex& e) {
+  /// flip·R(add) → Sum / SumProd: Σ coeffᵢ·R(restᵢ) + constant, flip = ±1.
+  std::uint32_t build_sum(const ex& e, int flip) {
     const auto& s = GiNaC::ex_to<GiNaC::add>(e);
     const GiNaC::epvector& pairs = PairAccess::pairs(s);
-    const int sign = order_.sign(e);
+    const int sign = flip * order_.sign(e);
     std::vector<Term> terms;
     terms.reserve(pairs.size());
     for (std::uint32_t i : order_.pair_order(e)) {
@@ -167,8 +181,9 @@ class ExprCompiler {
     return b_.sum(terms, sign < 0 ? -constant : constant);
   }
 
-  /// R(mul) → Prod, or Div(|c|·numerators, denominators) when some factors have exponent −1.
-  std::uint32_t build_product(const ex& e) {
+  /// flip·R(mul) → Prod, or Div(±|c|·numerators, denominators) when some factors have
+  /// exponent −1; flip = ±1.
+  std::uint32_t build_product(const ex& e, int flip) {
     const auto& m = GiNaC::ex_to<GiNaC::mul>(e);
     const GiNaC::epvector& pairs = PairAccess::pairs(m);
     std::vector<std::uint32_t> num, den;
@@ -180,7 +195,7 @@ class ExprCompiler {
         num.push_back(power(f.rest, f.coeff));
       }
     }
-    const std::uint32_t top = b_.prod(std::fabs(to_double(PairAccess::overall(m))), num);
+    const std::uint32_t top = b_.prod(flip * std::fabs(to_double(PairAccess::overall(m))), num);
     if (den.empty()) return top;
     return b_.binary(Op::Div, top, b_.prod(1.0, den));
   }
@@ -207,8 +222,18 @@ class ExprCompiler {
   TapeBuilder& b_;
   tape_detail::CanonicalOrder& order_;
   ExMap<std::uint32_t> input_index_;
-  tape_detail::CanonicalMap<std::uint32_t> memo_;  ///< R(e) → SSA value
-  tape_detail::CanonicalMap<int> uses_;            ///< R(e) → number of parents
+  /// v[id], growing v with `fill` as needed (the reference lasts until v grows again).
+  template <class T>
+  static T& slot(std::vector<T>& v, std::uint32_t id, T fill) {
+    if (id >= v.size()) v.resize(id + 1, fill);
+    return v[id];
+  }
+
+  // Indexed by the canonical id of R(e) (CanonicalOrder::id); kNone: not compiled yet.
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> memo_;     ///< SSA value of R(e)
+  std::vector<std::uint32_t> negated_;  ///< SSA value of −R(e)
+  std::vector<int> uses_;               ///< number of parents of R(e)
 };
 
 }  // namespace
