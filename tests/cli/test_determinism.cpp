@@ -22,8 +22,8 @@ std::vector<std::string> example_names() {
   return names;
 }
 
-/// The files `lagrange export --c` and `lagrange simulate -o` write for `name` in one process
-/// each, as (file name, content) pairs.
+/// The files `lagrange export --c` and `lagrange simulate -o` (CSV and sidecar) write for
+/// `name`, one process each, as (file name, content) pairs.
 std::vector<std::pair<std::string, std::string>> outputs_of(const std::string& name,
                                                             const fs::path& dir) {
   const std::string model =
@@ -38,6 +38,7 @@ std::vector<std::pair<std::string, std::string>> outputs_of(const std::string& n
   for (const auto& e : fs::directory_iterator(c_dir))
     files.emplace_back(e.path().filename().string(), slurp(e.path()));
   files.emplace_back("run.csv", slurp(csv));
+  files.emplace_back("run.csv.json", slurp(dir / "run.csv.json"));
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -49,7 +50,7 @@ TEST_P(AcrossProcesses, SameTapeAndTrajectory) {
   const auto a = outputs_of(GetParam(), first.path());
   const auto b = outputs_of(GetParam(), second.path());
   ASSERT_EQ(a.size(), b.size());
-  ASSERT_GE(a.size(), 3u);  // lagrange_model.c, lagrange_model.h, run.csv
+  ASSERT_GE(a.size(), 4u);  // lagrange_model.c, lagrange_model.h, run.csv, run.csv.json
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].first, b[i].first);
     EXPECT_FALSE(a[i].second.empty()) << a[i].first;
