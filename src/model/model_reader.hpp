@@ -115,6 +115,8 @@ class ModelReader {
   Mat3 read_inertia(const Body& body, const YAML::Node& spec);
   Mat3 read_shape(const Body& body, const YAML::Node& shape);
   void read_body_points(Body& body, const YAML::Node& node);
+  // posed_rotation.cpp — RᵀR = 1 and det R = +1 at the initial state and a few others.
+  void check_posed_rotation(const Body& body, const YAML::Node& node) const;
   void read_torques(const YAML::Node& node);
   // read_body_initial.cpp — the initial state of a free body.
   void read_free_initial(Body& body, const YAML::Node& node);

@@ -90,8 +90,12 @@ Model read_model_string(const std::string& yaml_text, const std::string& file_la
     model::check_single_document(src);
     root = YAML::Load(src.text());
   } catch (const YAML::Exception& e) {
-    throw ModelError(src.at(e.mark),
-                     fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
+    const SourceLoc at = src.at(e.mark);
+    if (const auto tab = model::indentation_tab(src); tab && (at.line == 0 || tab->line <= at.line))
+      throw ModelError(*tab,
+                       "YAML forbids tabs for indentation, got a tab here (indent with "
+                       "spaces)");
+    throw ModelError(at, fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
   }
   try {
     return model::ModelReader(src).read(root);
