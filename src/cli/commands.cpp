@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cli/initial_state.hpp"
+#include "cli/prepare.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
@@ -24,34 +24,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Parameter values: the model's, overridden by --set NAME=VALUE.
-std::vector<double> parameter_values(const CompiledModel& cm,
-                                     const std::vector<std::string>& sets) {
-  std::vector<double> p = cm.parameter_defaults;
-  for (const auto& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos) throw UsageError("--set expects NAME=VALUE, got '" + s + "'");
-    const std::string name = s.substr(0, eq);
-    auto it = std::find(cm.parameter_names.begin(), cm.parameter_names.end(), name);
-    if (it == cm.parameter_names.end()) {
-      std::string known;
-      for (const auto& n : cm.parameter_names) known += (known.empty() ? "" : ", ") + n;
-      throw UsageError(fmt::format("--set: unknown parameter '{}' (parameters: {})", name,
-                                   known.empty() ? "none" : known));
-    }
-    try {
-      size_t used = 0;
-      const double value = std::stod(s.substr(eq + 1), &used);
-      if (used != s.size() - eq - 1 || !std::isfinite(value)) throw std::invalid_argument(s);
-      p[static_cast<size_t>(it - cm.parameter_names.begin())] = value;
-    } catch (const std::exception&) {
-      throw UsageError("--set: expected a finite number after '" + name + "=', got '" +
-                       s.substr(eq + 1) + "'");
-    }
-  }
-  return p;
 }
 
 SimulationOptions simulation_options(const Model& model, const Options& opt) {
@@ -103,48 +75,32 @@ int run_export(const Options& opt) {
 }
 
 int run_check(const Options& opt) {
-  const Model model = read_model_file(opt.model);
-  const Equations eq = derive(model);
-  const auto cm = compile(eq);
-  Dynamics dyn(cm, parameter_values(*cm, opt.sets));
-  dyn.set_baumgarte(model.stabilization.alpha);
-  std::vector<double> q = cm->q0, v = cm->v0;
-  const InitialConsistency ic = require_consistent_initial_state(model, dyn, q, v);
-  require_regular_initial_state(model, eq, dyn, q, v);
+  const Prepared p = prepare(opt.model, opt.sets);
+  const CompiledModel& cm = *p.compiled;
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
-             model.name, cm->nq, cm->m, cm->np, cm->k);
-  for (size_t r = 0; r < cm->m; ++r)
-    fmt::print("  constraint {:<16} C = {:+.3e}   Cdot = {:+.3e}\n", cm->constraint_names[r],
-               ic.C0[r], ic.Cdot0[r]);
-  if (!ic.was_consistent) {
-    fmt::print("{}\n(simulate starts from this projected state)\n", ic.note());
+             p.model->name, cm.nq, cm.m, cm.np, cm.k);
+  for (size_t r = 0; r < cm.m; ++r)
+    fmt::print("  constraint {:<16} C = {:+.3e}   Cdot = {:+.3e}\n", cm.constraint_names[r],
+               p.initial.C0[r], p.initial.Cdot0[r]);
+  if (!p.initial.was_consistent) {
+    fmt::print("{}\n(simulate starts from this projected state)\n", p.initial.note());
     return 1;
   }
-  if (cm->m > 0) fmt::print("initial state is consistent\n");
+  if (cm.m > 0) fmt::print("initial state is consistent\n");
   fmt::print("mass matrix positive definite at the initial state\n");
   return 0;
 }
 
 int run_simulate(const Options& opt) {
-  const auto t0 = Clock::now();
-  const Model model = read_model_file(opt.model);
-  const Equations eq = derive(model);
-  const double t_derive = seconds_since(t0);
-  const auto t1 = Clock::now();
-  const auto cm = compile(eq);
-  Dynamics dyn(cm, parameter_values(*cm, opt.sets));
-  dyn.set_baumgarte(model.stabilization.alpha);
-  const double t_compile = seconds_since(t1);
-
+  Prepared p = prepare(opt.model, opt.sets);
+  const Model& model = *p.model;
+  const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);
-  std::vector<double> q = cm->q0, v = cm->v0;
-  const InitialConsistency ic = require_consistent_initial_state(model, dyn, q, v);
-  require_regular_initial_state(model, eq, dyn, q, v);
-  if (!ic.was_consistent) fmt::print(stderr, "note: {}\n", ic.note());
+  if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
   const auto t2 = Clock::now();
-  Trajectory traj = simulate(dyn, so, q, v);
+  Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);
   if (so.progress) fmt::print(stderr, "\r{:60}\r", "");
   for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
@@ -165,7 +121,8 @@ int run_simulate(const Options& opt) {
     fmt::print(
         "  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, "
         "{})\n",
-        t_derive, t_compile, t_sim, traj.stats.steps, traj.stats.rhs_evals, so.integrator.method);
+        p.derive_seconds, p.compile_seconds, t_sim, traj.stats.steps, traj.stats.rhs_evals,
+        so.integrator.method);
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
       fmt::print(
