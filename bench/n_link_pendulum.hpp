@@ -1,5 +1,5 @@
 #pragma once
-// Model generators for the benchmark families (docs/theory.md §8, PEERS.md): YAML text for any N.
+// Model generators for the benchmark families (docs/theory.md §8, docs/benchmarks.md "Peers"): YAML text for any N.
 
 #include <cstddef>
 #include <string>
@@ -8,7 +8,7 @@ namespace lagrange::bench {
 
 /// How the N-link pendulum's parameters are declared.
 enum class PendulumParameters {
-  /// One mass m and one length l shared by all links (the PEERS.md figures). Symbolic sums
+  /// One mass m and one length l shared by all links (the model of the peer figures in docs/benchmarks.md). Symbolic sums
   /// such as Σₖ m fold to (N − j)·m during derivation.
   Shared,
   /// Per-link masses m1..mN and lengths l1..lN with distinct values: nothing folds

@@ -8,7 +8,8 @@ import sys
 from pathlib import Path
 
 UNIT = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
-# Reference figures from PEERS.md (another run on a machine of this kind; not measured here).
+# MuJoCo reference figures (docs/benchmarks.md, "Peers": another run on a machine of this kind;
+# not measured here).
 MUJOCO_US = {2: 0.85, 5: 1.8, 10: 3.4, 20: 8.2, 50: 38}
 
 
@@ -86,13 +87,13 @@ def main():
               f"| {ratios} |")
     shared = {n: b for (f, n), b in pend.items() if f == "BM_DeriveCompileShared"}
     if shared:
-        print("\nShared m, l (the PEERS.md model), derive + compile + specialise: "
+        print("\nShared m, l (the model of the Peers figures), derive + compile + specialise: "
               + "; ".join(f"N = {n}: {fmt_s(b['seconds'])} wall, {fmt_s(b['build_cpu_s'])} CPU, "
                           f"{b['instr_spec']:.0f} instr" for n, b in sorted(shared.items())))
 
     print("\n## Forward dynamics per call, N-link pendulum\n")
     print("| N | lagrange wall | lagrange CPU | tape instr | SymPy lambdify(cse) + numpy solve, wall "
-          "| SymPy CPU | **SymPy / ours** (CPU) | MuJoCo mj_forward (PEERS.md, not this run) "
+          "| SymPy CPU | **SymPy / ours** (CPU) | MuJoCo mj_forward (Peers, not this run) "
           "| max abs Δa vs SymPy |")
     print("|---|---|---|---|---|---|---|---|---|")
     fw = {n: b for (f, n), b in pend.items() if f == "BM_Forward"}
@@ -138,7 +139,7 @@ def main():
         rc = ch[200]["cpu_seconds"] / ch[50]["cpu_seconds"]
         print(f"| Cartesian chain t(200)/t(50) ≤ 5 | {rw:.1f} | {rc:.1f} | {verdict(rw <= 5, rc <= 5)} |")
     print("\nRatios compare measurements of this one run; absolute times vary by up to ±40 % "
-          "between runs on this machine kind (PEERS.md).")
+          "between runs on this machine kind (docs/benchmarks.md, Peers).")
 
 
 if __name__ == "__main__":

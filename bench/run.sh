@@ -12,7 +12,7 @@ if [[ $# -ne 1 ]]; then
 fi
 build=$1
 here=$(cd "$(dirname "$0")" && pwd)
-python=/usr/bin/python3  # Debian's python3 has sympy and numpy (PEERS.md)
+python=/usr/bin/python3  # Debian's python3 has sympy and numpy (docs/benchmarks.md, Peers)
 out=${LAGRANGE_BENCH_OUT:-$build/bench-results}
 
 for exe in bench_pendulum bench_cartesian_chain long_run; do

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""SymPy peer of the N-link pendulum benchmark (PEERS.md), run with Debian's /usr/bin/python3.
+"""SymPy peer of the N-link pendulum benchmark (docs/benchmarks.md, "Peers"), run with Debian's /usr/bin/python3.
 
 Builds the same model as bench/n_link_pendulum.cpp (planar N-link pendulum, absolute angles,
 point masses at the link ends, per-link masses m_k and lengths l_k kept symbolic) with
@@ -16,7 +16,7 @@ Prints one JSON object per line (machine-readable; bench/run.sh reads them):
    "lambdify_seconds": s, "accelerations": [...]}
 Wall and process CPU time are both reported: when other jobs share the cores, CPU time is the
 fairer comparison.
-N = 20 takes about a minute (PEERS.md: 52 s) and runs only with --with-20; N = 50 takes hours.
+N = 20 takes about a minute (another run: 52 s, docs/benchmarks.md) and runs only with --with-20; N = 50 takes hours.
 """
 
 import argparse
