@@ -1,5 +1,3 @@
-#include <cmath>
-
 #include "elements/tether.hpp"
 
 namespace lagrange::elements {
@@ -50,7 +48,8 @@ std::vector<Vec3> tether_drag(const Model& m, const Tether& t, const Wind* wind)
       }
       continue;
     }
-    const double c = std::sqrt(0.6) / 2;
+    // Exact nodes ½ ∓ √15/10, so that the expressions (and the tape) hold no rounded numbers.
+    const GiNaC::ex c = GiNaC::pow(GiNaC::ex(15), GiNaC::numeric(1, 2)) / 10;
     const std::array<GiNaC::ex, 3> sigma{GiNaC::numeric(1, 2) - c, GiNaC::numeric(1, 2),
                                          GiNaC::numeric(1, 2) + c};
     const std::array<GiNaC::ex, 3> weight{GiNaC::numeric(5, 18), GiNaC::numeric(8, 18),

@@ -18,6 +18,18 @@ GiNaC::ex max_of(const GiNaC::ex& a, const GiNaC::ex& b) {
   return (a + b + GiNaC::abs(a - b)) / 2;
 }
 
+// A component of a unit vector as an exact fraction when one with a small denominator matches
+// it to rounding (0, ±1, 3/5, …): rounded numbers in a sum would make the tape's order of
+// operations, and so its last bits, depend on GiNaC's term order.
+GiNaC::ex exact(double x) {
+  for (long den = 1; den <= 1000; ++den) {
+    const double num = std::round(x * static_cast<double>(den));
+    if (std::abs(num / static_cast<double>(den) - x) <= 1e-15)
+      return GiNaC::numeric(static_cast<long>(num), den);
+  }
+  return x;
+}
+
 // A direction given by the user, normalised numerically (it must not depend on the state).
 Vec3 unit(model::ModelReader& reader, const YAML::Node& node, const Vec3& v,
           const std::string& what) {
@@ -31,7 +43,7 @@ Vec3 unit(model::ModelReader& reader, const YAML::Node& node, const Vec3& v,
   const double n = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
   if (!(n > 0) || !std::isfinite(n))
     reader.fail(node, fmt::format("expected a non-zero {}, got [0, 0, 0]", what));
-  return {x[0] / n, x[1] / n, x[2] / n};
+  return {exact(x[0] / n), exact(x[1] / n), exact(x[2] / n)};
 }
 
 }  // namespace
