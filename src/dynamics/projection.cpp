@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <cmath>
+#include <limits>
 
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
@@ -16,6 +17,14 @@ double max_abs(const double* x, size_t n) {
   return r;
 }
 
+// The size of rounding errors in C near q: C's terms are of the order of |∂C/∂q| |q| (exactly
+// so for the quadratic ½(|d|² − ℓ²) of a tether), so below a few ulps of that no step can
+// reduce |C| — a 200 m tether stalls near 1e-11 however small the requested tolerance.
+double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
+  const Eigen::VectorXd terms = J.cwiseAbs() * q.cwiseAbs();
+  return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
+}
+
 }  // namespace
 
 // docs/theory.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
@@ -23,7 +32,8 @@ double max_abs(const double* x, size_t n) {
 // each step halved until ‖C‖₂ decreases, so that the residual never grows), then the
 // minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free body's R
 // moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back. Stops without
-// converging when no halving of the step reduces ‖C‖₂ (a least-squares minimum where C ≠ 0, or
+// converging when no halving of the step reduces ‖C‖₂ (unless ‖C‖ is at the rounding floor of
+// its terms: converged), e.g. at a least-squares minimum where C ≠ 0 (or
 // fixed coordinates in the way) or after max_iterations, at the state of least ‖C‖₂ found.
 ProjectionResult Dynamics::try_project(double t, double* q, double* v,
                                        const std::vector<bool>& fixed, double tol,
@@ -87,7 +97,7 @@ ProjectionResult Dynamics::try_project(double t, double* q, double* v,
       qv = q_here;
       eval_dynamics(t, q, v);
       res.residual = max_abs(out_.data() + cm.C_out(), cm.m);
-      res.converged = res.residual <= tol;
+      res.converged = res.residual <= std::max(tol, rounding_floor(position_jacobian(), qv));
       break;
     }
   }
