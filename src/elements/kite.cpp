@@ -269,9 +269,11 @@ void lower_rigid(ModelReader& r, const KiteSpec& k, const ElementContext& ctx) {
 
   KiteSymbols s;
   GiNaC::exmap values;
-  Vec3 ground{0, 0, 0};
+  // The ground end: of the tether named, or of one ending at a point of the body (or the origin).
+  const Tether* tether = k.spec["tether"] ? attached_tether(r, k, "", ctx) : nullptr;
   for (const Tether& t : ctx.tethers)
-    if (t.nodes.back().rfind(body.name + ".", 0) == 0) ground = m.find_point(t.nodes.front())->pos;
+    if (tether == nullptr && t.nodes.back().rfind(body.name + ".", 0) == 0) tether = &t;
+  const Vec3 ground = tether ? m.find_point(tether->nodes.front())->pos : Vec3{0, 0, 0};
   add_kinematics(ctx, pos, vel, ground, s, values);
   const FlowAngles flow = flow_angles(vb);
   values[s.alpha] = flow.alpha;

@@ -195,6 +195,31 @@ kites:
   EXPECT_LT(ortho, 1e-8);
 }
 
+// The rigid AP2 example: 60 s of figure-eights under elevator, aileron and rudder laws in the
+// model file, with the default settings. The tether stays taut, the angle of attack stays in the
+// model's validity range −6° … 9° once the start (α ≈ 7°) has settled, the sideslip within
+// ±10° (the data hold to ±20°), and R orthonormal.
+TEST(RigidKite, Ap2ExampleFliesFigureEightsWithinItsEnvelope) {
+  auto sys = testing::load_example("rigid_kite_ap2.yaml");
+  const Trajectory tr = sys.run(sys.options());
+  ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
+  ASSERT_GE(tr.at(tr.rows() - 1, "t"), 60.0);
+  double az_min = 0, az_max = 0;
+  for (size_t r = 0; r < tr.rows(); ++r) {
+    const double t = tr.at(r, "t");
+    EXPECT_GT(tr.at(r, "main.tension_ground"), 500.0) << "t = " << t;
+    EXPECT_LT(tr.at(r, "plane.orthonormality_error"), 1e-8) << "t = " << t;
+    if (t < 5) continue;
+    EXPECT_GT(tr.at(r, "wing.alpha"), -6 * kPi / 180) << "t = " << t;
+    EXPECT_LT(tr.at(r, "wing.alpha"), 9 * kPi / 180) << "t = " << t;
+    EXPECT_LT(std::abs(tr.at(r, "wing.beta")), 10 * kPi / 180) << "t = " << t;
+    az_min = std::min(az_min, tr.at(r, "wing.azimuth"));
+    az_max = std::max(az_max, tr.at(r, "wing.azimuth"));
+  }
+  EXPECT_LT(az_min, -0.4);  // it flies to both sides
+  EXPECT_GT(az_max, 0.4);
+}
+
 // The figure-eight example: 120 s of flight under its roll law without the integrator failing,
 // the tether always in tension, and the orbit repeating. Each lap starts where the kite
 // crosses azimuth 0 flying towards +azimuth (interpolated between samples). The laps approach
