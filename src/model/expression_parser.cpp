@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "model/exact_numbers.hpp"
 #include "model/expression_algebra.hpp"
 
 namespace lagrange::model {
@@ -57,37 +58,6 @@ GiNaC::ex number_value(const Token& tok) {
   return n * GiNaC::numeric(10).power(GiNaC::numeric(exponent));
 }
 
-/// Powers GiNaC must not be asked for (fuzz findings, tests/hardening/data/fuzz/expression/):
-/// 0 to a non-positive power makes GiNaC throw from inside pow(), leaking the half-built node,
-/// and a number to a huge integer power is evaluated exactly, which never finishes.
-void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset) {
-  constexpr int kMaxExponent = 1000;
-  constexpr double kMaxDigits = 10000;
-  // 0 to a symbolic power: its derivative holds log(0), on which GiNaC throws mid-construction
-  // and leaks (fuzz finding "der(0^y)").
-  if (base.is_zero() && !GiNaC::is_a<GiNaC::numeric>(exponent))
-    throw ExprError{offset, "expected a numeric positive exponent of 0, got a symbolic one"};
-  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
-  const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent);
-  if (base.is_zero() && !(e.is_real() && e.is_positive()))
-    throw ExprError{offset,
-                    "expected a positive exponent of 0, got 0 ^ (a number <= 0, or complex)"};
-  if (GiNaC::abs(e) > kMaxExponent)  // exact comparison: e may be far beyond double's range
-    throw ExprError{offset, fmt::format("expected an exponent of magnitude at most {}, got more",
-                                        kMaxExponent)};
-  const double magnitude = GiNaC::abs(e).to_double();
-  if (GiNaC::is_a<GiNaC::numeric>(base) && e.is_integer()) {
-    const auto& b = GiNaC::ex_to<GiNaC::numeric>(base);
-    if (!b.is_rational()) return;
-    const int bits = std::max(b.numer().int_length(), b.denom().int_length());
-    const double digits = magnitude * bits * std::log10(2.0);
-    if (!(digits <= kMaxDigits))
-      throw ExprError{offset, fmt::format("expected a power of at most {:g} digits, got one of "
-                                          "about {:.3g} digits",
-                                          kMaxDigits, digits)};
-  }
-}
-
 class Parser {
  public:
   Parser(const std::string& text, const ParseContext& ctx) : toks_(tokenize(text)), ctx_(ctx) {}
@@ -126,12 +96,25 @@ class Parser {
     }
   }
 
+  /// `v` after checking the numbers its operation folded (check_folded on every component).
+  static Value folded(const Value& v, size_t offset) {
+    if (v.is_matrix) {
+      for (const Vec3& row : v.mat)
+        for (const GiNaC::ex& x : row) check_folded(x, offset);
+    } else if (v.is_vector) {
+      for (const GiNaC::ex& x : v.vec) check_folded(x, offset);
+    } else {
+      check_folded(v.scalar, offset);
+    }
+    return v;
+  }
+
   Value expr() {
     Value lhs = term();
     while (at("+") || at("-")) {
       const Token& op = next();
       Value rhs = term();
-      lhs = add(lhs, rhs, op.text, op.offset);
+      lhs = folded(add(lhs, rhs, op.text, op.offset), op.offset);
     }
     return lhs;
   }
@@ -141,7 +124,8 @@ class Parser {
     while (at("*") || at("/")) {
       const Token& op = next();
       Value rhs = unary();
-      lhs = op.text == "*" ? multiply(lhs, rhs, op.offset) : divide(lhs, rhs, op.offset);
+      lhs = folded(op.text == "*" ? multiply(lhs, rhs, op.offset) : divide(lhs, rhs, op.offset),
+                   op.offset);
     }
     return lhs;
   }
@@ -177,10 +161,13 @@ class Parser {
       const auto& b = GiNaC::ex_to<GiNaC::numeric>(base.scalar);
       const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent.scalar);
       if (e.is_integer() || !b.is_rational())
-        return Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); }));
+        return folded(Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); })),
+                      op.offset);
     }
-    return Value::of(
-        guarded(op.offset, [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); }));
+    return folded(
+        Value::of(guarded(op.offset,
+                          [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); })),
+        op.offset);
   }
 
   Value postfix() {
@@ -285,7 +272,7 @@ class Parser {
       throw ExprError{name.offset,
                       fmt::format("expected {} argument{} for '{}', got {}", it->second,
                                   it->second == 1 ? "" : "s", name.text, args.size())};
-    return guarded(name.offset, [&] { return apply(name, args); });
+    return folded(guarded(name.offset, [&] { return apply(name, args); }), name.offset);
   }
 
   /// Argument `index` of `f` must be a vector (`vector`) or a scalar (otherwise).

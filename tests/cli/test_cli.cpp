@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -171,6 +172,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"rotation_only_at_start",
                 posed_bar("[[cos(q), -2*q*sin(q), 0], [2*q*sin(q), cos(q), 0], [0, 0, 1]]"),
                 "9:15: ", "at a state drawn by the check (q = "},
+        // issue 8, item 12: exact arithmetic is bounded where the reader folds numbers
+        BadCase{"huge_exact_power",
+                "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\npotential: "
+                "(((2*q)^999)^999)^999\n",
+                "4:24: ", "expected exact numbers of at most 10000 digits"},
         BadCase{"tab_indent", "coordinates:\n\tq: {initial: 1}\n",
                 "2:1: ", "YAML forbids tabs for indentation"},
         BadCase{"tab_after_spaces",
@@ -180,6 +186,17 @@ INSTANTIATE_TEST_SUITE_P(
                 "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\n\t# note\n",
                 "4:1: ", "YAML forbids tabs for indentation"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// issue 8, item 12: a fuzz finding that once kept `check` busy for minutes.
+TEST(Cli, PowerTowerOfLongLiteralsEndsQuickly) {
+  const std::string tower =
+      std::string(LAGRANGE_SOURCE_DIR) + "/tests/hardening/data/fuzz/model/abs-power-tower.yaml";
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = run("check " + tower);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("model ok"), std::string::npos) << r.output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
 
 TEST(Cli, MissingFileIsAModelError) {
   const Result r = run("simulate /nonexistent/model.yaml");
