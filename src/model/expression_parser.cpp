@@ -25,6 +25,16 @@ const std::map<std::string, int>& builtin_arity() {
   return table;
 }
 
+/// " (did you mean 'log'?)" for names other languages give to built-in functions.
+std::string hint(const std::string& name) {
+  static const std::map<std::string, std::string> aliases = {
+      {"ln", "log"},     {"arcsin", "asin"},         {"arccos", "acos"}, {"arctan", "atan"},
+      {"pow", "a^b"},    {"power", "a^b"},           {"sqr", "x^2"},     {"fabs", "abs"},
+      {"exp10", "10^x"}, {"log10", "log(x)/log(10)"}};
+  auto it = aliases.find(name);
+  return it == aliases.end() ? "" : fmt::format(" (did you mean '{}'?)", it->second);
+}
+
 /// An exact GiNaC number for a decimal literal (rational when reasonably sized), finite.
 GiNaC::ex number_value(const Token& tok) {
   const std::string& s = tok.text;
@@ -123,6 +133,10 @@ class Parser {
     Value lhs = unary();
     while (at("*") || at("/")) {
       const Token& op = next();
+      if (op.text == "*" && at("*") && peek().offset == op.offset + 1)
+        throw ExprError{op.offset,
+                        "expected an operand after '*', got '**' (did you mean '^'? "
+                        "powers are written a^b)"};
       Value rhs = unary();
       lhs = folded(op.text == "*" ? multiply(lhs, rhs, op.offset) : divide(lhs, rhs, op.offset),
                    op.offset);
@@ -260,7 +274,8 @@ class Parser {
   Value call(const Token& name) {
     auto it = builtin_arity().find(name.text);
     if (it == builtin_arity().end())
-      throw ExprError{name.offset, fmt::format("unknown function '{}'", clip(name.text))};
+      throw ExprError{name.offset,
+                      fmt::format("unknown function '{}'{}", clip(name.text), hint(name.text))};
     expect("(");
     std::vector<Value> args{expr()};
     while (at(",")) {

@@ -63,6 +63,41 @@ TEST(Cli, SimulateWritesCsvSidecarAndPlot) {
   EXPECT_NE(first.find("<?xml"), std::string::npos);
 }
 
+// issue 8, item 8: --plot by extension (PNG through gnuplot's pngcairo), -o and --plot into
+// directories that do not exist yet, and plot options checked before anything is written.
+TEST(Cli, PlotsPngAndCreatesMissingDirectories) {
+  const fs::path dir = scratch("new_dir");
+  fs::remove_all(dir);
+  const fs::path csv = dir / "runs" / "p.csv", png = dir / "plots" / "p.png";
+  const Result r = run("simulate " + example("pendulum.yaml") + " --t-end 1 -q -o " + csv.string() +
+                       " --plot " + png.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(csv));
+  EXPECT_TRUE(fs::exists(csv.string() + ".json"));
+  std::ifstream in(png, std::ios::binary);
+  std::string magic(8, '\0');
+  in.read(magic.data(), 8);
+  EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, PlotOptionsAreCheckedBeforeTheRun) {
+  const fs::path csv = scratch("refused.csv");
+  const Result pdf = run("simulate " + example("pendulum.yaml") + " -o " + csv.string() +
+                         " --plot " + scratch("p.pdf").string());
+  EXPECT_EQ(pdf.code, 2);
+  EXPECT_NE(pdf.output.find("--plot: expected a plot file ending in .svg or .png, got '"),
+            std::string::npos)
+      << pdf.output;
+  const Result column = run("simulate " + example("pendulum.yaml") + " -o " + csv.string() +
+                            " --plot " + scratch("p.svg").string() + " --plot-columns nope");
+  EXPECT_EQ(column.code, 2);
+  EXPECT_NE(column.output.find("--plot-columns: no column 'nope'"), std::string::npos)
+      << column.output;
+  EXPECT_FALSE(fs::exists(csv));
+  EXPECT_FALSE(fs::exists(csv.string() + ".json"));
+}
+
 TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
   const fs::path a = scratch("a.csv"), b = scratch("b.csv");
   ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 1 -o " + a.string()).code, 0);
@@ -139,7 +174,7 @@ void PrintTo(const BadCase& c, std::ostream* os) {
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
-TEST_P(BadInput, ExitsWithOneNamesThePlaceAndWritesNothing) {
+TEST_P(BadInput, Exit1Located) {
   const BadCase& c = GetParam();
   const fs::path model = write_model(std::string(c.name) + ".yaml", c.yaml);
   const fs::path csv = scratch(std::string(c.name) + ".csv");
@@ -177,6 +212,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\npotential: "
                 "(((2*q)^999)^999)^999\n",
                 "4:24: ", "expected exact numbers of at most 10000 digits"},
+        // issue 8, item 8: spellings from other languages
+        BadCase{"double_star_power",
+                "parameters: {k: 1}\ncoordinates:\n  q: {initial: 1}\nkinetic: "
+                "der(q)^2/2\npotential: k*q**2/2\n",
+                "5:15: ", "got '**' (did you mean '^'? powers are written a^b)"},
+        BadCase{"ln_for_log",
+                "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\npotential: ln(q)\n",
+                "4:12: ", "unknown function 'ln' (did you mean 'log'?)"},
         BadCase{"tab_indent", "coordinates:\n\tq: {initial: 1}\n",
                 "2:1: ", "YAML forbids tabs for indentation"},
         BadCase{"tab_after_spaces",
