@@ -356,7 +356,7 @@ class Parser {
     if (n == "exp") return Value::of(GiNaC::exp(x));
     if (n == "log") return Value::of(GiNaC::log(x));
     if (n == "sqrt") return Value::of(GiNaC::sqrt(x));
-    return Value::of(GiNaC::abs(x));  // the only remaining one-argument function
+    return Value::of(real_abs(x));  // the only remaining one-argument function
   }
 
   std::vector<Token> toks_;
