@@ -13,6 +13,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/version.hpp"
 #include "lagrange/error.hpp"
 
 namespace {
@@ -39,6 +40,8 @@ int main(int argc, char** argv) {
   disable_address_randomisation(argv);
   CLI::App app{"lagrange: Lagrangian modelling and simulation of mechanical systems"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", lagrange::cli::version_text(),
+                       "print the version and the git revision it was built from");
   Options opt;
 
   auto* derive =
