@@ -21,8 +21,9 @@ struct CompiledModel {
   std::vector<std::string> velocity_names;  ///< nv: `<name>_dot`, then `<body>.vx`, `<body>.wx`, …
   std::vector<std::string> constraint_names, output_names, input_names, parameter_names;
   std::vector<double> parameter_defaults;
-  std::vector<double> q0, v0;  ///< initial state from the model (nq, nv)
-  std::vector<bool> fixed;     ///< nq: coordinates kept by the initial-state projection
+  std::vector<double> q0, v0;     ///< initial state from the model (nq, nv)
+  std::vector<bool> fixed;        ///< nq: coordinates kept by the initial-state projection
+  std::vector<size_t> rotations;  ///< per free body, the index in q of R11 (R row-major, 9 entries)
 
   /// Structural non-zeros: M lower triangle (i ≥ j), G (row, velocity column) and ∂C/∂q
   /// (row, coordinate column), in tape output order.
