@@ -21,6 +21,7 @@ struct ProjectionResult {
   double residual = 0.0;         ///< max |C| after projection
   double rate_residual = 0.0;    ///< max |Ċ| after projection
   int iterations = 0;
+  bool converged = false;  ///< max |C| reached the tolerance
 };
 
 /// Replaces each free body's R in q by the nearest rotation (polar factor U Vᵀ of R = U Σ Vᵀ,
@@ -63,8 +64,12 @@ class Dynamics {
   /// evaluation (the dynamics tape computes them alongside M and h).
   void last_constraints(double* C, double* Cdot) const;
 
-  /// Project (q, v) onto C = 0 (Gauss–Newton, least-squares change of the non-fixed
-  /// coordinates) and then Ċ = 0. Throws SimulationError when it does not converge.
+  /// Project (q, v) onto C = 0 (damped Gauss–Newton, least-squares change of the non-fixed
+  /// coordinates), then Ċ = 0 (least-squares change of the non-fixed velocities). When max |C|
+  /// cannot be brought to `tol`, stops at the state of least ‖C‖₂ found, with converged = false.
+  ProjectionResult try_project(double t, double* q, double* v, const std::vector<bool>& fixed,
+                               double tol = 1e-12, int max_iterations = 50);
+  /// As try_project, but throws SimulationError when it does not converge.
   ProjectionResult project(double t, double* q, double* v, const std::vector<bool>& fixed,
                            double tol = 1e-12, int max_iterations = 50);
 

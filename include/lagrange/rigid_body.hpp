@@ -35,5 +35,7 @@ Rotation rotation_from_euler(double roll, double pitch, double yaw);
 Rotation rotation_from_quaternion(const std::array<double, 4>& q);
 /// ‖RᵀR − 1‖_F, the orthonormality error of a row-major 3×3 matrix.
 double orthonormality_error(const double* R);
+/// det R of a row-major 3×3 matrix (+1 for a rotation, −1 for a reflection).
+double determinant(const double* R);
 
 }  // namespace lagrange

@@ -46,6 +46,30 @@ struct SimulationOptions {
   std::function<void(double t)> progress;        ///< called at each output sample
 };
 
+/// An initial state checked against C = 0, Ċ = 0 and, where needed, projected onto them
+/// (docs/theory.md §4.3).
+struct InitialConsistency {
+  bool was_consistent = true;     ///< max |C| and max |Ċ| were within tol: nothing changed
+  bool consistent = true;         ///< max |C| and max |Ċ| are within tol now
+  std::vector<double> C0, Cdot0;  ///< at the given state
+  std::vector<double> C, Cdot;    ///< at the projected state (the best one found)
+  ProjectionResult projection;
+  /// Not consistent, but the projection reaches C = 0, Ċ = 0 when no coordinate is held fixed.
+  bool blocked_by_fixed = false;
+  std::string changes;  ///< one line "\n  name: old -> new" per changed coordinate or velocity
+
+  /// "initial state was inconsistent (max |C| = …, max |Ċ| = …); projected onto the
+  /// constraints (|Δq| = …, |Δv| = …):" and the changes.
+  std::string note() const;
+};
+
+/// Checks C = 0 and Ċ = 0 to `tol` at (t0, q, v) and, if they fail, projects q and v in place
+/// keeping the model's fixed coordinates (Dynamics::try_project). Never throws for a state that
+/// cannot be made consistent: `consistent` says so, and the other fields say why.
+InitialConsistency make_initial_state_consistent(Dynamics& dynamics, double t0,
+                                                 std::vector<double>& q, std::vector<double>& v,
+                                                 double tol = 1e-11);
+
 /// Simulate from (q0, v0). Never throws for numerical failures: the trajectory computed so far
 /// is returned with status Failed and the reason (SimulationError message).
 Trajectory simulate(Dynamics& dynamics, const SimulationOptions& options, std::vector<double> q0,

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cli/prepare.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
@@ -23,34 +24,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Parameter values: the model's, overridden by --set NAME=VALUE.
-std::vector<double> parameter_values(const CompiledModel& cm,
-                                     const std::vector<std::string>& sets) {
-  std::vector<double> p = cm.parameter_defaults;
-  for (const auto& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos) throw UsageError("--set expects NAME=VALUE, got '" + s + "'");
-    const std::string name = s.substr(0, eq);
-    auto it = std::find(cm.parameter_names.begin(), cm.parameter_names.end(), name);
-    if (it == cm.parameter_names.end()) {
-      std::string known;
-      for (const auto& n : cm.parameter_names) known += (known.empty() ? "" : ", ") + n;
-      throw UsageError(fmt::format("--set: unknown parameter '{}' (parameters: {})", name,
-                                   known.empty() ? "none" : known));
-    }
-    try {
-      size_t used = 0;
-      const double value = std::stod(s.substr(eq + 1), &used);
-      if (used != s.size() - eq - 1 || !std::isfinite(value)) throw std::invalid_argument(s);
-      p[static_cast<size_t>(it - cm.parameter_names.begin())] = value;
-    } catch (const std::exception&) {
-      throw UsageError("--set: expected a finite number after '" + name + "=', got '" +
-                       s.substr(eq + 1) + "'");
-    }
-  }
-  return p;
 }
 
 SimulationOptions simulation_options(const Model& model, const Options& opt) {
@@ -83,60 +56,6 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
   };
 }
 
-// Forward dynamics at the model's initial state, before anything is integrated or written. A
-// mass matrix that is singular there (a zero mass, a zero-length link) is a mistake in the model:
-// it is reported as a ModelError at the coordinate without inertia, naming the parameters its
-// mass-matrix entry depends on, so that no output file is created for a run that cannot start.
-void require_regular_initial_state(const Model& model, const Equations& eq, Dynamics& dyn,
-                                   const std::vector<double>& q, const std::vector<double>& v) {
-  const CompiledModel& cm = dyn.model();
-  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
-  try {
-    dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
-  } catch (const SimulationError& e) {
-    // CLN refuses subnormal doubles (floating_point_underflow_exception): flush them to 0.
-    auto number = [](double x) { return GiNaC::numeric(std::isnormal(x) ? x : 0.0); };
-    GiNaC::exmap at_start;
-    for (size_t i = 0; i < model.coordinates.size(); ++i) {
-      at_start[model.coordinates[i].q] = number(q[i]);
-      at_start[model.coordinates[i].v] = number(v[i]);
-    }
-    at_start[model.t] = 0;
-    for (size_t j = 0; j < model.parameters.size(); ++j)
-      at_start[model.parameters[j].sym] = number(dyn.parameters()[j]);
-    for (size_t i = 0; i < cm.plain; ++i) {
-      const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
-      GiNaC::ex value;
-      try {
-        value = GiNaC::evalf(Mii.subs(at_start));
-      } catch (const std::exception&) {
-        continue;  // a pole of M at the initial state: reported below with the dynamics' message
-      }
-      if (!GiNaC::is_a<GiNaC::numeric>(value) ||
-          std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
-        continue;
-      std::string depends;
-      for (size_t j = 0; j < model.parameters.size(); ++j)
-        if (Mii.has(model.parameters[j].sym))
-          depends += fmt::format("{}{} = {:g}", depends.empty() ? "" : ", ",
-                                 model.parameters[j].name, dyn.parameters()[j]);
-      const Coordinate& c = model.coordinates[i];
-      std::ostringstream entry;
-      entry << simplify(Mii);
-      throw ModelError(c.loc,
-                       fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
-                                   "matrix entry M[{},{}] = {} is 0{}; expected positive masses "
-                                   "and non-zero lengths",
-                                   c.name, c.name, c.name, entry.str(),
-                                   depends.empty() ? "" : " with " + depends));
-    }
-    const SourceLoc where =
-        model.coordinates.empty() ? SourceLoc{model.file, 1, 1} : model.coordinates[0].loc;
-    throw ModelError(
-        where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
-  }
-}
-
 }  // namespace
 
 int run_derive(const Options& opt) {
@@ -156,59 +75,32 @@ int run_export(const Options& opt) {
 }
 
 int run_check(const Options& opt) {
-  const Model model = read_model_file(opt.model);
-  const Equations eq = derive(model);
-  const auto cm = compile(eq);
-  Dynamics dyn(cm, parameter_values(*cm, opt.sets));
-  dyn.set_baumgarte(model.stabilization.alpha);
+  const Prepared p = prepare(opt.model, opt.sets);
+  const CompiledModel& cm = *p.compiled;
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
-             model.name, cm->nq, cm->m, cm->np, cm->k);
-  std::vector<double> q = cm->q0, v = cm->v0;
-  if (cm->m > 0) {
-    std::vector<double> C(cm->m), Cdot(cm->m);
-    dyn.constraints(0.0, q.data(), v.data(), C.data(), Cdot.data());
-    for (size_t r = 0; r < cm->m; ++r)
-      fmt::print("  constraint {:<16} C = {:+.3e}   Cdot = {:+.3e}\n", cm->constraint_names[r],
-                 C[r], Cdot[r]);
-    double worst = 0;
-    for (size_t r = 0; r < cm->m; ++r) worst = std::max({worst, std::abs(C[r]), std::abs(Cdot[r])});
-    if (worst > 1e-11) {
-      const ProjectionResult pr = dyn.project(0.0, q.data(), v.data(), cm->fixed, 1e-13);
-      fmt::print("initial state is inconsistent (max residual {:.3e}); simulate will project it:\n",
-                 worst);
-      for (size_t i = 0; i < cm->nq; ++i)
-        if (q[i] != cm->q0[i])
-          fmt::print("  {}: {:.10g} -> {:.10g}\n", cm->coordinate_names[i], cm->q0[i], q[i]);
-      for (size_t i = 0; i < cm->nv; ++i)
-        if (v[i] != cm->v0[i])
-          fmt::print("  {}: {:.10g} -> {:.10g}\n", cm->velocity_names[i], cm->v0[i], v[i]);
-      fmt::print("  |dq| = {:.3e}, |dv| = {:.3e}\n", pr.position_change, pr.velocity_change);
-      return 1;
-    }
-    fmt::print("initial state is consistent (max residual {:.3e})\n", worst);
+             p.model->name, cm.nq, cm.m, cm.np, cm.k);
+  for (size_t r = 0; r < cm.m; ++r)
+    fmt::print("  constraint {:<16} C = {:+.3e}   Cdot = {:+.3e}\n", cm.constraint_names[r],
+               p.initial.C0[r], p.initial.Cdot0[r]);
+  if (!p.initial.was_consistent) {
+    fmt::print("{}\n(simulate starts from this projected state)\n", p.initial.note());
+    return 1;
   }
-  require_regular_initial_state(model, eq, dyn, q, v);
+  if (cm.m > 0) fmt::print("initial state is consistent\n");
   fmt::print("mass matrix positive definite at the initial state\n");
   return 0;
 }
 
 int run_simulate(const Options& opt) {
-  const auto t0 = Clock::now();
-  const Model model = read_model_file(opt.model);
-  const Equations eq = derive(model);
-  const double t_derive = seconds_since(t0);
-  const auto t1 = Clock::now();
-  const auto cm = compile(eq);
-  Dynamics dyn(cm, parameter_values(*cm, opt.sets));
-  dyn.set_baumgarte(model.stabilization.alpha);
-  const double t_compile = seconds_since(t1);
-
+  Prepared p = prepare(opt.model, opt.sets);
+  const Model& model = *p.model;
+  const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);
-  require_regular_initial_state(model, eq, dyn, cm->q0, cm->v0);
+  if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
   const auto t2 = Clock::now();
-  Trajectory traj = simulate(dyn, so, cm->q0, cm->v0);
+  Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);
   if (so.progress) fmt::print(stderr, "\r{:60}\r", "");
   for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
@@ -229,7 +121,8 @@ int run_simulate(const Options& opt) {
     fmt::print(
         "  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, "
         "{})\n",
-        t_derive, t_compile, t_sim, traj.stats.steps, traj.stats.rhs_evals, so.integrator.method);
+        p.derive_seconds, p.compile_seconds, t_sim, traj.stats.steps, traj.stats.rhs_evals,
+        so.integrator.method);
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
       fmt::print(

@@ -2,7 +2,6 @@
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
-#include <sys/personality.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -21,23 +20,10 @@ std::atomic<bool> g_interrupt{false};
 extern "C" void on_sigint(int) {
   g_interrupt.store(true);
 }
-
-// Determinism (issue 5): GiNaC orders the terms of sums and products by hash values seeded with
-// the load address of its type-info names, so under address-space layout randomisation the term
-// order — and with it the rounding of the compiled tape — changes from run to run. Re-executing
-// once with randomisation turned off for this process makes the same model and options give a
-// bit-identical trajectory on the same machine. Where the kernel refuses, we carry on as we are.
-void disable_address_randomisation(char** argv) {
-  const int persona = personality(0xffffffff);
-  if (persona == -1 || (persona & ADDR_NO_RANDOMIZE) != 0) return;
-  if (personality(static_cast<unsigned long>(persona) | ADDR_NO_RANDOMIZE) == -1) return;
-  execv("/proc/self/exe", argv);  // returns only on failure
-}
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace lagrange::cli;
-  disable_address_randomisation(argv);
   CLI::App app{"lagrange: Lagrangian modelling and simulation of mechanical systems"};
   app.require_subcommand(1);
   app.set_version_flag("--version", lagrange::cli::version_text(),

@@ -3,6 +3,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "compile/canonical_order.hpp"
 #include "compile/ginac_util.hpp"
 
 namespace lagrange {
@@ -61,6 +62,9 @@ ex to_ex(const Remainder& r) {
 /// Bottom-up rewriter with a memo so that shared subexpressions are rewritten once.
 class FactorCollector : public GiNaC::map_function {
  public:
+  /// A rewriter that visits terms and factors in `order`.
+  explicit FactorCollector(tape_detail::CanonicalOrder& order) : order_(order) {}
+
   /// The rewritten form of e.
   ex operator()(const ex& e) override {
     if (e.nops() == 0) return e;
@@ -98,15 +102,18 @@ class FactorCollector : public GiNaC::map_function {
 
   /// Σ cᵢ·aᵢ·X + rest → X·Σ cᵢ·aᵢ + rest (docs/theory.md §8): each term a·X, a a plain symbol
   /// factor, joins the remainder X shared by the most terms; single-member groups stay as
-  /// they were. Cost: O(terms · factors²) hashing, GiNaC objects only for rewritten groups.
-  static ex group_sum(const GiNaC::add& s) {
+  /// they were. Terms and factors are visited in canonical order, so that ties between
+  /// remainders are broken the same way in every process (GiNaC's order is not).
+  /// Cost: O(terms · factors²) hashing, GiNaC objects only for rewritten groups.
+  ex group_sum(const GiNaC::add& s) {
     const GiNaC::epvector& pairs = PairAccess::pairs(s);
+    const std::vector<std::uint32_t> terms_in_order = order_.pair_order(s);
     std::vector<std::vector<Remainder>> cand(pairs.size());
     std::unordered_map<Remainder, size_t, RemainderHash, RemainderEqual> count;
-    for (size_t i = 0; i < pairs.size(); ++i) {
+    for (size_t i : terms_in_order) {
       if (!GiNaC::is_a<GiNaC::mul>(pairs[i].rest)) continue;
       const GiNaC::epvector& f = PairAccess::pairs(GiNaC::ex_to<GiNaC::mul>(pairs[i].rest));
-      for (size_t j = 0; j < f.size(); ++j) {
+      for (size_t j : order_.pair_order(pairs[i].rest)) {
         if (GiNaC::is_a<GiNaC::symbol>(f[j].rest) &&
             GiNaC::ex_to<GiNaC::numeric>(f[j].coeff).is_equal(1)) {
           cand[i].push_back({&f, j});
@@ -118,7 +125,7 @@ class FactorCollector : public GiNaC::map_function {
     std::vector<int> choice(pairs.size(), -1);
     std::unordered_map<Remainder, size_t, RemainderHash, RemainderEqual> group_of;
     std::vector<std::vector<size_t>> groups;
-    for (size_t i = 0; i < pairs.size(); ++i) {
+    for (size_t i : terms_in_order) {
       size_t best = 1;
       for (size_t j = 0; j < cand[i].size(); ++j) {
         const size_t n = count[cand[i][j]];
@@ -157,18 +164,21 @@ class FactorCollector : public GiNaC::map_function {
     return ex(GiNaC::dynallocate<GiNaC::add>(std::move(terms)));
   }
 
+  tape_detail::CanonicalOrder& order_;
   ExMap<ex> memo_;
 };
 
 }  // namespace
 
 GiNaC::ex collect_common_factors(const GiNaC::ex& e) {
-  FactorCollector f;
+  tape_detail::CanonicalOrder order;
+  FactorCollector f(order);
   return f(e);
 }
 
-std::vector<GiNaC::ex> collect_common_factors(const std::vector<GiNaC::ex>& es) {
-  FactorCollector f;
+std::vector<GiNaC::ex> collect_common_factors(const std::vector<GiNaC::ex>& es,
+                                              tape_detail::CanonicalOrder& order) {
+  FactorCollector f(order);
   std::vector<GiNaC::ex> out;
   out.reserve(es.size());
   for (const GiNaC::ex& e : es) out.push_back(f(e));

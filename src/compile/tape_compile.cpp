@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 
+#include "compile/canonical_order.hpp"
 #include "compile/collect_factors.hpp"
 #include "compile/ginac_util.hpp"
 #include "compile/tape_builder.hpp"
@@ -49,11 +51,16 @@ const std::unordered_map<std::string, Op>& unary_functions() {
   return table;
 }
 
-/// Walks the expression DAG and emits one SSA value per distinct subexpression.
+/// Walks the expression DAG and emits one SSA value per distinct canonical subexpression R(e)
+/// (compile/canonical_order.hpp), visiting the operands of sums and products in canonical order
+/// and with the signs of the canonical form; GiNaC's order and signs depend on load addresses
+/// and symbol creation order. So the tape is the same in every process.
 class ExprCompiler {
  public:
-  /// A compiler emitting into `b`, with inputs[i] read as input i.
-  ExprCompiler(TapeBuilder& b, const std::vector<GiNaC::symbol>& inputs) : b_(b) {
+  /// A compiler emitting into `b`, with inputs[i] read as input i, operands taken in `order`.
+  ExprCompiler(TapeBuilder& b, const std::vector<GiNaC::symbol>& inputs,
+               tape_detail::CanonicalOrder& order)
+      : b_(b), order_(order) {
     for (size_t i = 0; i < inputs.size(); ++i) {
       if (!input_index_.emplace(inputs[i], static_cast<std::uint32_t>(i)).second) {
         throw std::invalid_argument(
@@ -62,10 +69,11 @@ class ExprCompiler {
     }
   }
 
-  /// Counts how many parents reference each distinct subexpression of e (first visit recurses).
+  /// Counts how many parents reference each distinct canonical subexpression of e (first visit
+  /// recurses).
   void count_uses(const ex& e) {
     if (e.nops() == 0) return;
-    if (uses_[e]++ > 0) return;
+    if (slot(uses_, order_.id(e), 0)++ > 0) return;
     if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
       for (const GiNaC::expair& p : PairAccess::pairs(GiNaC::ex_to<GiNaC::expairseq>(e))) {
         count_uses(p.rest);
@@ -76,16 +84,35 @@ class ExprCompiler {
     }
   }
 
-  /// The SSA value of e, compiled once per distinct expression.
+  /// The SSA value of e: that of its canonical form R(e), or of −R(e) when e = −R(e) (a sum
+  /// or product with its signs flipped rather than an extra negation).
   std::uint32_t value(const ex& e) {
-    if (auto it = memo_.find(e); it != memo_.end()) return it->second;
-    const std::uint32_t v = build(e);
-    memo_.emplace(e, v);
+    if (order_.sign(e) > 0) return canonical_value(e);
+    const std::uint32_t id = order_.id(e);
+    if (const std::uint32_t v = slot(negated_, id, kNone); v != kNone) return v;
+    std::uint32_t v = 0;
+    if (GiNaC::is_a<GiNaC::add>(e)) {
+      v = build_sum(e, -1);
+    } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+      v = build_product(e, -1);
+    } else {
+      v = b_.unary(Op::Neg, canonical_value(e));
+    }
+    slot(negated_, id, kNone) = v;
     return v;
   }
 
  private:
-  /// Compiles e from its children (no memo lookup).
+  /// The SSA value of R(e), compiled once per canonical form.
+  std::uint32_t canonical_value(const ex& e) {
+    const std::uint32_t id = order_.id(e);
+    if (const std::uint32_t v = slot(memo_, id, kNone); v != kNone) return v;
+    const std::uint32_t v = build(e);
+    slot(memo_, id, kNone) = v;
+    return v;
+  }
+
+  /// Compiles R(e) from its children (no memo lookup).
   std::uint32_t build(const ex& e) {
     if (GiNaC::is_a<GiNaC::numeric>(e)) return b_.constant(to_double(e));
     if (GiNaC::is_a<GiNaC::constant>(e)) return b_.constant(to_double(e.evalf()));
@@ -98,61 +125,77 @@ class ExprCompiler {
       }
       return b_.input(it->second);
     }
-    if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(GiNaC::ex_to<GiNaC::add>(e));
-    if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(GiNaC::ex_to<GiNaC::mul>(e));
+    if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(e, 1);
+    if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(e, 1);
     if (GiNaC::is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1));
     if (GiNaC::is_a<GiNaC::function>(e)) return build_function(GiNaC::ex_to<GiNaC::function>(e));
     throw std::invalid_argument(fmt::format("cannot compile expression {}", text(e)));
   }
 
-  /// base^exponent: integer exponents by PowInt/Inv, 1/2 by Sqrt, anything else by Pow.
+  /// R(base^exponent): integer exponents (whose sign the canonical form moves out) of R(base)
+  /// by PowInt/Inv, or Pow beyond kMaxPowInt; 1/2 by Sqrt and anything else by Pow of base.
   std::uint32_t power(const ex& base, const ex& exponent) {
-    if (exponent.is_equal(GiNaC::ex(1))) return value(base);
+    if (exponent.is_equal(GiNaC::ex(1))) return canonical_value(base);
     if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
       const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
       if (n.is_integer() && abs(n) <= tape_detail::kMaxPowInt) {
-        return b_.pow_int(value(base), n.to_int());
+        return b_.pow_int(canonical_value(base), n.to_int());
       }
+      if (n.is_integer()) return b_.binary(Op::Pow, canonical_value(base), value(exponent));
       if (n.is_equal(GiNaC::numeric(1, 2))) return b_.unary(Op::Sqrt, value(base));
     }
     return b_.binary(Op::Pow, value(base), value(exponent));
   }
 
-  /// The factors of a sum's term rest: a once-used product is spliced into the sum (the fused
+  /// The term coef·R(rest) of a sum: a once-used product is spliced into the sum (the fused
   /// sum of products of docs/theory.md §8), anything else is one factor.
-  Term term(const ex& rest, const ex& coeff) {
-    Term t{to_double(coeff), {}};
-    if (GiNaC::is_a<GiNaC::mul>(rest) && uses_[rest] <= 1 && !memo_.count(rest)) {
+  Term term(const ex& rest, double coef) {
+    Term t{coef, {}};
+    const std::uint32_t id = order_.id(rest);
+    if (GiNaC::is_a<GiNaC::mul>(rest) && slot(uses_, id, 0) <= 1 &&
+        slot(memo_, id, kNone) == kNone) {
       const auto& m = GiNaC::ex_to<GiNaC::mul>(rest);
-      t.coef *= to_double(PairAccess::overall(m));
-      for (const GiNaC::expair& f : PairAccess::pairs(m)) {
-        t.factors.push_back(power(f.rest, f.coeff));
+      t.coef *= std::fabs(to_double(PairAccess::overall(m)));
+      const GiNaC::epvector& factors = PairAccess::pairs(m);
+      for (std::uint32_t i : order_.pair_order(rest)) {
+        t.factors.push_back(power(factors[i].rest, factors[i].coeff));
       }
     } else {
-      t.factors.push_back(value(rest));
+      t.factors.push_back(canonical_value(rest));
     }
     return t;
   }
 
-  /// add → Sum / SumProd: Σ coeffᵢ·restᵢ + overall constant.
-  std::uint32_t build_sum(const GiNaC::add& s) {
+  /// flip·R(add) → Sum / SumProd: Σ coeffᵢ·R(restᵢ) + constant, flip = ±1.
+  std::uint32_t build_sum(const ex& e, int flip) {
+    const auto& s = GiNaC::ex_to<GiNaC::add>(e);
+    const GiNaC::epvector& pairs = PairAccess::pairs(s);
+    const int sign = flip * order_.sign(e);
     std::vector<Term> terms;
-    terms.reserve(PairAccess::pairs(s).size());
-    for (const GiNaC::expair& p : PairAccess::pairs(s)) terms.push_back(term(p.rest, p.coeff));
-    return b_.sum(terms, to_double(PairAccess::overall(s)));
+    terms.reserve(pairs.size());
+    for (std::uint32_t i : order_.pair_order(e)) {
+      const double c = to_double(pairs[i].coeff);
+      terms.push_back(term(pairs[i].rest, sign * order_.sign(pairs[i].rest) < 0 ? -c : c));
+    }
+    const double constant = to_double(PairAccess::overall(s));
+    return b_.sum(terms, sign < 0 ? -constant : constant);
   }
 
-  /// mul → Prod, or Div(c·numerators, denominators) when some factors have exponent −1.
-  std::uint32_t build_product(const GiNaC::mul& m) {
+  /// flip·R(mul) → Prod, or Div(±|c|·numerators, denominators) when some factors have
+  /// exponent −1; flip = ±1.
+  std::uint32_t build_product(const ex& e, int flip) {
+    const auto& m = GiNaC::ex_to<GiNaC::mul>(e);
+    const GiNaC::epvector& pairs = PairAccess::pairs(m);
     std::vector<std::uint32_t> num, den;
-    for (const GiNaC::expair& f : PairAccess::pairs(m)) {
+    for (std::uint32_t i : order_.pair_order(e)) {
+      const GiNaC::expair& f = pairs[i];
       if (GiNaC::ex_to<GiNaC::numeric>(f.coeff).is_equal(-1)) {
-        den.push_back(value(f.rest));
+        den.push_back(canonical_value(f.rest));
       } else {
         num.push_back(power(f.rest, f.coeff));
       }
     }
-    const std::uint32_t top = b_.prod(to_double(PairAccess::overall(m)), num);
+    const std::uint32_t top = b_.prod(flip * std::fabs(to_double(PairAccess::overall(m))), num);
     if (den.empty()) return top;
     return b_.binary(Op::Div, top, b_.prod(1.0, den));
   }
@@ -177,9 +220,20 @@ class ExprCompiler {
   }
 
   TapeBuilder& b_;
+  tape_detail::CanonicalOrder& order_;
   ExMap<std::uint32_t> input_index_;
-  ExMap<std::uint32_t> memo_;
-  ExMap<int> uses_;
+  /// v[id], growing v with `fill` as needed (the reference lasts until v grows again).
+  template <class T>
+  static T& slot(std::vector<T>& v, std::uint32_t id, T fill) {
+    if (id >= v.size()) v.resize(id + 1, fill);
+    return v[id];
+  }
+
+  // Indexed by the canonical id of R(e) (CanonicalOrder::id); kNone: not compiled yet.
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> memo_;     ///< SSA value of R(e)
+  std::vector<std::uint32_t> negated_;  ///< SSA value of −R(e)
+  std::vector<int> uses_;               ///< number of parents of R(e)
 };
 
 }  // namespace
@@ -187,8 +241,9 @@ class ExprCompiler {
 Tape Tape::compile(const std::vector<GiNaC::ex>& outputs,
                    const std::vector<GiNaC::symbol>& inputs) {
   tape_detail::TapeBuilder builder(inputs.size());
-  ExprCompiler compiler(builder, inputs);
-  const std::vector<GiNaC::ex> rewritten = lagrange::collect_common_factors(outputs);
+  tape_detail::CanonicalOrder order(inputs);
+  ExprCompiler compiler(builder, inputs, order);
+  const std::vector<GiNaC::ex> rewritten = lagrange::collect_common_factors(outputs, order);
   for (const GiNaC::ex& e : rewritten) compiler.count_uses(e);
   std::vector<std::uint32_t> out;
   out.reserve(rewritten.size());

@@ -19,14 +19,20 @@ double max_abs(const double* x, size_t n) {
 }  // namespace
 
 // docs/theory.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
-// free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation (∂C/∂q) Δq = −C),
-// then the minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free
-// body's R moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back.
-ProjectionResult Dynamics::project(double t, double* q, double* v, const std::vector<bool>& fixed,
-                                   double tol, int max_iterations) {
+// free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation (∂C/∂q) Δq = −C,
+// each step halved until ‖C‖₂ decreases, so that the residual never grows), then the
+// minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free body's R
+// moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back. Stops without
+// converging when no halving of the step reduces ‖C‖₂ (a least-squares minimum where C ≠ 0, or
+// fixed coordinates in the way) or after max_iterations, at the state of least ‖C‖₂ found.
+ProjectionResult Dynamics::try_project(double t, double* q, double* v,
+                                       const std::vector<bool>& fixed, double tol,
+                                       int max_iterations) {
   const CompiledModel& cm = *model_;
   ProjectionResult res;
+  res.converged = true;
   if (cm.m == 0) return res;
+  constexpr int kHalvings = 30;
   const long nq = static_cast<long>(cm.nq), nv = static_cast<long>(cm.nv),
              m = static_cast<long>(cm.m);
   Eigen::Map<Eigen::VectorXd> qv(q, nq), vv(v, nv);
@@ -50,23 +56,41 @@ ProjectionResult Dynamics::project(double t, double* q, double* v, const std::ve
         Gf.col(k).setZero();
     return Gf;
   };
+  auto norm_C = [&]() {
+    return Eigen::Map<const Eigen::VectorXd>(out_.data() + cm.C_out(), m).norm();
+  };
+  eval_dynamics(t, q, v);
   for (;; ++res.iterations) {
-    eval_dynamics(t, q, v);
     res.residual = max_abs(out_.data() + cm.C_out(), cm.m);
     if (!std::isfinite(res.residual))
       throw SimulationError(t, "the constraints are not finite at the initial state");
     if (res.residual <= tol) break;
-    if (res.iterations >= max_iterations)
-      throw SimulationError(
-          t, fmt::format("projection onto the constraints did not converge in {} iterations "
-                         "(max |C| = {:.3g}); the initial state may be far from any consistent "
-                         "state, or the free coordinates cannot satisfy the constraints",
-                         max_iterations, res.residual));
+    if (res.iterations >= max_iterations) {
+      res.converged = false;
+      break;
+    }
     for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.C_out() + static_cast<size_t>(r)];
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(position_jacobian());
-    qv += cod.solve(rhs);
+    const Eigen::VectorXd step = cod.solve(rhs);
+    const Eigen::VectorXd q_here = qv;
+    const double here = norm_C();
+    double scale = 1.0;
+    int halvings = 0;
+    for (;; ++halvings, scale /= 2) {
+      qv = q_here + scale * step;
+      eval_dynamics(t, q, v);
+      const double there = norm_C();
+      if (there < here) break;  // false for NaN too: a step into a pole is halved
+      if (halvings == kHalvings) break;
+    }
+    if (halvings == kHalvings) {  // no descent along the Gauss–Newton direction
+      qv = q_here;
+      eval_dynamics(t, q, v);
+      res.residual = max_abs(out_.data() + cm.C_out(), cm.m);
+      res.converged = res.residual <= tol;
+      break;
+    }
   }
-  eval_dynamics(t, q, v);
   for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.Cdot_out() + static_cast<size_t>(r)];
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(velocity_jacobian());
   vv += cod.solve(rhs);
@@ -74,6 +98,18 @@ ProjectionResult Dynamics::project(double t, double* q, double* v, const std::ve
   res.rate_residual = max_abs(out_.data() + cm.Cdot_out(), cm.m);
   res.position_change = (qv - q_start).norm();
   res.velocity_change = (vv - v_start).norm();
+  return res;
+}
+
+ProjectionResult Dynamics::project(double t, double* q, double* v, const std::vector<bool>& fixed,
+                                   double tol, int max_iterations) {
+  const ProjectionResult res = try_project(t, q, v, fixed, tol, max_iterations);
+  if (!res.converged)
+    throw SimulationError(
+        t, fmt::format("projection onto the constraints did not converge in {} iterations "
+                       "(max |C| = {:.3g}); the state may be far from any consistent state, or "
+                       "the free coordinates cannot satisfy the constraints",
+                       res.iterations, res.residual));
   return res;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lagrange/model.hpp"
+#include "lagrange/reader.hpp"
 #include "lagrange/rigid_body.hpp"
 #include "model/expression_parser.hpp"
 #include "model/source_text.hpp"
@@ -52,7 +53,7 @@ enum Allowed : unsigned {
 /// parameters, coordinates, inputs, points, then everything that may use them.
 class ModelReader {
  public:
-  explicit ModelReader(const SourceText& src);
+  ModelReader(const SourceText& src, const ParameterOverrides& overrides);
   Model read(const YAML::Node& root);
 
  private:
@@ -95,6 +96,8 @@ class ModelReader {
 
   // read_declarations.cpp
   void read_parameters(const YAML::Node& node);
+  /// Every override names a parameter (ParameterOverrideError otherwise).
+  void check_overrides() const;
   void read_coordinates(const YAML::Node& node);
   void read_inputs(const YAML::Node& node);
   // read_points.cpp
@@ -115,6 +118,8 @@ class ModelReader {
   Mat3 read_inertia(const Body& body, const YAML::Node& spec);
   Mat3 read_shape(const Body& body, const YAML::Node& shape);
   void read_body_points(Body& body, const YAML::Node& node);
+  // posed_rotation.cpp — RᵀR = 1 and det R = +1 at the initial state and a few others.
+  void check_posed_rotation(const Body& body, const YAML::Node& node) const;
   void read_torques(const YAML::Node& node);
   // read_body_initial.cpp — the initial state of a free body.
   void read_free_initial(Body& body, const YAML::Node& node);
@@ -125,6 +130,7 @@ class ModelReader {
   void read_simulate(const YAML::Node& node);
 
   const SourceText& src_;
+  const ParameterOverrides& overrides_;
   Model m_;
   std::map<std::string, NameEntry> names_;
   std::vector<bool> point_ready_;

@@ -49,4 +49,9 @@ double orthonormality_error(const double* R) {
   return std::sqrt(s);
 }
 
+double determinant(const double* R) {
+  return R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+         R[2] * (R[3] * R[7] - R[4] * R[6]);
+}
+
 }  // namespace lagrange

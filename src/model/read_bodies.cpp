@@ -69,8 +69,10 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
                                         what));
     if (spec["position"])
       body.position = vector_expr(spec["position"], kAll, "position of " + what);
-    if (spec["rotation"])
+    if (spec["rotation"]) {
       body.rotation = matrix_expr(spec["rotation"], kAll, "rotation of " + what);
+      check_posed_rotation(body, spec["rotation"]);
+    }
   }
   if (spec["points"]) read_body_points(body, spec["points"]);
   return body;

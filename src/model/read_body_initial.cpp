@@ -61,8 +61,7 @@ Rotation ModelReader::read_orientation(const Body& body, const YAML::Node& node)
         R[3 * i + j] = *x;
       }
     const double err = orthonormality_error(R.data());
-    const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
-                       R[2] * (R[3] * R[7] - R[4] * R[6]);
+    const double det = determinant(R.data());
     if (!(err < kOrthonormalTolerance) || !(det > 0))
       fail(m, fmt::format("expected a rotation matrix (RᵀR = 1 to {:g}, det R = +1) for body "
                           "'{}', got ‖RᵀR − 1‖ = {:.3g}, det R = {:.6g} (give more digits, or "

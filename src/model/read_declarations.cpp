@@ -17,8 +17,16 @@ void ModelReader::read_parameters(const YAML::Node& node) {
     const std::string& name = kv.first.Scalar();
     Parameter p{name, GiNaC::symbol(name, latex_name(name)), 0.0, src_.at(kv.first)};
     p.value = number(kv.second, kNumbers, fmt::format("parameter '{}'", name));
+    if (auto it = overrides_.find(name); it != overrides_.end()) p.value = it->second;
     m_.parameters.push_back(p);
   }
+}
+
+void ModelReader::check_overrides() const {
+  for (const auto& [name, value] : overrides_)
+    if (m_.parameter_index(name) < 0)
+      throw ParameterOverrideError(fmt::format("unknown parameter '{}' (parameters: {})", name,
+                                               names_of(NameKind::Parameter)));
 }
 
 void ModelReader::read_coordinates(const YAML::Node& node) {

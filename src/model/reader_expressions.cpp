@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 
+#include "lagrange/tape.hpp"
 #include "model/expression_algebra.hpp"
 #include "model/model_reader.hpp"
 
@@ -15,6 +18,28 @@ namespace {
 bool is_yaml_nonfinite(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s == ".inf" || s == "+.inf" || s == "-.inf" || s == ".nan";
+}
+
+/// e (an expression of parameters) at the parameters' values, evaluated by a tape: evalf adds
+/// floating-point terms in GiNaC's order, which changes from process to process, the tape's
+/// canonical order does not (docs/errors.md, Determinism). Nothing when the tape cannot be built.
+std::optional<double> in_canonical_order(const GiNaC::ex& e,
+                                         const std::vector<Parameter>& parameters) {
+  std::vector<GiNaC::symbol> symbols;
+  std::vector<double> values;
+  for (const Parameter& p : parameters) {
+    symbols.push_back(p.sym);
+    values.push_back(p.value);
+  }
+  try {
+    const Tape tape = Tape::compile({e}, symbols);
+    std::vector<double> work(tape.work_size());
+    double out = 0.0;
+    tape.eval(values.data(), &out, work.data());
+    return out;
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace
@@ -87,7 +112,7 @@ std::optional<double> ModelReader::evaluate(const GiNaC::ex& e) const {
     if (!GiNaC::is_a<GiNaC::numeric>(r)) return std::nullopt;
     const auto& n = GiNaC::ex_to<GiNaC::numeric>(r);
     if (!n.is_real()) return std::nullopt;
-    return n.to_double();
+    return in_canonical_order(e, m_.parameters).value_or(n.to_double());
   } catch (const std::exception&) {
     return std::nullopt;
   }

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <optional>
 #include <string>
 
 #include "lagrange/error.hpp"
@@ -34,6 +35,10 @@ class SourceText {
 /// Reject input yaml-cpp should not see: non-text bytes, invalid UTF-8, and nesting of flow
 /// brackets plus block indentation deeper than `max_depth` (yaml-cpp recurses per level).
 void check_yaml_text(const SourceText& src, int max_depth = 200);
+
+/// The first tab in the indentation of a block-context line (YAML forbids it), if any: used to
+/// explain a yaml-cpp syntax error, which does not mention the tab.
+std::optional<SourceLoc> indentation_tab(const SourceText& src);
 
 /// Reject streams with more than one document, and those where yaml-cpp 0.7 makes no progress
 /// (a leading ',' sends YAML::LoadAll into an endless loop, yaml-cpp issue #1040).

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "model/source_text.hpp"
@@ -63,6 +65,9 @@ class NestingScanner {
                       quote_));
   }
 
+  /// The first tab in the leading whitespace of a block-context line, if any.
+  const std::optional<SourceLoc>& indentation_tab() const { return tab_; }
+
  private:
   void fail(int line, size_t col) const {
     throw ModelError(SourceLoc{src_.file(), line, static_cast<int>(col) + 1},
@@ -70,6 +75,7 @@ class NestingScanner {
   }
 
   void scan_line(const std::string& t, int line) {
+    if (quote_ == 0 && flow_ == 0 && block_indent_ < 0 && !tab_) note_tab(t, line);
     size_t indent = t.find_first_not_of(' ');
     bool blank = indent == std::string::npos || t[indent] == '#';
     if (block_indent_ >= 0) {
@@ -126,7 +132,16 @@ class NestingScanner {
     }
   }
 
+  // YAML forbids tabs in indentation (yaml-cpp also before a comment); a blank line may hold tabs.
+  void note_tab(const std::string& t, int line) {
+    const size_t content = t.find_first_not_of(" \t\r");
+    if (content == std::string::npos) return;
+    const size_t tab = t.find('\t');
+    if (tab < content) tab_ = SourceLoc{src_.file(), line, static_cast<int>(tab) + 1};
+  }
+
   const SourceText& src_;
+  std::optional<SourceLoc> tab_;
   int max_;
   std::vector<size_t> levels_;
   int flow_ = 0;
@@ -141,6 +156,12 @@ class NestingScanner {
 void check_yaml_text(const SourceText& src, int max_depth) {
   check_bytes(src);
   NestingScanner(src, max_depth).run();
+}
+
+std::optional<SourceLoc> indentation_tab(const SourceText& src) {
+  NestingScanner scanner(src, std::numeric_limits<int>::max());
+  scanner.run();  // check_yaml_text has passed: no unclosed quote, no excessive nesting
+  return scanner.indentation_tab();
 }
 
 }  // namespace lagrange::model

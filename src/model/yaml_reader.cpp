@@ -37,7 +37,8 @@ std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
 
 }  // namespace
 
-ModelReader::ModelReader(const SourceText& src) : src_(src) {}
+ModelReader::ModelReader(const SourceText& src, const ParameterOverrides& overrides)
+    : src_(src), overrides_(overrides) {}
 
 Model ModelReader::read(const YAML::Node& root) {
   if (!root.IsMap())
@@ -51,6 +52,7 @@ Model ModelReader::read(const YAML::Node& root) {
   declare_all(root);
 
   if (auto n = section(root, "parameters")) read_parameters(*n);
+  check_overrides();
   if (auto n = section(root, "coordinates")) read_coordinates(*n);
   if (auto n = section(root, "inputs")) read_inputs(*n);
   if (auto n = section(root, "bodies")) read_bodies(*n);
@@ -81,7 +83,8 @@ Model ModelReader::read(const YAML::Node& root) {
 
 }  // namespace model
 
-Model read_model_string(const std::string& yaml_text, const std::string& file_label) {
+Model read_model_string(const std::string& yaml_text, const std::string& file_label,
+                        const ParameterOverrides& overrides) {
   std::string text = yaml_text.rfind("\xEF\xBB\xBF", 0) == 0 ? yaml_text.substr(3) : yaml_text;
   model::SourceText src(std::move(text), file_label);
   model::check_yaml_text(src);
@@ -90,17 +93,21 @@ Model read_model_string(const std::string& yaml_text, const std::string& file_la
     model::check_single_document(src);
     root = YAML::Load(src.text());
   } catch (const YAML::Exception& e) {
-    throw ModelError(src.at(e.mark),
-                     fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
+    const SourceLoc at = src.at(e.mark);
+    if (const auto tab = model::indentation_tab(src); tab && (at.line == 0 || tab->line <= at.line))
+      throw ModelError(*tab,
+                       "YAML forbids tabs for indentation, got a tab here (indent with "
+                       "spaces)");
+    throw ModelError(at, fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
   }
   try {
-    return model::ModelReader(src).read(root);
+    return model::ModelReader(src, overrides).read(root);
   } catch (const YAML::Exception& e) {
     throw ModelError(src.at(e.mark), fmt::format("expected a well-formed model, got: {}", e.msg));
   }
 }
 
-Model read_model_file(const std::string& path) {
+Model read_model_file(const std::string& path, const ParameterOverrides& overrides) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ModelError(SourceLoc{path}, "expected a model file, got a directory");
@@ -111,7 +118,7 @@ Model read_model_file(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw ModelError(SourceLoc{path}, "cannot read the model file");
-  return read_model_string(text.str(), path);
+  return read_model_string(text.str(), path, overrides);
 }
 
 }  // namespace lagrange

@@ -91,28 +91,26 @@ void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<do
                      std::vector<double>& v, Trajectory& traj) {
   const CompiledModel& cm = dyn.model();
   if (cm.m == 0) return;
-  std::vector<double> C(cm.m), Cdot(cm.m);
-  dyn.constraints(opt.t0, q.data(), v.data(), C.data(), Cdot.data());
-  const double err = max_abs(C), rate_err = max_abs(Cdot);
-  if (err <= opt.projection_tol && rate_err <= opt.projection_tol) return;
-  if (!opt.project_initial)
+  if (!opt.project_initial) {
+    std::vector<double> C(cm.m), Cdot(cm.m);
+    dyn.constraints(opt.t0, q.data(), v.data(), C.data(), Cdot.data());
+    const double err = max_abs(C), rate_err = max_abs(Cdot);
+    if (err <= opt.projection_tol && rate_err <= opt.projection_tol) return;
     throw SimulationError(opt.t0,
                           fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
                                       "max |Ċ| = {:.3g}",
                                       err, rate_err));
-  const std::vector<double> q_old = q, v_old = v;
-  ProjectionResult pr = dyn.project(opt.t0, q.data(), v.data(), cm.fixed, 1e-13);
-  std::string changes;
-  for (size_t i = 0; i < cm.nq; ++i)
-    if (q[i] != q_old[i])
-      changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.coordinate_names[i], q_old[i], q[i]);
-  for (size_t i = 0; i < cm.nv; ++i)
-    if (v[i] != v_old[i])
-      changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.velocity_names[i], v_old[i], v[i]);
-  traj.notes.push_back(fmt::format(
-      "initial state was inconsistent (max |C| = {:.3g}, max |Ċ| = {:.3g}); projected onto the "
-      "constraints (|Δq| = {:.3g}, |Δv| = {:.3g}):{}",
-      err, rate_err, pr.position_change, pr.velocity_change, changes));
+  }
+  const InitialConsistency ic =
+      make_initial_state_consistent(dyn, opt.t0, q, v, opt.projection_tol);
+  if (!ic.consistent)
+    throw SimulationError(
+        opt.t0,
+        fmt::format("the initial state cannot be made consistent: after projection max "
+                    "|C| = {:.3g}, max |Ċ| = {:.3g} (at the start {:.3g} and {:.3g}){}",
+                    max_abs(ic.C), max_abs(ic.Cdot), max_abs(ic.C0), max_abs(ic.Cdot0),
+                    ic.blocked_by_fixed ? "; the coordinates marked fixed stand in the way" : ""));
+  if (!ic.was_consistent) traj.notes.push_back(ic.note());
 }
 
 // The state the integrator last asked about, kept so that a failure inside the integrator (too

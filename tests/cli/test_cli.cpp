@@ -119,10 +119,18 @@ TEST(Cli, DeriveShowsBodyEquations) {
 
 struct BadCase {
   const char* name;
-  const char* yaml;
+  std::string yaml;
   const char* location;  // expected "file:line:column" suffix after the file name
   const char* fragment;  // expected in the message
 };
+
+// A bar posed by one angle q = 0.5 with the given `rotation:` (line 9, column 15).
+std::string posed_bar(const std::string& rotation) {
+  return "parameters: {m: 1, l: 1, g: 9.81}\ncoordinates:\n  q: {initial: 0.5}\nbodies:\n  bar:\n"
+         "    mass: m\n    inertia: [1, 1, 1]\n    position: rot_z(q)*[0, -l/2, 0]\n"
+         "    rotation: \"" +
+         rotation + "\"\ngravity: [0, -g, 0]\n";
+}
 
 void PrintTo(const BadCase& c, std::ostream* os) {
   *os << c.name;
@@ -150,7 +158,27 @@ INSTANTIATE_TEST_SUITE_P(
                 "'k'"},
         BadCase{"wrong_vector_size", "coordinates:\n  q: {initial: 1}\npoints:\n  p: [q, 0]\n",
                 "4:", "3"},
-        BadCase{"missing_initial", "coordinates:\n  q: {rate: 1}\n", "2:", "initial"}),
+        BadCase{"missing_initial", "coordinates:\n  q: {rate: 1}\n", "2:", "initial"},
+        // issue 8, item 1: a posed body's rotation must be a rotation at every state
+        BadCase{"rotation_scaled", posed_bar("rot_z(q)*2"),
+                "9:15: ", "got ‖RᵀR − 1‖ = 5.2 at the initial state (q = 0.5)"},
+        BadCase{"rotation_sign_slip",
+                posed_bar("[[cos(q), sin(q), 0], [sin(q), cos(q), 0], [0, 0, 1]]"),
+                "9:15: ", "for the rotation of body 'bar', got ‖RᵀR − 1‖ ="},
+        BadCase{"rotation_reflection",
+                posed_bar("[[cos(q), -sin(q), 0], [sin(q), cos(q), 0], [0, 0, -1]]"),
+                "9:15: ", "got det R = -1 at the initial state (q = 0.5)"},
+        BadCase{"rotation_only_at_start",
+                posed_bar("[[cos(q), -2*q*sin(q), 0], [2*q*sin(q), cos(q), 0], [0, 0, 1]]"),
+                "9:15: ", "at a state drawn by the check (q = "},
+        BadCase{"tab_indent", "coordinates:\n\tq: {initial: 1}\n",
+                "2:1: ", "YAML forbids tabs for indentation"},
+        BadCase{"tab_after_spaces",
+                "parameters: {m: 1}\ncoordinates:\n  q: {initial: 1}\n  \tp: {initial: 2}\n",
+                "4:3: ", "YAML forbids tabs for indentation"},
+        BadCase{"tab_before_comment",
+                "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\n\t# note\n",
+                "4:1: ", "YAML forbids tabs for indentation"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Cli, MissingFileIsAModelError) {

@@ -46,7 +46,7 @@ std::vector<BadModel> bad_models() {
       {"unclosed quote", kBase + "potential: \"x^2\n", "error"},
       {"bad indentation", "coordinates:\n  x: {initial: 1}\n   y: {initial: 2}\n", "error"},
       {"two documents", kBase + "---\n" + kBase, "document"},
-      {"tab indentation", "coordinates:\n\tx: {initial: 1}\n", "error"},
+      {"tab indentation", "coordinates:\n\tx: {initial: 1}\n", "forbids tabs"},
       // unknown names
       {"unknown name", kBase + "potential: x^2 + foo*3\n", "'foo'"},
       {"unknown function", kBase + "potential: 2*bessel(x)\n", "'bessel'"},

@@ -1,0 +1,135 @@
+#include "cli/initial_state.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/error.hpp"
+
+namespace lagrange::cli {
+
+namespace {
+
+/// At most this many unmet constraints are listed by name.
+constexpr size_t kListed = 5;
+
+// "'rod': C = 0.085 (0.085 at the start)" for each constraint still violated after projection.
+std::string unmet_constraints(const CompiledModel& cm, const InitialConsistency& ic, double tol,
+                              std::vector<size_t>& rows) {
+  std::string text;
+  for (size_t r = 0; r < cm.m; ++r) {
+    const bool c = std::abs(ic.C[r]) > tol, rate = std::abs(ic.Cdot[r]) > tol;
+    if (!c && !rate) continue;
+    rows.push_back(r);
+    if (rows.size() > kListed) continue;
+    std::string what;
+    if (c) what = fmt::format("C = {:.3g} ({:.3g} at the start)", ic.C[r], ic.C0[r]);
+    if (rate)
+      what +=
+          fmt::format("{}Ċ = {:.3g} ({:.3g} at the start)", c ? ", " : "", ic.Cdot[r], ic.Cdot0[r]);
+    text += fmt::format("{}'{}': {}", text.empty() ? "" : "; ", cm.constraint_names[r], what);
+  }
+  if (rows.size() > kListed) text += fmt::format("; and {} more", rows.size() - kListed);
+  return text;
+}
+
+// "x = 0.9, y = -0.6": the fixed coordinates the unmet constraints depend on (all fixed ones when
+// the constraints' pattern names none of them).
+std::string fixed_in_the_way(const CompiledModel& cm, const std::vector<size_t>& rows,
+                             const std::vector<double>& q) {
+  std::vector<bool> in_way(cm.nq, false);
+  for (const auto& [row, col] : cm.Cq_pattern)
+    if (cm.fixed[col] && std::find(rows.begin(), rows.end(), row) != rows.end()) in_way[col] = true;
+  if (std::find(in_way.begin(), in_way.end(), true) == in_way.end()) in_way = cm.fixed;
+  std::string text;
+  for (size_t i = 0; i < cm.nq; ++i)
+    if (in_way[i])
+      text += fmt::format("{}{} = {:.6g}", text.empty() ? "" : ", ", cm.coordinate_names[i], q[i]);
+  return text;
+}
+
+}  // namespace
+
+InitialConsistency require_consistent_initial_state(const Model& model, Dynamics& dyn,
+                                                    std::vector<double>& q,
+                                                    std::vector<double>& v) {
+  const CompiledModel& cm = dyn.model();
+  const std::vector<double> q_start = q;
+  const SimulationOptions defaults;
+  const double tol = defaults.projection_tol;
+  InitialConsistency ic = make_initial_state_consistent(dyn, 0.0, q, v, tol);
+  if (ic.consistent) return ic;
+  std::vector<size_t> rows;
+  const std::string unmet = unmet_constraints(cm, ic, tol, rows);
+  const std::string why =
+      ic.blocked_by_fixed
+          ? fmt::format(
+                "the coordinates marked 'fixed: true' stand in the way: {} (without "
+                "'fixed' the projection reaches C = 0 and Ċ = 0)",
+                fixed_in_the_way(cm, rows, q_start))
+          : "no change of the coordinates not marked fixed reaches C = 0 and Ċ = 0 (the "
+            "least-squares projection stops at a minimum of |C| that is not 0); expected "
+            "constraints that the initial values can satisfy";
+  const SourceLoc where =
+      rows.empty() ? SourceLoc{model.file, 1, 1} : model.constraints[rows[0]].loc;
+  throw ModelError(where, fmt::format("the initial state cannot be made consistent: constraint{} "
+                                      "{} after projection; {}",
+                                      rows.size() == 1 ? "" : "s", unmet, why));
+}
+
+// A mass matrix that is singular at the start is reported at the coordinate without inertia,
+// with its mass-matrix entry and the parameters that entry depends on.
+void require_regular_initial_state(const Model& model, const Equations& eq, Dynamics& dyn,
+                                   const std::vector<double>& q, const std::vector<double>& v) {
+  const CompiledModel& cm = dyn.model();
+  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
+  try {
+    dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+  } catch (const SimulationError& e) {
+    // CLN refuses subnormal doubles (floating_point_underflow_exception): flush them to 0.
+    auto number = [](double x) { return GiNaC::numeric(std::isnormal(x) ? x : 0.0); };
+    GiNaC::exmap at_start;
+    for (size_t i = 0; i < model.coordinates.size(); ++i) {
+      at_start[model.coordinates[i].q] = number(q[i]);
+      at_start[model.coordinates[i].v] = number(v[i]);
+    }
+    at_start[model.t] = 0;
+    for (size_t j = 0; j < model.parameters.size(); ++j)
+      at_start[model.parameters[j].sym] = number(dyn.parameters()[j]);
+    for (size_t i = 0; i < cm.plain; ++i) {
+      const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
+      GiNaC::ex value;
+      try {
+        value = GiNaC::evalf(Mii.subs(at_start));
+      } catch (const std::exception&) {
+        continue;  // a pole of M at the initial state: reported below with the dynamics' message
+      }
+      if (!GiNaC::is_a<GiNaC::numeric>(value) ||
+          std::abs(GiNaC::ex_to<GiNaC::numeric>(value).to_double()) > 1e-300)
+        continue;
+      std::string depends;
+      for (size_t j = 0; j < model.parameters.size(); ++j)
+        if (Mii.has(model.parameters[j].sym))
+          depends += fmt::format("{}{} = {:g}", depends.empty() ? "" : ", ",
+                                 model.parameters[j].name, dyn.parameters()[j]);
+      const Coordinate& c = model.coordinates[i];
+      std::ostringstream entry;
+      entry << simplify(Mii);
+      throw ModelError(c.loc,
+                       fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
+                                   "matrix entry M[{},{}] = {} is 0{}; expected positive masses "
+                                   "and non-zero lengths",
+                                   c.name, c.name, c.name, entry.str(),
+                                   depends.empty() ? "" : " with " + depends));
+    }
+    const SourceLoc where =
+        model.coordinates.empty() ? SourceLoc{model.file, 1, 1} : model.coordinates[0].loc;
+    throw ModelError(
+        where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
+  }
+}
+
+}  // namespace lagrange::cli

@@ -1,0 +1,67 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "lagrange/simulation.hpp"
+
+namespace lagrange {
+
+namespace {
+
+double max_abs(const std::vector<double>& x) {
+  double r = 0.0;
+  for (double v : x) r = std::max(r, std::abs(v));
+  return r;
+}
+
+/// Gauss–Newton to well below `tol`, so that the state is consistent with a margin.
+constexpr double kProjectionTarget = 1e-13;
+
+}  // namespace
+
+std::string InitialConsistency::note() const {
+  return fmt::format(
+      "initial state was inconsistent (max |C| = {:.3g}, max |Ċ| = {:.3g}); projected onto the "
+      "constraints (|Δq| = {:.3g}, |Δv| = {:.3g}):{}",
+      max_abs(C0), max_abs(Cdot0), projection.position_change, projection.velocity_change, changes);
+}
+
+// docs/theory.md §4.3: a consistent start is the least-squares change of the coordinates not
+// marked fixed that gives C = 0, then of their velocities that gives Ċ = 0.
+InitialConsistency make_initial_state_consistent(Dynamics& dyn, double t0, std::vector<double>& q,
+                                                 std::vector<double>& v, double tol) {
+  const CompiledModel& cm = dyn.model();
+  InitialConsistency ic;
+  if (cm.m == 0) return ic;
+  ic.C0.resize(cm.m);
+  ic.Cdot0.resize(cm.m);
+  dyn.constraints(t0, q.data(), v.data(), ic.C0.data(), ic.Cdot0.data());
+  ic.C = ic.C0;
+  ic.Cdot = ic.Cdot0;
+  auto within = [tol](const std::vector<double>& C, const std::vector<double>& Cdot) {
+    return max_abs(C) <= tol && max_abs(Cdot) <= tol;
+  };
+  if (within(ic.C0, ic.Cdot0)) return ic;
+  ic.was_consistent = false;
+  const std::vector<double> q_old = q, v_old = v;
+  ic.projection = dyn.try_project(t0, q.data(), v.data(), cm.fixed, kProjectionTarget);
+  dyn.constraints(t0, q.data(), v.data(), ic.C.data(), ic.Cdot.data());
+  ic.consistent = within(ic.C, ic.Cdot);
+  for (size_t i = 0; i < cm.nq; ++i)
+    if (q[i] != q_old[i])
+      ic.changes +=
+          fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.coordinate_names[i], q_old[i], q[i]);
+  for (size_t i = 0; i < cm.nv; ++i)
+    if (v[i] != v_old[i])
+      ic.changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.velocity_names[i], v_old[i], v[i]);
+  if (!ic.consistent && std::find(cm.fixed.begin(), cm.fixed.end(), true) != cm.fixed.end()) {
+    std::vector<double> q_free = q_old, v_free = v_old, C(cm.m), Cdot(cm.m);
+    dyn.try_project(t0, q_free.data(), v_free.data(), {}, kProjectionTarget);
+    dyn.constraints(t0, q_free.data(), v_free.data(), C.data(), Cdot.data());
+    ic.blocked_by_fixed = within(C, Cdot);
+  }
+  return ic;
+}
+
+}  // namespace lagrange
