@@ -3,6 +3,7 @@
 // physical-inertia checks and initial orientations.
 
 #include <array>
+#include <optional>
 
 #include "lagrange/model.hpp"
 
@@ -21,9 +22,11 @@ Mat3 principal_inertia(const GiNaC::ex& ixx, const GiNaC::ex& iyy, const GiNaC::
 Mat3 parallel_axis(const Mat3& inertia_com, const GiNaC::ex& m, const Vec3& d);
 
 /// Throws ModelError at the body's location, naming it, when its mass is not positive or its
-/// inertia (at the parameters' values) is not symmetric, has a negative principal moment or
-/// violates the triangle inequality I₁ + I₂ ≥ I₃.
-void check_body_inertia(const Model& model, const Body& body);
+/// inertia (at the parameters' values) is not symmetric, has a negative principal moment,
+/// violates the triangle inequality I₁ + I₂ ≥ I₃, or is singular for a free body. A posed body
+/// that turns about body axis `spin_axis` only may give J_kk alone (planar `[0, 0, Izz]`).
+void check_body_inertia(const Model& model, const Body& body,
+                        std::optional<size_t> spin_axis = std::nullopt);
 
 /// Row-major rotation matrices (body → world) from the usual descriptions.
 using Rotation = std::array<double, 9>;

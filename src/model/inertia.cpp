@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "lagrange/rigid_body.hpp"
@@ -53,7 +54,11 @@ double value_of(const Model& model, const GiNaC::ex& e, const Body& body, const 
 
 }  // namespace
 
-void check_body_inertia(const Model& model, const Body& body) {
+// docs/theory.md §4.4: principal moments of a physical body are non-negative and satisfy the
+// triangle inequality I₁ + I₂ ≥ I₃ (zero moments: thin rods, point-like bodies). A free body's
+// ω equations J ω̇ = … need J invertible; a posed body turning about one body axis k only uses
+// J_kk, so the planar form with every other entry zero is accepted too.
+void check_body_inertia(const Model& model, const Body& body, std::optional<size_t> spin_axis) {
   const double m = value_of(model, body.mass, body, "mass");
   if (!(m > 0))
     throw ModelError(body.loc,
@@ -62,20 +67,33 @@ void check_body_inertia(const Model& model, const Body& body) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) I(i, j) = value_of(model, body.inertia[i][j], body, "inertia");
   const double scale = I.cwiseAbs().maxCoeff();
-  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+  const double tol = 1e-12 * std::max(scale, 1e-300);
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > tol)
     throw ModelError(body.loc,
                      fmt::format("body '{}': the inertia tensor is not symmetric", body.name));
   const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
-  const double tol = 1e-12 * std::max(scale, 1e-300);
-  if (!(p[0] > 0))
-    throw ModelError(body.loc, fmt::format("body '{}': non-physical inertia, principal moments "
-                                           "({:.6g}, {:.6g}, {:.6g}) must be positive",
-                                           body.name, p[0], p[1], p[2]));
+  const std::string moments = fmt::format("({:.6g}, {:.6g}, {:.6g})", p[0], p[1], p[2]);
+  if (!(p[0] >= -tol))
+    throw ModelError(body.loc, fmt::format("body '{}': non-physical inertia, principal moments {} "
+                                           "must be non-negative",
+                                           body.name, moments));
+  if (body.free && !(p[0] > tol))
+    throw ModelError(body.loc,
+                     fmt::format("body '{}': a free body needs a positive-definite inertia (its "
+                                 "angular velocity equations solve J ω̇ = …), got principal "
+                                 "moments {}; pose the body by coordinates, or give it a "
+                                 "thickness",
+                                 body.name, moments));
+  if (spin_axis) {
+    const auto k = static_cast<int>(*spin_axis);
+    Eigen::Matrix3d rest = I;
+    rest(k, k) = 0;
+    if (rest.cwiseAbs().maxCoeff() <= tol) return;  // planar: only J_kk enters T
+  }
   if (p[0] + p[1] < p[2] - tol)
-    throw ModelError(body.loc, fmt::format("body '{}': non-physical inertia, principal moments "
-                                           "({:.6g}, {:.6g}, {:.6g}) violate the triangle "
-                                           "inequality I1 + I2 >= I3",
-                                           body.name, p[0], p[1], p[2]));
+    throw ModelError(body.loc, fmt::format("body '{}': non-physical inertia, principal moments {} "
+                                           "violate the triangle inequality I1 + I2 >= I3",
+                                           body.name, moments));
 }
 
 }  // namespace lagrange

@@ -118,8 +118,19 @@ class ModelReader {
   Mat3 read_inertia(const Body& body, const YAML::Node& spec);
   Mat3 read_shape(const Body& body, const YAML::Node& shape);
   void read_body_points(Body& body, const YAML::Node& node);
-  // posed_rotation.cpp — RᵀR = 1 and det R = +1 at the initial state and a few others.
+  // posed_rotation.cpp — a posed body's rotation judged numerically at a few states.
+  /// Values of every symbol at one state, and the coordinates' and t's values by name.
+  struct SampledState {
+    GiNaC::exmap values;
+    std::map<std::string, double> shown;
+    bool initial = false;
+  };
+  /// The initial state and a few drawn around it (fixed seed).
+  std::vector<SampledState> sample_states() const;
+  /// RᵀR = 1 and det R = +1 at the sampled states, or a located error saying what was found.
   void check_posed_rotation(const Body& body, const YAML::Node& node) const;
+  /// The body axis the angular velocity always lies along (z for rot_z(q)), if any.
+  std::optional<size_t> single_spin_axis(const Body& body) const;
   void read_torques(const YAML::Node& node);
   // read_body_initial.cpp — the initial state of a free body.
   void read_free_initial(Body& body, const YAML::Node& node);

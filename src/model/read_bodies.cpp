@@ -38,7 +38,6 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
   check_sign(body.mass, spec["mass"], true, "mass for " + what);
   if (spec["com"]) body.com = vector_expr(spec["com"], kParams, "centre of mass of " + what);
   body.inertia = read_inertia(body, spec);
-  check_body_inertia(m_, body);
 
   const bool posed = spec["position"] || spec["rotation"];
   if (spec["frame"]) {
@@ -74,6 +73,7 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
       check_posed_rotation(body, spec["rotation"]);
     }
   }
+  check_body_inertia(m_, body, body.free ? std::nullopt : single_spin_axis(body));
   if (spec["points"]) read_body_points(body, spec["points"]);
   return body;
 }

@@ -1,3 +1,5 @@
+#include <optional>
+
 #include "lagrange/error.hpp"
 #include "lagrange/rigid_body.hpp"
 #include "symbolic/mechanical_terms.hpp"
@@ -43,6 +45,17 @@ Vec3 body_angular_velocity(const Kinematics& kin, const Body& body) {
           simplify((Omega(1, 0) - Omega(0, 1)) / 2)};
 }
 
+// The one component of ω that is not identically zero (z for a body posed by rot_z(q)), if any.
+std::optional<size_t> single_axis(const Vec3& w) {
+  std::optional<size_t> axis;
+  for (size_t l = 0; l < 3; ++l)
+    if (!w[l].is_zero()) {
+      if (axis) return std::nullopt;
+      axis = l;
+    }
+  return axis;
+}
+
 // docs/theory.md §4.4 by virtual power (Kane's form): with the centre of mass x_c = r + R c,
 // J_c = ∂ẋ_c/∂v, b_c = dẋ_c/dt at a = 0, J_ω = ∂ω/∂v and α_b = dω/dt at a = 0,
 //   M += m J_cᵀJ_c + J_ωᵀ I J_ω,   h += m J_cᵀ(g − b_c) − J_ωᵀ(I α_b + ω × Iω).
@@ -53,7 +66,8 @@ void add_body_terms(const Kinematics& kin, MechanicalTerms& terms) {
   const size_t nv = kin.v.size();
   const Vec3 g = model.gravity.value_or(Vec3{0, 0, 0});
   for (const auto& body : model.bodies) {
-    check_body_inertia(model, body);
+    const Vec3 w = body_angular_velocity(kin, body);
+    check_body_inertia(model, body, single_axis(w));
     if (depends_on_state(kin, body.mass))
       throw ModelError(body.loc, "the mass of body '" + body.name + "' depends on the state");
     const GiNaC::ex& m = body.mass;
@@ -64,7 +78,6 @@ void add_body_terms(const Kinematics& kin, MechanicalTerms& terms) {
     Vec3 force;  // m (g − b_c)
     for (size_t k = 0; k < 3; ++k)
       force[k] = m * (g[k] - derivative_without_accelerations(kin, vc[k]));
-    const Vec3 w = body_angular_velocity(kin, body);
     std::vector<Vec3> Jw(nv);
     for (size_t k = 0; k < nv; ++k)
       for (size_t l = 0; l < 3; ++l) Jw[k][l] = w[l].has(kin.v[k]) ? w[l].diff(kin.v[k]) : 0;
