@@ -21,6 +21,10 @@ struct CompiledModel {
   std::vector<std::string> velocity_names;  ///< nv: `<name>_dot`, then `<body>.vx`, `<body>.wx`, …
   std::vector<std::string> constraint_names, output_names, input_names, parameter_names;
   std::vector<double> parameter_defaults;
+  /// Reaction columns λ_c · scale (Model::reactions): names and constraint indices; their
+  /// scales are the last observables.
+  std::vector<std::string> reaction_names;
+  std::vector<size_t> reaction_constraints;
   std::vector<double> q0, v0;     ///< initial state from the model (nq, nv)
   std::vector<bool> fixed;        ///< nq: coordinates kept by the initial-state projection
   std::vector<size_t> rotations;  ///< per free body, the index in q of R11 (R row-major, 9 entries)
@@ -33,7 +37,7 @@ struct CompiledModel {
   /// Outputs: M_pattern values, rhs = h + Q (nv), q̇ (nq), G_pattern values, c (m), Ċ (m),
   /// C (m), Cq_pattern values.
   Tape dynamics;
-  /// Outputs: T, U, then the model's outputs.
+  /// Outputs: T, U, the model's outputs, then the reactions' scales.
   Tape observables;
   /// Outputs: u (k), u̇ (k), ü (k) as functions of t and p.
   Tape inputs;

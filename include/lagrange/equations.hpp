@@ -52,6 +52,7 @@ struct Equations {
 
   std::vector<GiNaC::ex> outputs;         ///< named outputs: the model's, then per free body
   std::vector<std::string> output_names;  ///< its orthonormality error ‖RᵀR − 1‖_F
+  std::vector<GiNaC::ex> reaction_scales;  ///< Model::reactions' scales, in order
 
   /// Left side of velocity i's equation of motion (Euler–Lagrange for plain coordinates,
   /// Newton–Euler for bodies): Σⱼ Mᵢⱼ aⱼ − hᵢ.

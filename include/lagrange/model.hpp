@@ -52,10 +52,12 @@ struct Point {
 };
 
 /// A point mass m at a named point: adds ½ m |vel|² (and m g·x when gravity is set).
+/// `gravity = false` makes it a pure inertia term (e.g. a rod's rotary inertia, docs/theory.md §4.5).
 struct Particle {
   std::string point;
   GiNaC::ex mass;
   SourceLoc loc;
+  bool gravity = true;
 };
 
 /// A world-frame force applied at a point; turned into Q by virtual work (docs/theory.md §4.2).
@@ -123,6 +125,15 @@ struct NamedExpr {
   SourceLoc loc;
 };
 
+/// An output column λ_c · scale(q, t): the physical size of a constraint force (a tether
+/// segment's tension λ ℓ_s for C = ½(|d|² − ℓ_s²)), recorded after the multipliers.
+struct Reaction {
+  std::string name;
+  size_t constraint = 0;  ///< index into Model::constraints
+  GiNaC::ex scale;
+  SourceLoc loc;
+};
+
 /// Constraint stabilisation settings (docs/theory.md §4.3).
 struct Stabilization {
   double alpha = 20.0;  ///< Baumgarte: both eigenvalues of the constraint error at −α
@@ -163,6 +174,7 @@ struct Model {
   std::vector<BodyTorque> torques;
   std::vector<NamedExpr> constraints;
   std::vector<NamedExpr> outputs;
+  std::vector<Reaction> reactions;
   Stabilization stabilization;
   SimulateOptions simulate;
 

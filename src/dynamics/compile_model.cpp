@@ -28,6 +28,10 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
     cm->v0.insert(cm->v0.end(), b.w0.begin(), b.w0.end());
   }
   for (const auto& c : model.constraints) cm->constraint_names.push_back(c.name);
+  for (const auto& r : model.reactions) {
+    cm->reaction_names.push_back(r.name);
+    cm->reaction_constraints.push_back(r.constraint);
+  }
   cm->output_names = eq.output_names;
   for (const auto& u : model.inputs) cm->input_names.push_back(u.name);
   for (const auto& p : model.parameters) {
@@ -72,6 +76,7 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
 
   std::vector<GiNaC::ex> obs{eq.T, eq.U};
   for (const auto& e : eq.outputs) obs.push_back(e);
+  for (const auto& e : eq.reaction_scales) obs.push_back(e);
   cm->observables = Tape::compile(obs, in);
 
   std::vector<GiNaC::ex> sig;

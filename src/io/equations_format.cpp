@@ -55,6 +55,11 @@ std::string format_text(const Equations& eq, Style style) {
   line("U", str(eq.U, style));
   line(tex ? "L" : "L",
        eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
+  for (const ElementSummary& s : model.element_summaries) {
+    heading(s.title);
+    for (const auto& note : s.notes) out += tex ? "% " + note + "\n" : "  " + note + "\n";
+    for (const auto& [lhs, rhs] : s.equations) line(lhs, str(rhs, style));
+  }
   if (eq.kin.plain > 0)
     heading(tex ? "Euler--Lagrange equations"
                 : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");

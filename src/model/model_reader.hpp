@@ -27,7 +27,8 @@ enum class NameKind {
   Output,
   Derived,
   Body,
-  BodyPoint
+  BodyPoint,
+  Element
 };
 
 /// A declared name: its kind, index in the Model's list of that kind, and where it was written.
@@ -56,7 +57,9 @@ class ModelReader {
   ModelReader(const SourceText& src, const ParameterOverrides& overrides);
   Model read(const YAML::Node& root);
 
- private:
+  // The methods below are also the interface of the element readers (src/elements/), which
+  // read their own sections and lower into the model through them.
+
   // yaml_nodes.cpp — node shape checks, all failing with the node's location.
   [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const;
   std::string describe(const YAML::Node& node) const;
@@ -140,6 +143,23 @@ class ModelReader {
   void read_stabilization(const YAML::Node& node);
   void read_simulate(const YAML::Node& node);
 
+  // read_generated.cpp — names and state that elements generate (docs/model-language.md).
+  Model& model() { return m_; }
+  const SourceText& source() const { return src_; }
+  /// Declares an element's own name (`tethers: {main: …}` declares `main`).
+  void declare_element(const YAML::Node& key);
+  /// A generated point `<owner>.<member>` (dotted, so it cannot clash with user names).
+  void add_point(const std::string& name, const Vec3& pos, const YAML::Node& at);
+  /// A generated coordinate named `name` (dotted) with its initial value and rate; returns it.
+  const Coordinate& add_coordinate(const std::string& name, double initial, double rate,
+                                   const YAML::Node& at);
+  /// The value of `e` at t = 0 and the initial state (coordinates, free bodies, inputs), with
+  /// the file's parameter values; nullopt when it is not a finite real number.
+  std::optional<double> initial_value(const GiNaC::ex& e) const;
+  /// Kind of a declared name, if any.
+  std::optional<NameKind> kind_of(const std::string& name) const;
+
+ private:
   const SourceText& src_;
   const ParameterOverrides& overrides_;
   Model m_;

@@ -29,6 +29,8 @@ const char* kind_word(NameKind k) {
       return "body";
     case NameKind::BodyPoint:
       return "body point";
+    case NameKind::Element:
+      return "element";
   }
   return "name";
 }
@@ -148,6 +150,10 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
     case NameKind::BodyPoint:
       if (!(allowed & kPoints)) throw refuse(got);
       return Value::of(body_points_.at(e.index).pos);
+    case NameKind::Element:
+      throw ExprError{offset, fmt::format("expected one of the element's points or values "
+                                          "({0}.<name>), got element '{0}'",
+                                          name)};
     case NameKind::Body:
       throw ExprError{offset, fmt::format("expected {0}.r, {0}.R or a point {0}.<name>, got body "
                                           "'{0}'",

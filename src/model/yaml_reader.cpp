@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "elements/elements.hpp"
 #include "lagrange/reader.hpp"
 #include "model/model_reader.hpp"
 
@@ -25,7 +26,13 @@ const std::vector<std::string>& top_level_keys() {
       "generalized_forces",        "forces",      "torques",   "springs",
       "dampers",     "constraints", "outputs",    "stabilization", "simulate"};
   // clang-format on
-  return keys;
+  static const std::vector<std::string> all = [] {
+    std::vector<std::string> k = keys;
+    const auto& e = elements::element_keys();
+    k.insert(k.end(), e.begin(), e.end());
+    return k;
+  }();
+  return all;
 }
 
 /// A section's node, or nothing when the key is absent or has no value.
@@ -56,26 +63,29 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "coordinates")) read_coordinates(*n);
   if (auto n = section(root, "inputs")) read_inputs(*n);
   if (auto n = section(root, "bodies")) read_bodies(*n);
+  if (auto n = section(root, "points")) read_points(*n);
+  m_.points.insert(m_.points.end(), body_points_.begin(), body_points_.end());
+  if (auto n = section(root, "gravity"))
+    m_.gravity = vector_expr(*n, kParams | kTime | kInputs, "gravity");
+  elements::ElementContext elements;
+  elements::declare_elements(*this, root, elements);
   const bool has_free_body =
       std::any_of(m_.bodies.begin(), m_.bodies.end(), [](const Body& b) { return b.free; });
   if (m_.coordinates.empty() && !has_free_body)
     throw ModelError(src_.at(root),
                      "expected a 'coordinates' key with at least one coordinate (or a body with "
-                     "'frame: free'), got none");
-  if (auto n = section(root, "points")) read_points(*n);
-  m_.points.insert(m_.points.end(), body_points_.begin(), body_points_.end());
+                     "'frame: free', or a tether), got none");
   m_.generalized_forces.assign(m_.coordinates.size(), GiNaC::ex(0));
   read_energies(root);
   if (auto n = section(root, "generalized_forces")) read_generalized_forces(*n);
   if (auto n = section(root, "particles")) read_particles(*n);
-  if (auto n = section(root, "gravity"))
-    m_.gravity = vector_expr(*n, kParams | kTime | kInputs, "gravity");
   if (auto n = section(root, "forces")) read_forces(*n);
   if (auto n = section(root, "torques")) read_torques(*n);
   if (auto n = section(root, "springs")) read_springs(*n);
   if (auto n = section(root, "dampers")) read_dampers(*n);
   if (auto n = section(root, "constraints")) m_.constraints = read_named(*n, "constraint");
   if (auto n = section(root, "outputs")) m_.outputs = read_named(*n, "output");
+  elements::lower_elements(*this, root, elements);
   if (auto n = section(root, "stabilization")) read_stabilization(*n);
   if (auto n = section(root, "simulate")) read_simulate(*n);
   return m_;

@@ -18,6 +18,7 @@ std::vector<std::string> trajectory_columns(const CompiledModel& cm) {
   if (cm.m > 0) {
     for (const auto& c : cm.constraint_names) cols.push_back(c);
     cols.insert(cols.end(), {"constraint_residual", "constraint_rate_residual"});
+    for (const auto& r : cm.reaction_names) cols.push_back(r);
   }
   return cols;
 }
@@ -72,13 +73,16 @@ class RowWriter {
     d.insert(d.end(), v, v + cm.nv);
     dyn.observe(t, q, v, obs_.data());
     d.insert(d.end(), {obs_[0], obs_[1], obs_[0] + obs_[1]});
-    d.insert(d.end(), obs_.begin() + 2, obs_.end());
+    const auto reactions = obs_.end() - static_cast<long>(cm.reaction_names.size());
+    d.insert(d.end(), obs_.begin() + 2, reactions);
     if (cm.m > 0) {
       dyn.forward(t, q, v, qdot_.data(), a_.data(), lambda_.data());
       dyn.last_constraints(C_.data(), Cdot_.data());
       d.insert(d.end(), lambda_.begin(), lambda_.end());
       d.push_back(max_abs(C_));
       d.push_back(max_abs(Cdot_));
+      for (size_t r = 0; r < cm.reaction_names.size(); ++r)
+        d.push_back(lambda_[cm.reaction_constraints[r]] * reactions[static_cast<long>(r)]);
     }
   }
 

@@ -28,6 +28,7 @@ Equations derive(const Model& model) {
     eq.outputs.push_back(out.expr);
     eq.output_names.push_back(out.name);
   }
+  for (const auto& r : model.reactions) eq.reaction_scales.push_back(r.scale);
   for (const auto& b : model.bodies) {
     if (!b.free) continue;
     const Mat3 R = b.rot();

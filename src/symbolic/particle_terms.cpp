@@ -47,9 +47,10 @@ void add_particle_terms(const Kinematics& kin, MechanicalTerms& terms) {
     const std::vector<Vec3> J = cache.jacobian(point->pos);
     Vec3 xdot, g_minus_b;
     for (size_t k = 0; k < 3; ++k) xdot[k] = cache.rate(point->pos[k]);
-    for (size_t k = 0; k < 3; ++k) g_minus_b[k] = g[k] - cache.rate(xdot[k]);
+    const Vec3 g_k = particle.gravity ? g : Vec3{0, 0, 0};
+    for (size_t k = 0; k < 3; ++k) g_minus_b[k] = g_k[k] - cache.rate(xdot[k]);
     terms.T += m / 2 * dot(xdot, xdot);
-    terms.U -= m * dot(g, point->pos);
+    terms.U -= m * dot(g_k, point->pos);
     std::vector<size_t> active;
     for (size_t i = 0; i < n; ++i)
       if (!is_zero(J[i])) active.push_back(i);

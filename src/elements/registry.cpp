@@ -1,0 +1,30 @@
+#include "elements/elements.hpp"
+#include "model/model_reader.hpp"
+
+namespace lagrange::elements {
+
+namespace {
+std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
+  YAML::Node n = root[key];
+  if (!n || n.IsNull()) return std::nullopt;
+  return n;
+}
+}  // namespace
+
+const std::vector<std::string>& element_keys() {
+  static const std::vector<std::string> keys = {"wind", "winches", "tethers"};
+  return keys;
+}
+
+void declare_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
+  if (auto n = section(root, "wind")) read_wind(reader, *n, ctx);
+  if (auto n = section(root, "winches")) declare_winches(reader, *n, ctx);
+  if (auto n = section(root, "tethers")) declare_tethers(reader, *n, ctx);
+}
+
+void lower_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
+  if (auto n = section(root, "tethers")) lower_tethers(reader, *n, ctx);
+  lower_winches(reader, ctx);
+}
+
+}  // namespace lagrange::elements

@@ -1,0 +1,457 @@
+#include "elements/tether.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "model/model_reader.hpp"
+
+namespace lagrange::elements {
+
+ElementContext::ElementContext() = default;
+ElementContext::~ElementContext() = default;
+
+namespace {
+
+using model::ModelReader;
+using Num3 = std::array<double, 3>;
+
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Vec3 add(const Vec3& a, const Vec3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+Vec3 scale(const GiNaC::ex& s, const Vec3& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+GiNaC::ex dot3(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const Num3& a) {
+  return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
+Num3 lerp(const Num3& a, const Num3& b, double s) {
+  return {a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])};
+}
+
+/// One end of a tether: a point name, a fixed or prescribed position, or (second end) free.
+struct End {
+  bool free = false;
+  std::string point;  ///< a user point; empty for a position written in place
+  Vec3 pos{0, 0, 0};
+};
+
+End read_end(ModelReader& r, const YAML::Node& node, bool may_be_free, const std::string& what) {
+  End e;
+  if (node.IsSequence()) {
+    e.pos = r.vector_expr(node, model::kParams | model::kTime, what);
+    return e;
+  }
+  const std::string name = r.scalar(node, what);
+  if (name == "free") {
+    if (!may_be_free)
+      r.fail(node, fmt::format("expected a point or [x, y, z] for {}, got 'free' (only the "
+                               "second end may be free)",
+                               what));
+    e.free = true;
+    return e;
+  }
+  e.point = r.point_name(node, what);
+  e.pos = r.model().find_point(e.point) ? r.model().find_point(e.point)->pos : e.pos;
+  return e;
+}
+
+Num3 initial_position(ModelReader& r, const Vec3& pos, const YAML::Node& node,
+                      const std::string& what) {
+  Num3 x{};
+  for (size_t k = 0; k < 3; ++k) {
+    const auto v = r.initial_value(pos[k]);
+    if (!v) r.fail(node, fmt::format("expected {} to have a finite position at t = 0", what));
+    x[k] = *v;
+  }
+  return x;
+}
+
+/// Unit vector of gravity (down), or −z without gravity.
+Num3 down_direction(ModelReader& r) {
+  Num3 g{0, 0, -1};
+  if (!r.model().gravity) return g;
+  for (size_t k = 0; k < 3; ++k) {
+    const auto v = r.evaluate((*r.model().gravity)[k]);
+    if (!v) return Num3{0, 0, -1};
+    g[k] = *v;
+  }
+  const double n = norm(g);
+  if (!(n > 0)) return Num3{0, 0, -1};
+  return {g[0] / n, g[1] / n, g[2] / n};
+}
+
+// Initial shape (docs/model-language.md, "Tethers"): a free end hangs straight along gravity; a
+// slack tether between two ends sags along gravity (perpendicular to the chord) as the parabola
+// r(σ) = a + σ(b − a) + 4σ(1 − σ) s ĝ, with the sag s chosen by bisection so that the polyline
+// through the nodes has the tether's length; the initial projection then makes the segments
+// equal. A taut tether is straight.
+std::vector<Num3> initial_shape(ModelReader& r, const Tether& t, const Num3& a, const Num3* b,
+                                double length) {
+  const size_t n = t.segments;
+  std::vector<Num3> x(n + 1);
+  const Num3 down = down_direction(r);
+  if (b == nullptr) {
+    for (size_t j = 0; j <= n; ++j)
+      x[j] = lerp(a, {a[0] + length * down[0], a[1] + length * down[1], a[2] + length * down[2]},
+                  static_cast<double>(j) / n);
+    return x;
+  }
+  const Num3 chord{(*b)[0] - a[0], (*b)[1] - a[1], (*b)[2] - a[2]};
+  const double span = norm(chord);
+  Num3 sag = down;  // the part of ĝ perpendicular to the chord
+  if (span > 0) {
+    const double along = (sag[0] * chord[0] + sag[1] * chord[1] + sag[2] * chord[2]) / span / span;
+    for (size_t k = 0; k < 3; ++k) sag[k] -= along * chord[k];
+    if (norm(sag) < 1e-6) sag = std::abs(chord[0]) < 0.9 * span ? Num3{1, 0, 0} : Num3{0, 1, 0};
+    const double along2 = (sag[0] * chord[0] + sag[1] * chord[1] + sag[2] * chord[2]) / span / span;
+    for (size_t k = 0; k < 3; ++k) sag[k] -= along2 * chord[k];
+    const double s = norm(sag);
+    for (auto& c : sag) c /= s;
+  }
+  // Nodes at equal arc length along the parabola of depth `depth`; returns their polyline length.
+  auto shape = [&](double depth) {
+    constexpr size_t kSamples = 4096;
+    std::vector<Num3> curve(kSamples + 1);
+    std::vector<double> arc(kSamples + 1, 0.0);
+    for (size_t i = 0; i <= kSamples; ++i) {
+      const double sigma = static_cast<double>(i) / kSamples;
+      curve[i] = lerp(a, *b, sigma);
+      for (size_t k = 0; k < 3; ++k) curve[i][k] += 4 * sigma * (1 - sigma) * depth * sag[k];
+      if (i > 0)
+        arc[i] = arc[i - 1] + norm({curve[i][0] - curve[i - 1][0], curve[i][1] - curve[i - 1][1],
+                                    curve[i][2] - curve[i - 1][2]});
+    }
+    size_t i = 0;
+    for (size_t j = 0; j <= n; ++j) {
+      const double target = arc.back() * static_cast<double>(j) / n;
+      while (i + 1 < kSamples && arc[i + 1] < target) ++i;
+      const double w = arc[i + 1] > arc[i] ? (target - arc[i]) / (arc[i + 1] - arc[i]) : 0.0;
+      x[j] = lerp(curve[i], curve[i + 1], std::min(1.0, std::max(0.0, w)));
+    }
+    double len = 0;
+    for (size_t j = 1; j <= n; ++j)
+      len += norm({x[j][0] - x[j - 1][0], x[j][1] - x[j - 1][1], x[j][2] - x[j - 1][2]});
+    return len;
+  };
+  if (shape(0) >= length) return x;
+  double lo = 0, hi = length;
+  for (int it = 0; it < 200 && hi - lo > 1e-14 * length; ++it) {
+    const double mid = (lo + hi) / 2;
+    (shape(mid) < length ? lo : hi) = mid;
+  }
+  shape((lo + hi) / 2);
+  return x;
+}
+
+GiNaC::ex required_positive(ModelReader& r, const YAML::Node& spec, const char* key,
+                            const std::string& what, bool strict) {
+  if (!spec[key]) r.fail(spec, fmt::format("expected '{}' in {}, got none", key, what));
+  GiNaC::ex e = r.scalar_expr(spec[key], model::kParams, fmt::format("{} of {}", key, what));
+  r.check_sign(e, spec[key], strict, fmt::format("{} of {}", key, what));
+  return e;
+}
+
+bool depends_on_free_body(const Model& m, const Vec3& pos) {
+  for (const Body& b : m.bodies) {
+    if (!b.free) continue;
+    for (const auto& e : pos) {
+      for (const auto& s : b.r)
+        if (e.has(s)) return true;
+      for (const auto& s : b.R)
+        if (e.has(s)) return true;
+    }
+  }
+  return false;
+}
+
+// Whether a position depends on the state (a coordinate or a free body).
+bool moves(const Model& m, const Vec3& pos) {
+  for (const Coordinate& c : m.coordinates)
+    for (const auto& e : pos)
+      if (e.has(c.q)) return true;
+  return depends_on_free_body(m, pos);
+}
+
+}  // namespace
+
+void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx) {
+  r.expect_map(node, "tethers (a map name: {between, segments, length, …})");
+  r.check_keys(node, {}, "tethers");
+  for (const auto& kv : node) {
+    Tether t;
+    t.name = kv.first.Scalar();
+    t.node = kv.second;
+    const std::string what = fmt::format("tether '{}'", t.name);
+    r.declare_element(kv.first);
+    const YAML::Node& spec = kv.second;
+    r.expect_map(spec, what + " (a map {between, segments, length, mass_per_length, …})");
+    r.check_keys(spec,
+                 {"between", "segments", "model", "length", "mass_per_length", "diameter", "cd",
+                  "drag", "air_density", "damping"},
+                 what);
+    const YAML::Node between = spec["between"];
+    if (!between) r.fail(spec, fmt::format("expected 'between: [a, b]' in {}, got none", what));
+    if (!between.IsSequence() || between.size() != 2)
+      r.fail(between, fmt::format("expected two ends [a, b] for 'between' of {}, got {}", what,
+                                  r.describe(between)));
+    const End a = read_end(r, between[0], false, "the first end of " + what);
+    const End b = read_end(r, between[1], true, "the second end of " + what);
+
+    if (!spec["segments"]) r.fail(spec, fmt::format("expected 'segments' in {}, got none", what));
+    const double nseg = r.number(spec["segments"], model::kParams, "segments of " + what);
+    if (nseg < 1 || nseg > 1000 || nseg != std::floor(nseg))
+      r.fail(spec["segments"],
+             fmt::format("expected a whole number of segments from 1 to 1000 for {}, got {:g}",
+                         what, nseg));
+    t.segments = static_cast<size_t>(nseg);
+    if (spec["model"]) {
+      const std::string kind = r.scalar(spec["model"], "model of " + what);
+      if (kind != "lumped" && kind != "full")
+        r.fail(spec["model"], fmt::format("expected 'lumped' or 'full' for the model of {}, got "
+                                          "'{}'",
+                                          what, model::clip(kind)));
+      t.full = kind == "full";
+    }
+    t.mass_per_length = required_positive(r, spec, "mass_per_length", what, true);
+    if (spec["drag"]) {
+      const std::string drag = r.scalar(spec["drag"], "drag of " + what);
+      if (drag == "simple")
+        t.drag = Tether::Drag::Simple;
+      else if (drag == "fine")
+        t.drag = Tether::Drag::Fine;
+      else if (drag != "none")
+        r.fail(spec["drag"], fmt::format("expected 'none', 'simple' or 'fine' for the drag of {}, "
+                                         "got '{}'",
+                                         what, model::clip(drag)));
+    }
+    if (t.drag != Tether::Drag::None || spec["diameter"])
+      t.diameter = required_positive(r, spec, "diameter", what, true);
+    if (spec["cd"]) t.cd = required_positive(r, spec, "cd", what, false);
+    t.air_density = GiNaC::numeric(49, 40);  // 1.225 kg/m³, sea level (ISA)
+    if (spec["air_density"]) t.air_density = required_positive(r, spec, "air_density", what, false);
+    if (spec["damping"]) t.damping = required_positive(r, spec, "damping", what, false);
+
+    // The length: a winch's coordinate, or a constant / ℓ(t) written here.
+    const Winch* winch = nullptr;
+    for (Winch& w : ctx.winches)
+      if (w.tether == t.name) {
+        if (winch != nullptr)
+          r.fail(w.key,
+                 fmt::format("expected one winch per tether, got a second one for {}", what));
+        winch = &w;
+        w.used = true;
+      }
+    double length0 = 0;
+    if (winch != nullptr) {
+      if (spec["length"])
+        r.fail(spec["length"],
+               fmt::format("expected no 'length' in {}: winch '{}' sets it", what, winch->name));
+      t.length = r.model().coordinates[winch->coordinate].q;
+      t.variable_length = true;
+      length0 = winch->initial;
+    } else {
+      if (!spec["length"]) r.fail(spec, fmt::format("expected 'length' in {}, got none", what));
+      t.length = r.scalar_expr(spec["length"], model::kParams | model::kTime, "length of " + what);
+      t.variable_length = t.length.has(r.model().t);
+      const auto l0 = r.initial_value(t.length);
+      if (!l0 || *l0 <= 0)
+        r.fail(spec["length"], fmt::format("expected a positive length for {} at t = 0", what));
+      length0 = *l0;
+    }
+    if (t.variable_length &&
+        (depends_on_free_body(r.model(), a.pos) || depends_on_free_body(r.model(), b.pos)))
+      r.fail(between, fmt::format("expected ends of {} that are not points of free bodies: a "
+                                  "tether of varying length is written through its kinetic "
+                                  "energy, which may not use a free body's coordinates",
+                                  what));
+
+    // Nodes: the ends' points (or generated ones for written positions), coordinates between.
+    const Num3 a0 = initial_position(r, a.pos, between[0], "the first end of " + what);
+    Num3 b0{};
+    if (!b.free) {
+      b0 = initial_position(r, b.pos, between[1], "the second end of " + what);
+      const double span = norm({b0[0] - a0[0], b0[1] - a0[1], b0[2] - a0[2]});
+      if (span > length0 * (1 + 1e-9))
+        r.fail(between, fmt::format("expected ends of {} at most its length {:g} apart at t = 0, "
+                                    "got {:g}",
+                                    what, length0, span));
+    }
+    const std::vector<Num3> shape = initial_shape(r, t, a0, b.free ? nullptr : &b0, length0);
+    const size_t n = t.segments;
+    for (size_t j = 0; j <= n; ++j) {
+      const std::string name = fmt::format("{}.node{}", t.name, j);
+      const bool end = j == 0 || (j == n && !b.free);
+      if (end) {
+        const End& e = j == 0 ? a : b;
+        t.nodes.push_back(e.point.empty() ? name : e.point);
+        if (e.point.empty()) r.add_point(name, e.pos, between[j == 0 ? 0 : 1]);
+        continue;
+      }
+      Vec3 pos;
+      for (size_t k = 0; k < 3; ++k)
+        pos[k] =
+            r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k], 0.0, kv.first).q;
+      r.add_point(name, pos, kv.first);
+      t.nodes.push_back(name);
+    }
+    if (n == 1 && !b.free && !moves(r.model(), a.pos) && !moves(r.model(), b.pos))
+      r.fail(spec["segments"], fmt::format("expected a tether with a moving end or at least two "
+                                           "segments, got {} with one segment between fixed "
+                                           "ends",
+                                           what));
+    ctx.tethers.push_back(std::move(t));
+  }
+}
+
+namespace {
+
+// docs/theory.md §4.5–4.6: the material velocity of the tether at node j, for a tether reeled
+// out at the first end with speed ℓ̇: v = ṙⱼ + ℓ̇ (1 − j/N) t̂, t̂ the unit tangent of the segment.
+Vec3 material_velocity(const Model& m, const Vec3& pos, const GiNaC::ex& ldot,
+                       const GiNaC::ex& frac, const Vec3& tangent) {
+  Vec3 v;
+  for (size_t k = 0; k < 3; ++k) v[k] = m.time_derivative(pos[k]) + ldot * (1 - frac) * tangent[k];
+  return v;
+}
+
+// Kinetic and potential energy of a tether whose length changes (docs/theory.md §4.6): the
+// tether and the reel form one control volume of constant mass, so the Euler–Lagrange
+// equations of T and U hold without mass-flow corrections.
+void add_variable_length_energy(ModelReader& r, const Tether& t) {
+  Model& m = r.model();
+  const size_t n = t.segments;
+  const GiNaC::ex N = GiNaC::numeric(static_cast<int>(n));
+  const GiNaC::ex ldot = m.time_derivative(t.length);
+  const Vec3 g = m.gravity.value_or(Vec3{0, 0, 0});
+  std::vector<Vec3> r_j;
+  for (const auto& name : t.nodes) r_j.push_back(m.find_point(name)->pos);
+  auto tangent = [&](size_t seg) { return scale(N / t.length, sub(r_j[seg], r_j[seg - 1])); };
+  GiNaC::ex T = 0, U = 0;
+  if (!t.full) {
+    const GiNaC::ex mj = t.mass_per_length * t.length / (N + 1);
+    for (size_t j = 0; j <= n; ++j) {
+      const Vec3 v = material_velocity(m, r_j[j], ldot,
+                                       GiNaC::numeric(static_cast<int>(j), static_cast<int>(n)),
+                                       tangent(j == 0 ? 1 : j));
+      T += mj / 2 * dot3(v, v);
+      U -= mj * dot3(g, r_j[j]);
+    }
+  } else {
+    const GiNaC::ex ms = t.mass_per_length * t.length / N;
+    for (size_t j = 1; j <= n; ++j) {
+      const Vec3 tj = tangent(j);
+      const Vec3 va = material_velocity(
+          m, r_j[j - 1], ldot, GiNaC::numeric(static_cast<int>(j - 1), static_cast<int>(n)), tj);
+      const Vec3 vb = material_velocity(
+          m, r_j[j], ldot, GiNaC::numeric(static_cast<int>(j), static_cast<int>(n)), tj);
+      T += ms / 6 * (dot3(va, va) + dot3(vb, vb) + dot3(va, vb));
+      U -= ms * dot3(g, scale(GiNaC::numeric(1, 2), add(r_j[j - 1], r_j[j])));
+    }
+  }
+  m.kinetic += T;
+  m.potential += U;
+}
+
+// Constant length: the lumped model is N + 1 particles of mass μℓ/(N + 1) (seed 000, "Tether
+// Models"); the full model's T = (mₛ/6)(|ṙₐ|² + |ṙ_b|² + ṙₐ·ṙ_b) is, identically, a particle mₛ at
+// the segment's midpoint plus a gravity-free particle mₛ/12 at d = r_b − rₐ (docs/theory.md §4.5).
+void add_constant_length_masses(ModelReader& r, const Tether& t) {
+  Model& m = r.model();
+  const size_t n = t.segments;
+  const GiNaC::ex N = GiNaC::numeric(static_cast<int>(n));
+  const SourceLoc loc = r.source().at(t.node);
+  if (!t.full) {
+    const GiNaC::ex mj = t.mass_per_length * t.length / (N + 1);
+    for (const auto& name : t.nodes) m.particles.push_back(Particle{name, mj, loc, true});
+    return;
+  }
+  const GiNaC::ex ms = t.mass_per_length * t.length / N;
+  for (size_t j = 1; j <= n; ++j) {
+    const Vec3 a = m.find_point(t.nodes[j - 1])->pos, b = m.find_point(t.nodes[j])->pos;
+    const std::string mid = fmt::format("{}.mid{}", t.name, j);
+    const std::string span = fmt::format("{}.span{}", t.name, j);
+    r.add_point(mid, scale(GiNaC::numeric(1, 2), add(a, b)), t.node);
+    r.add_point(span, sub(b, a), t.node);
+    m.particles.push_back(Particle{mid, ms, loc, true});
+    m.particles.push_back(Particle{span, ms / 12, loc, false});
+  }
+}
+
+}  // namespace
+
+void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& ctx) {
+  Model& m = r.model();
+  for (const Tether& t : ctx.tethers) {
+    const size_t n = t.segments;
+    const GiNaC::ex seg = t.length / GiNaC::numeric(static_cast<int>(n));
+    const SourceLoc loc = r.source().at(t.node);
+    if (t.variable_length)
+      add_variable_length_energy(r, t);
+    else
+      add_constant_length_masses(r, t);
+    // docs/theory.md §4.5: Cⱼ = ½(|rⱼ − rⱼ₋₁|² − (ℓ/N)²); the segment's tension is λⱼ ℓ/N.
+    for (size_t j = 1; j <= n; ++j) {
+      const Vec3 d = sub(m.find_point(t.nodes[j])->pos, m.find_point(t.nodes[j - 1])->pos);
+      m.constraints.push_back(
+          NamedExpr{fmt::format("{}.segment{}", t.name, j), (dot3(d, d) - seg * seg) / 2, loc});
+      m.reactions.push_back(
+          Reaction{fmt::format("{}.tension_{}", t.name, j), m.constraints.size() - 1, seg, loc});
+      if (j == 1)
+        m.reactions.push_back(
+            Reaction{t.name + ".tension_ground", m.constraints.size() - 1, seg, loc});
+    }
+    std::vector<Vec3> force = tether_drag(m, t, ctx.wind ? &*ctx.wind : nullptr);
+    GiNaC::ex power = 0;  // of drag and damping: Σ Fⱼ·ṙⱼ
+    for (size_t j = 0; j <= n; ++j) {
+      const Vec3& pos = m.find_point(t.nodes[j])->pos;
+      const bool own = m.coordinate_index(fmt::format("{}.node{}.x", t.name, j)) >= 0;
+      if (!t.damping.is_zero() && own) {
+        const GiNaC::ex c = t.damping * seg;
+        for (size_t k = 0; k < 3; ++k) force[j][k] -= c * m.time_derivative(pos[k]);
+      }
+      bool any = false;
+      for (const auto& f : force[j]) any = any || !f.is_zero();
+      if (!any) continue;
+      m.forces.push_back(PointForce{t.nodes[j], force[j], loc});
+      for (size_t k = 0; k < 3; ++k) power += force[j][k] * m.time_derivative(pos[k]);
+    }
+    ElementSummary summary{
+        fmt::format("Tether '{}': {} segments, {} model{}", t.name, n, t.full ? "full" : "lumped",
+                    t.variable_length ? ", varying length" : ""),
+        {},
+        {}};
+    summary.notes.push_back(fmt::format("nodes r_0 = {}, r_{} = {}; segment 1 of {} shown",
+                                        t.nodes[0], n, t.nodes[n], n));
+    summary.equations.emplace_back("l_s", seg);
+    summary.equations.emplace_back(
+        t.full ? "m_segment" : "m_node",
+        t.mass_per_length * t.length / GiNaC::numeric(static_cast<int>(t.full ? n : n + 1)));
+    summary.equations.emplace_back("C_1", m.constraints[m.constraints.size() - n].expr);
+    for (size_t k = 0; k < 3; ++k)
+      if (!force[0][k].is_zero() || !force[1][k].is_zero())
+        summary.equations.emplace_back(fmt::format("F_node1.{}", "xyz"[k]), force[1][k]);
+    summary.notes.push_back(fmt::format("{}.tension_j = lambda_j * l_s (N); drag: {}", t.name,
+                                        t.drag == Tether::Drag::None     ? "none"
+                                        : t.drag == Tether::Drag::Simple ? "simple"
+                                                                         : "fine"));
+    if (t.variable_length)
+      summary.notes.push_back(
+          "T and U use the material velocity r_j' + l' (1 - j/N) t_j "
+          "(docs/theory.md §4.6)");
+    m.element_summaries.push_back(std::move(summary));
+    m.outputs.push_back(NamedExpr{t.name + ".length", t.length, loc});
+    m.outputs.push_back(NamedExpr{t.name + ".mass", t.mass_per_length * t.length, loc});
+    if (!power.is_zero()) m.outputs.push_back(NamedExpr{t.name + ".drag_power", power, loc});
+  }
+}
+
+}  // namespace lagrange::elements

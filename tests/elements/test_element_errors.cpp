@@ -1,0 +1,108 @@
+// Bad tether, winch and wind input through the command line: exit code 1, a located message
+// naming what is wrong, and no output file.
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "hardening/cli_runner.hpp"
+
+namespace lagrange::hardening {
+namespace {
+
+struct BadElement {
+  const char* label;
+  std::string yaml;
+  const char* fragment;
+};
+
+std::string tether(const std::string& fields) {
+  return "gravity: [0, 0, -9.81]\ntethers:\n  t1:\n    between: [[0, 0, 0], free]\n" + fields;
+}
+
+const std::string kOk = "    segments: 4\n    length: 10\n    mass_per_length: 0.1\n";
+
+std::vector<BadElement> bad_elements() {
+  return {
+      {"unknown point", "tethers:\n  t1:\n    between: [[0, 0, 0], nowhere]\n" + kOk,
+       "expected a point name for the second end of tether 't1', got 'nowhere'"},
+      {"zero segments", tether("    segments: 0\n    length: 10\n    mass_per_length: 0.1\n"),
+       "expected a whole number of segments"},
+      {"negative segments", tether("    segments: -3\n    length: 10\n    mass_per_length: 0.1\n"),
+       "expected a whole number of segments"},
+      {"zero length", tether("    segments: 4\n    length: 0\n    mass_per_length: 0.1\n"),
+       "positive length"},
+      {"negative mass", tether("    segments: 4\n    length: 10\n    mass_per_length: -1\n"),
+       "expected a positive mass_per_length"},
+      {"zero diameter", tether(kOk + "    drag: simple\n    diameter: 0\n"),
+       "expected a positive diameter"},
+      {"drag without diameter", tether(kOk + "    drag: simple\n"), "expected 'diameter'"},
+      {"unknown drag model", tether(kOk + "    drag: heavy\n"),
+       "expected 'none', 'simple' or 'fine'"},
+      {"ends too far apart", "tethers:\n  t1:\n    between: [[0, 0, 0], [20, 0, 0]]\n" + kOk,
+       "at most its length"},
+      {"winch without tether",
+       tether(kOk) + "winches:\n  w:\n    radius: 0.1\n    inertia: 1\n"
+                     "    initial: {reeled_out: 5}\n",
+       "expected 'tether'"},
+      {"winch of an unknown tether",
+       tether(kOk) + "winches:\n  w:\n    tether: t2\n    radius: 0.1\n    inertia: 1\n"
+                     "    initial: {reeled_out: 5}\n",
+       "expected the name of a tether for winch 'w', got 't2'"},
+      {"roughness zero", tether(kOk) + "wind: {profile: logarithmic, speed: 5, roughness: 0}\n",
+       "expected a positive roughness length z0"},
+      {"roughness negative",
+       tether(kOk) + "wind: {profile: logarithmic, speed: 5, roughness: -0.1}\n",
+       "expected a positive roughness length z0"},
+      {"unknown wind profile", tether(kOk) + "wind: {profile: gusty, speed: 5}\n",
+       "expected 'uniform', 'logarithmic' or 'power_law'"},
+  };
+}
+
+class BadElementModel : public ::testing::TestWithParam<BadElement> {};
+
+TEST_P(BadElementModel, ExitsOneWithALocatedMessageAndWritesNothing) {
+  const BadElement& bad = GetParam();
+  ScratchDir dir(std::string("element-") + std::to_string(getpid()) + "-" +
+                 std::to_string(reinterpret_cast<uintptr_t>(&bad) % 100000));
+  spit(dir.path() / "model.yaml", bad.yaml);
+  const RunResult r = run_lagrange(dir.path(), {"simulate", (dir.path() / "model.yaml").string(),
+                                                "-o", (dir.path() / "out.csv").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("model.yaml:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad.fragment), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"model.yaml"});
+}
+
+INSTANTIATE_TEST_SUITE_P(Elements, BadElementModel, ::testing::ValuesIn(bad_elements()),
+                         [](const auto& info) {
+                           std::string s = info.param.label;
+                           for (char& c : s)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return s;
+                         });
+
+}  // namespace
+}  // namespace lagrange::hardening
+
+namespace lagrange::hardening {
+namespace {
+
+// `derive` shows what a tether and a winch lowered into the model, one segment's terms.
+TEST(ElementDerive, ShowsOneSegmentAndTheDrum) {
+  ScratchDir dir("element-derive");
+  const RunResult r = run_lagrange(
+      dir.path(), {"derive", std::string(LAGRANGE_SOURCE_DIR) + "/examples/winch.yaml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Tether 'line': 10 segments, lumped model, varying length"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("  l_s = 1/10*drum.reeled_out"), std::string::npos) << r.out.substr(0, 800);
+  EXPECT_NE(r.out.find("  C_1 = "), std::string::npos);
+  EXPECT_EQ(r.out.find("  C_2 = "), std::string::npos);
+  EXPECT_NE(r.out.find("Winch 'drum' reeling tether 'line'"), std::string::npos);
+  EXPECT_NE(r.out.find("  T_drum = "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lagrange::hardening
