@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
   derive->add_option("model", opt.model, "model file (YAML)")->required();
   derive->add_option("--format", opt.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}));
+  derive->add_flag("--expand", opt.expand,
+                   "print the full expansion even for large models (by default printed through "
+                   "named common subexpressions)");
 
   auto* sim = app.add_subcommand("simulate", "integrate the model and write the trajectory");
   sim->add_option("model", opt.model, "model file (YAML)")->required();
