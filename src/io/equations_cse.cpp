@@ -107,6 +107,11 @@ std::string format_text_cse(const Equations& eq, const CompiledModel& cm,
   for (const auto& [name, expr] : energies.definitions) line(name, expr);
   line("T", energies.outputs[0]);
   line("U", energies.outputs[1]);
+  for (const ElementSummary& s : eq.model->element_summaries) {  // one segment's terms each
+    out += "\n" + s.title + "\n";
+    for (const auto& note : s.notes) out += "  " + note + "\n";
+    for (const auto& [lhs, rhs] : s.equations) line(lhs, str(rhs, Style::Text));
+  }
   out += fmt::format("\nCommon subexpressions of the dynamics ({})\n", dyn.definitions.size());
   for (const auto& [name, expr] : dyn.definitions) line(name, expr);
   for (const Section& s : dynamics_sections(cm, dyn)) {
