@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 
 #include "cli/prepare.hpp"
 #include "lagrange/compiled_model.hpp"
