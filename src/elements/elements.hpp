@@ -52,6 +52,20 @@ struct ElementContext {
   std::vector<Tether> tethers;
 };
 
+/// One entry `name: {…}` of an element section, already checked.
+struct ElementEntry {
+  YAML::Node key, spec;
+  std::string name;  ///< the element's name, declared
+  std::string what;  ///< "<kind> '<name>'", for messages
+};
+
+/// The entries of an element section (`tethers: {main: {…}, …}`) in file order: the section is
+/// a map, each entry a map with only `keys` (`shape` describes it in messages), each name declared.
+std::vector<ElementEntry> element_entries(model::ModelReader& reader, const YAML::Node& section,
+                                          const std::string& section_name, const std::string& kind,
+                                          const std::vector<std::string>& keys,
+                                          const std::string& shape);
+
 /// Top-level keys owned by elements, in the order they are read.
 const std::vector<std::string>& element_keys();
 

@@ -12,6 +12,23 @@ std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
 }
 }  // namespace
 
+std::vector<ElementEntry> element_entries(model::ModelReader& r, const YAML::Node& section,
+                                          const std::string& section_name, const std::string& kind,
+                                          const std::vector<std::string>& keys,
+                                          const std::string& shape) {
+  r.expect_map(section, section_name + " (a map name: " + shape + ")");
+  r.check_keys(section, {}, section_name);
+  std::vector<ElementEntry> entries;
+  for (const auto& kv : section) {
+    ElementEntry e{kv.first, kv.second, kv.first.Scalar(), kind + " '" + kv.first.Scalar() + "'"};
+    r.declare_element(e.key);
+    r.expect_map(e.spec, e.what + " (a map " + shape + ")");
+    r.check_keys(e.spec, keys, e.what);
+    entries.push_back(e);
+  }
+  return entries;
+}
+
 const std::vector<std::string>& element_keys() {
   static const std::vector<std::string> keys = {"wind", "winches", "tethers", "kites"};
   return keys;

@@ -184,20 +184,17 @@ bool moves(const Model& m, const Vec3& pos) {
 }  // namespace
 
 void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx) {
-  r.expect_map(node, "tethers (a map name: {between, segments, length, …})");
-  r.check_keys(node, {}, "tethers");
-  for (const auto& kv : node) {
+  const std::vector<std::string> keys{"between",         "segments", "model", "length",
+                                      "mass_per_length", "diameter", "cd",    "drag",
+                                      "air_density",     "damping"};
+  for (const ElementEntry& entry : element_entries(
+           r, node, "tethers", "tether", keys, "{between, segments, length, mass_per_length, …}")) {
     Tether t;
-    t.name = kv.first.Scalar();
-    t.node = kv.second;
-    const std::string what = fmt::format("tether '{}'", t.name);
-    r.declare_element(kv.first);
-    const YAML::Node& spec = kv.second;
-    r.expect_map(spec, what + " (a map {between, segments, length, mass_per_length, …})");
-    r.check_keys(spec,
-                 {"between", "segments", "model", "length", "mass_per_length", "diameter", "cd",
-                  "drag", "air_density", "damping"},
-                 what);
+    t.name = entry.name;
+    t.node = entry.spec;
+    const std::string& what = entry.what;
+    const YAML::Node& spec = entry.spec;
+    const YAML::Node& key = entry.key;
     const YAML::Node between = spec["between"];
     if (!between) r.fail(spec, fmt::format("expected 'between: [a, b]' in {}, got none", what));
     if (!between.IsSequence() || between.size() != 2)
@@ -298,9 +295,8 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       }
       Vec3 pos;
       for (size_t k = 0; k < 3; ++k)
-        pos[k] =
-            r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k], 0.0, kv.first).q;
-      r.add_point(name, pos, kv.first);
+        pos[k] = r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k], 0.0, key).q;
+      r.add_point(name, pos, key);
       t.nodes.push_back(name);
     }
     if (n == 1 && !b.free && !moves(r.model(), a.pos) && !moves(r.model(), b.pos))

@@ -8,28 +8,25 @@ namespace lagrange::elements {
 using model::ModelReader;
 
 void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx) {
-  r.expect_map(node, "winches (a map name: {tether, radius, inertia, …})");
-  r.check_keys(node, {}, "winches");
-  for (const auto& kv : node) {
+  const std::vector<std::string> keys{"tether",  "radius", "inertia",   "total_length",
+                                      "initial", "torque", "reeled_out"};
+  for (const ElementEntry& entry :
+       element_entries(r, node, "winches", "winch", keys, "{tether, radius, inertia, …}")) {
     Winch w;
-    w.name = kv.first.Scalar();
-    w.node = kv.second;
-    w.key = kv.first;
-    const std::string what = fmt::format("winch '{}'", w.name);
-    r.declare_element(kv.first);
-    const YAML::Node& spec = kv.second;
-    r.expect_map(spec, what + " (a map {tether, radius, inertia, …})");
-    r.check_keys(spec,
-                 {"tether", "radius", "inertia", "total_length", "initial", "torque", "reeled_out"},
-                 what);
+    w.name = entry.name;
+    w.node = entry.spec;
+    w.key = entry.key;
+    const std::string& what = entry.what;
+    const YAML::Node& spec = entry.spec;
+    const YAML::Node& key = entry.key;
     if (!spec["tether"])
-      r.fail(kv.first,
-             fmt::format("expected 'tether' (the tether it reels) in {}, got none", what));
+      r.fail(key, fmt::format("expected 'tether' (the tether it reels) in {}, got none", what));
     w.tether = r.scalar(spec["tether"], "tether of " + what);
-    auto positive = [&](const char* key, bool strict) {
-      if (!spec[key]) r.fail(kv.first, fmt::format("expected '{}' in {}, got none", key, what));
-      GiNaC::ex e = r.scalar_expr(spec[key], model::kParams, fmt::format("{} of {}", key, what));
-      r.check_sign(e, spec[key], strict, fmt::format("{} of {}", key, what));
+    auto positive = [&](const char* field, bool strict) {
+      if (!spec[field]) r.fail(key, fmt::format("expected '{}' in {}, got none", field, what));
+      GiNaC::ex e =
+          r.scalar_expr(spec[field], model::kParams, fmt::format("{} of {}", field, what));
+      r.check_sign(e, spec[field], strict, fmt::format("{} of {}", field, what));
       return e;
     };
     w.radius = positive("radius", true);
@@ -56,9 +53,9 @@ void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       w.rate = *v0;
     } else {
       if (!spec["initial"])
-        r.fail(kv.first, fmt::format("expected 'initial: {{reeled_out, rate}}' or a prescribed "
-                                     "'reeled_out' in {}, got neither",
-                                     what));
+        r.fail(key, fmt::format("expected 'initial: {{reeled_out, rate}}' or a prescribed "
+                                "'reeled_out' in {}, got neither",
+                                what));
       const YAML::Node init = spec["initial"];
       r.expect_map(init, "initial state of " + what + " ({reeled_out, rate})");
       r.check_keys(init, {"reeled_out", "rate"}, "initial state of " + what);
@@ -78,7 +75,7 @@ void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx
                                                  "reeled-out {:g} in {}, got {:g}",
                                                  w.initial, what, *total));
     }
-    r.add_coordinate(w.name + ".reeled_out", w.initial, w.rate, kv.first);
+    r.add_coordinate(w.name + ".reeled_out", w.initial, w.rate, key);
     w.coordinate = r.model().coordinates.size() - 1;
     ctx.winches.push_back(w);
   }

@@ -11,19 +11,13 @@
 namespace lagrange::hardening {
 namespace {
 
-struct BadElement {
-  const char* label;
-  std::string yaml;
-  const char* fragment;
-};
-
 std::string tether(const std::string& fields) {
   return "gravity: [0, 0, -9.81]\ntethers:\n  t1:\n    between: [[0, 0, 0], free]\n" + fields;
 }
 
 const std::string kOk = "    segments: 4\n    length: 10\n    mass_per_length: 0.1\n";
 
-std::vector<BadElement> bad_elements() {
+std::vector<BadModel> bad_elements() {
   return {
       {"unknown point", "tethers:\n  t1:\n    between: [[0, 0, 0], nowhere]\n" + kOk,
        "expected a point name for the second end of tether 't1', got 'nowhere'"},
@@ -60,28 +54,14 @@ std::vector<BadElement> bad_elements() {
   };
 }
 
-class BadElementModel : public ::testing::TestWithParam<BadElement> {};
+class BadElementModel : public ::testing::TestWithParam<BadModel> {};
 
 TEST_P(BadElementModel, Exit1Located) {
-  const BadElement& bad = GetParam();
-  ScratchDir dir(std::string("element-") + std::to_string(getpid()) + "-" +
-                 std::to_string(reinterpret_cast<uintptr_t>(&bad) % 100000));
-  spit(dir.path() / "model.yaml", bad.yaml);
-  const RunResult r = run_lagrange(dir.path(), {"simulate", (dir.path() / "model.yaml").string(),
-                                                "-o", (dir.path() / "out.csv").string()});
-  EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NE(r.err.find("model.yaml:"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find(bad.fragment), std::string::npos) << r.err;
-  EXPECT_EQ(dir.files(), std::vector<std::string>{"model.yaml"});
+  expect_model_error(GetParam(), "element");
 }
 
 INSTANTIATE_TEST_SUITE_P(Elements, BadElementModel, ::testing::ValuesIn(bad_elements()),
-                         [](const auto& info) {
-                           std::string s = info.param.label;
-                           for (char& c : s)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return s;
-                         });
+                         label_name);
 
 }  // namespace
 }  // namespace lagrange::hardening

@@ -11,12 +11,6 @@
 namespace lagrange::hardening {
 namespace {
 
-struct BadKite {
-  const char* label;
-  std::string kite;  ///< the lines under `kites: {wing: …}`
-  const char* fragment;
-};
-
 // A point `kite` on a one-segment tether, a free body `plane`; the kite's own lines follow.
 std::string model(const std::string& kite) {
   return "coordinates: {x: {initial: 60}, y: {initial: 0}, z: {initial: 80}}\n"
@@ -31,8 +25,9 @@ std::string model(const std::string& kite) {
          kite;
 }
 
-std::vector<BadKite> bad_kites() {
-  return {
+/// Cases as (label, the lines under `kites: {wing: …}`, fragment), completed by model().
+std::vector<BadModel> bad_kites() {
+  std::vector<BadModel> cases = {
       {"unknown point", "    point: nowhere\n    preset: ap2\n    CL: 1\n",
        "expected a point name for point of kite wing, got 'nowhere'"},
       {"unknown body", "    body: glider\n    preset: ap2\n",
@@ -54,30 +49,17 @@ std::vector<BadKite> bad_kites() {
        "expected a tether ending at point 'spot' (its second end) for kite 'wing'"},
       {"misspelt key", "    point: kite\n    preset: ap2\n    CL: 1\n    rol: 0.1\n", "rol"},
   };
+  for (BadModel& c : cases) c.yaml = model(c.yaml);
+  return cases;
 }
 
-class BadKiteModel : public ::testing::TestWithParam<BadKite> {};
+class BadKiteModel : public ::testing::TestWithParam<BadModel> {};
 
 TEST_P(BadKiteModel, Exit1Located) {
-  const BadKite& bad = GetParam();
-  ScratchDir dir(std::string("kite-") + std::to_string(getpid()) + "-" +
-                 std::to_string(reinterpret_cast<uintptr_t>(&bad) % 100000));
-  spit(dir.path() / "model.yaml", model(bad.kite));
-  const RunResult r = run_lagrange(dir.path(), {"simulate", (dir.path() / "model.yaml").string(),
-                                                "-o", (dir.path() / "out.csv").string()});
-  EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NE(r.err.find("model.yaml:"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find(bad.fragment), std::string::npos) << r.err;
-  EXPECT_EQ(dir.files(), std::vector<std::string>{"model.yaml"});
+  expect_model_error(GetParam(), "kite");
 }
 
-INSTANTIATE_TEST_SUITE_P(Kites, BadKiteModel, ::testing::ValuesIn(bad_kites()),
-                         [](const auto& info) {
-                           std::string s = info.param.label;
-                           for (char& c : s)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(Kites, BadKiteModel, ::testing::ValuesIn(bad_kites()), label_name);
 
 // `derive` names the kite, its data source and the coefficients in use.
 TEST(KiteDerive, ShowsTheAerodynamicModel) {

@@ -13,6 +13,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -131,5 +133,47 @@ class ScratchDir {
  private:
   fs::path path_;
 };
+
+/// A model file with a mistake, and a fragment (usually the offending name) its message must
+/// contain.
+struct BadModel {
+  const char* label;
+  std::string yaml;
+  const char* fragment;
+};
+
+// gtest prints the label instead of the bytes of the struct.
+inline void PrintTo(const BadModel& bad, std::ostream* os) {
+  *os << bad.label;
+}
+
+/// A test name from a case's label: letters and digits kept, everything else '_'.
+inline std::string label_name(const ::testing::TestParamInfo<BadModel>& info) {
+  std::string s;
+  for (const char* c = info.param.label; *c; ++c)
+    s += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
+  return s;
+}
+
+/// What a user meets with a mistaken model: `simulate -o … --plot …` exits 1 with
+/// "bad.yaml:line:column: error: …" containing the fragment, quotes rather than copies the
+/// input, and writes nothing (no CSV, sidecar, plot or leftover ".part").
+inline void expect_model_error(const BadModel& bad, const std::string& scratch) {
+  ScratchDir dir(scratch + "-" +
+                 std::to_string(static_cast<size_t>(std::hash<std::string>{}(bad.label))));
+  const fs::path model = dir.path() / "bad.yaml";
+  spit(model, bad.yaml);
+  const RunResult r =
+      run_lagrange(dir.path(), {"simulate", model.string(), "-o", (dir.path() / "out.csv").string(),
+                                "--plot", (dir.path() / "out.svg").string(), "-q"});
+  EXPECT_EQ(r.exit_code, 1) << bad.label << "\nstderr: " << r.err.substr(0, 2000);
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("bad\\.yaml:[0-9]+:[0-9]+: error: ")))
+      << bad.label << "\nstderr: " << r.err.substr(0, 2000);
+  EXPECT_NE(r.err.find(bad.fragment), std::string::npos)
+      << bad.label << ": expected '" << bad.fragment << "' in\n"
+      << r.err.substr(0, 2000);
+  EXPECT_LT(r.err.size(), 2000u) << bad.label << ": the message should quote, not copy the input";
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"bad.yaml"}) << bad.label;
+}
 
 }  // namespace lagrange::hardening

@@ -13,13 +13,6 @@
 namespace lagrange::hardening {
 namespace {
 
-/// One bad model and a fragment (usually the offending name) its message must contain.
-struct BadModel {
-  const char* label;
-  std::string yaml;
-  const char* fragment;
-};
-
 const std::string kBase = "coordinates:\n  x: {initial: 1}\nkinetic: der(x)^2/2\n";
 const std::string kPoint = kBase + "points:\n  p: [x, 0, 0]\n";
 
@@ -115,40 +108,13 @@ std::vector<BadModel> bad_models() {
   };
 }
 
-// gtest prints the label instead of the bytes of the struct.
-void PrintTo(const BadModel& bad, std::ostream* os) {
-  *os << bad.label;
-}
-
 class MalformedModel : public ::testing::TestWithParam<BadModel> {};
 
 TEST_P(MalformedModel, Exit1Located) {
-  const BadModel& bad = GetParam();
-  ScratchDir dir(std::string("malformed-") +
-                 std::to_string(static_cast<size_t>(std::hash<std::string>{}(bad.label))));
-  const fs::path model = dir.path() / "bad.yaml";
-  spit(model, bad.yaml);
-  const RunResult r =
-      run_lagrange(dir.path(), {"simulate", model.string(), "-o", (dir.path() / "out.csv").string(),
-                                "--plot", (dir.path() / "out.svg").string(), "-q"});
-  EXPECT_EQ(r.exit_code, 1) << bad.label << "\nstderr: " << r.err.substr(0, 2000);
-  EXPECT_TRUE(std::regex_search(r.err, std::regex("bad\\.yaml:[0-9]+:[0-9]+: error: ")))
-      << bad.label << "\nstderr: " << r.err.substr(0, 2000);
-  EXPECT_NE(r.err.find(bad.fragment), std::string::npos)
-      << bad.label << ": expected '" << bad.fragment << "' in\n"
-      << r.err.substr(0, 2000);
-  EXPECT_LT(r.err.size(), 2000u) << bad.label << ": the message should quote, not copy the input";
-  EXPECT_EQ(dir.files(), std::vector<std::string>{"bad.yaml"}) << bad.label;
+  expect_model_error(GetParam(), "malformed");
 }
 
-std::string test_name(const ::testing::TestParamInfo<BadModel>& info) {
-  std::string s;
-  for (const char* c = info.param.label; *c; ++c)
-    s += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
-  return s;
-}
-
-INSTANTIATE_TEST_SUITE_P(Cli, MalformedModel, ::testing::ValuesIn(bad_models()), test_name);
+INSTANTIATE_TEST_SUITE_P(Cli, MalformedModel, ::testing::ValuesIn(bad_models()), label_name);
 
 TEST(MalformedModelTable, HasAtLeastFortyCases) {
   EXPECT_GE(bad_models().size(), 40u);
