@@ -62,7 +62,7 @@ std::vector<BadElement> bad_elements() {
 
 class BadElementModel : public ::testing::TestWithParam<BadElement> {};
 
-TEST_P(BadElementModel, ExitsOneWithALocatedMessageAndWritesNothing) {
+TEST_P(BadElementModel, Exit1Located) {
   const BadElement& bad = GetParam();
   ScratchDir dir(std::string("element-") + std::to_string(getpid()) + "-" +
                  std::to_string(reinterpret_cast<uintptr_t>(&bad) % 100000));
