@@ -6,6 +6,7 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/equations.hpp"
+#include "lagrange/manipulator.hpp"
 #include "lagrange/simulation.hpp"
 
 namespace lagrange {
@@ -22,6 +23,10 @@ void plot_trajectory_svg(const Trajectory& traj, const std::vector<std::string>&
 
 /// Equations as human-readable text, LaTeX, or JSON (`format`: text | latex | json).
 std::string format_equations(const Equations& eq, const std::string& format);
+
+/// The manipulator form D, Christoffel symbols, C, g, τ (docs/theory.md §4.8) as text, LaTeX or
+/// JSON (`format`: text | latex | json).
+std::string format_manipulator(const ManipulatorForm& form, const std::string& format);
 
 /// Standalone C99 source (header + implementation) evaluating the dynamics
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.

@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
   derive->add_option("model", opt.model, "model file (YAML)")->required();
   derive->add_option("--format", opt.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}));
+  derive
+      ->add_option("--form", opt.form,
+                   "lagrange (default) | manipulator: D(q), Christoffel symbols, C, g, tau")
+      ->check(CLI::IsMember({"lagrange", "manipulator"}));
 
   auto* sim = app.add_subcommand("simulate", "integrate the model and write the trajectory");
   sim->add_option("model", opt.model, "model file (YAML)")->required();
