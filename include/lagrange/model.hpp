@@ -134,6 +134,14 @@ struct Reaction {
   SourceLoc loc;
 };
 
+/// What an element lowered into the model, for `derive` to show in readable form: a title, a
+/// few representative equations (one segment's, not N copies) and plain-text notes.
+struct ElementSummary {
+  std::string title;
+  std::vector<std::pair<std::string, GiNaC::ex>> equations;
+  std::vector<std::string> notes;
+};
+
 /// Constraint stabilisation settings (docs/theory.md §4.3).
 struct Stabilization {
   double alpha = 20.0;  ///< Baumgarte: both eigenvalues of the constraint error at −α
@@ -175,6 +183,7 @@ struct Model {
   std::vector<NamedExpr> constraints;
   std::vector<NamedExpr> outputs;
   std::vector<Reaction> reactions;
+  std::vector<ElementSummary> element_summaries;
   Stabilization stabilization;
   SimulateOptions simulate;
 

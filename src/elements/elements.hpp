@@ -1,7 +1,8 @@
 #pragma once
-// Element kinds (tethers, winches, wind, links): each reads its own top-level section and lowers itself
-// into what the core derives — coordinates, points, particles, energies, constraints, forces,
-// outputs (docs/model-language.md, "Elements"). The derivation never sees the element kinds.
+// Element kinds (tethers, winches, wind, links): each reads its own top-level section and lowers
+// itself into what the core derives — coordinates, points, particles, energies, constraints,
+// forces, outputs (docs/model-language.md, "Elements"). The derivation never sees the element
+// kinds.
 
 #include <yaml-cpp/yaml.h>
 

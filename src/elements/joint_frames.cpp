@@ -8,7 +8,8 @@ namespace lagrange::elements {
 Mat3 mat_mul(const Mat3& a, const Mat3& b) {
   Mat3 out;
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) out[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+    for (size_t j = 0; j < 3; ++j)
+      out[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
   return out;
 }
 

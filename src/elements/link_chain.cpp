@@ -45,11 +45,10 @@ Vec3 unit_axis(const ModelReader& r, const JointSpec& j) {
     n2 += *v * *v;
   }
   if (!(n2 > 0) || !std::isfinite(n2))
-    throw ModelError(j.loc, fmt::format("expected a non-zero axis for joint '{}', got [0, 0, 0]",
-                                        j.name));
-  const GiNaC::ex len = GiNaC::pow(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] +
-                                       j.axis[2] * j.axis[2],
-                                   GiNaC::numeric(1, 2));
+    throw ModelError(j.loc,
+                     fmt::format("expected a non-zero axis for joint '{}', got [0, 0, 0]", j.name));
+  const GiNaC::ex len = GiNaC::pow(
+      j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2], GiNaC::numeric(1, 2));
   return {j.axis[0] / len, j.axis[1] / len, j.axis[2] / len};
 }
 
@@ -152,13 +151,13 @@ void lower_chain(ModelReader& r, const LinkChain& chain) {
     const std::string parent =
         link.parent < 0 ? "world" : chain.links[static_cast<size_t>(link.parent)].name;
     if (chain.coordinate[i] < 0) {
-      summary.notes.push_back(
-          fmt::format("link {}: fixed to {}{}", link.name, parent, link.mass.is_zero() ? ", massless" : ""));
+      summary.notes.push_back(fmt::format("link {}: fixed to {}{}", link.name, parent,
+                                          link.mass.is_zero() ? ", massless" : ""));
       continue;
     }
     const Coordinate& c = m.coordinates[static_cast<size_t>(chain.coordinate[i])];
-    summary.notes.push_back(fmt::format("link {}: {} joint {} on {}", link.name, type_word(j.type),
-                                        c.name, parent));
+    summary.notes.push_back(
+        fmt::format("link {}: {} joint {} on {}", link.name, type_word(j.type), c.name, parent));
     GiNaC::ex tau = j.torque.value_or(GiNaC::ex(0));
     const GiNaC::ex q_force = tau - j.damping * c.v;
     if (!q_force.is_zero()) {

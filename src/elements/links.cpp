@@ -1,9 +1,10 @@
 // `links:` (docs/model-language.md, "Links and joints"): a tree of links written parents first,
 // each with the joint that attaches it to its parent.
 
+#include "elements/links.hpp"
+
 #include <fmt/format.h>
 
-#include "elements/links.hpp"
 #include "model/model_reader.hpp"
 
 namespace lagrange::elements {
@@ -40,8 +41,8 @@ JointSpec read_joint(const ModelReader& r, const std::string& link, const YAML::
   if (fixed) {
     for (const char* k : {"name", "axis", "initial", "rate", "torque", "damping"})
       if (node[k])
-        r.fail(node[k], fmt::format("expected no '{}' in {}: a fixed joint has no coordinate", k,
-                                    what));
+        r.fail(node[k],
+               fmt::format("expected no '{}' in {}: a fixed joint has no coordinate", k, what));
   } else {
     if (!node["name"])
       r.fail(node, fmt::format("expected 'name' (its coordinate's name) in {}, got none", what));
@@ -59,8 +60,10 @@ JointSpec read_joint(const ModelReader& r, const std::string& link, const YAML::
   if (const YAML::Node origin = node["origin"]) {
     r.expect_map(origin, "origin of " + what + " ({xyz, rpy})");
     r.check_keys(origin, {"xyz", "rpy"}, "origin of " + what);
-    if (origin["xyz"]) j.xyz = r.vector_expr(origin["xyz"], model::kParams, "origin xyz of " + what);
-    if (origin["rpy"]) j.rpy = r.vector_expr(origin["rpy"], model::kParams, "origin rpy of " + what);
+    if (origin["xyz"])
+      j.xyz = r.vector_expr(origin["xyz"], model::kParams, "origin xyz of " + what);
+    if (origin["rpy"])
+      j.rpy = r.vector_expr(origin["rpy"], model::kParams, "origin rpy of " + what);
   }
   return j;
 }
@@ -90,17 +93,18 @@ void declare_links(ModelReader& r, const YAML::Node& node, LinkChain& chain) {
           names += ", " + chain.links[i].name;
         }
         if (link.parent < 0)
-          r.fail(spec["parent"], fmt::format("expected 'world' or a link written before {} as its "
-                                             "parent, got '{}' (links before it: {})",
-                                             what, model::clip(parent),
-                                             names.empty() ? "none" : names.substr(2)));
+          r.fail(spec["parent"],
+                 fmt::format("expected 'world' or a link written before {} as its "
+                             "parent, got '{}' (links before it: {})",
+                             what, model::clip(parent), names.empty() ? "none" : names.substr(2)));
       }
     }
     link.joint = read_joint(r, link.name, kv.first, spec["joint"]);
     if (!spec["mass"]) r.fail(kv.first, fmt::format("expected 'mass' in {}, got none", what));
     link.mass = r.scalar_expr(spec["mass"], model::kParams, "mass of " + what);
     r.check_sign(link.mass, spec["mass"], true, "mass for " + what);
-    if (spec["com"]) link.com = r.vector_expr(spec["com"], model::kParams, "centre of mass of " + what);
+    if (spec["com"])
+      link.com = r.vector_expr(spec["com"], model::kParams, "centre of mass of " + what);
     Body shape_of;
     shape_of.name = link.name;
     shape_of.mass = link.mass;
@@ -123,8 +127,8 @@ void lower_links(ModelReader& r, LinkChain& chain) {
   for (LinkSpec& link : chain.links) {
     const YAML::Node torque = link.spec["joint"]["torque"];
     if (torque)
-      link.joint.torque = r.scalar_expr(torque, model::kAll,
-                                        fmt::format("torque of joint '{}'", link.joint.name));
+      link.joint.torque =
+          r.scalar_expr(torque, model::kAll, fmt::format("torque of joint '{}'", link.joint.name));
   }
   lower_chain(r, chain);
 }

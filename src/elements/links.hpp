@@ -20,10 +20,10 @@ namespace lagrange::elements {
 /// The joint that attaches a link to its parent, in the parent's frame (URDF conventions).
 struct JointSpec {
   enum class Type { Revolute, Prismatic, Fixed } type = Type::Fixed;
-  std::string name;           ///< the coordinate's name (movable joints)
-  Vec3 axis{0, 0, 1};         ///< joint axis in the joint frame (normalised when lowered)
-  Vec3 xyz{0, 0, 0};          ///< origin of the joint frame in the parent frame
-  Vec3 rpy{0, 0, 0};          ///< its orientation: R = R_z(yaw) R_y(pitch) R_x(roll)
+  std::string name;    ///< the coordinate's name (movable joints)
+  Vec3 axis{0, 0, 1};  ///< joint axis in the joint frame (normalised when lowered)
+  Vec3 xyz{0, 0, 0};   ///< origin of the joint frame in the parent frame
+  Vec3 rpy{0, 0, 0};   ///< its orientation: R = R_z(yaw) R_y(pitch) R_x(roll)
   double initial = 0, rate = 0;
   std::optional<GiNaC::ex> torque;  ///< joint torque (force for prismatic), read when lowered
   GiNaC::ex damping = 0;            ///< viscous joint damping: adds −b q̇
@@ -39,7 +39,7 @@ struct LinkSpec {
   Vec3 com{0, 0, 0};
   Mat3 inertia{Vec3{0, 0, 0}, Vec3{0, 0, 0}, Vec3{0, 0, 0}};
   std::vector<std::pair<std::string, Vec3>> points;  ///< link-frame points `<link>.<name>`
-  YAML::Node key, spec;  ///< YAML source (null for URDF links)
+  YAML::Node key, spec;                              ///< YAML source (null for URDF links)
   SourceLoc loc;
 };
 

@@ -42,9 +42,10 @@ std::string format_text(const ManipulatorForm& f, Style style) {
   };
   std::string coords;
   for (size_t i = 0; i < n; ++i) coords += (i ? ", " : "") + eq.kin.q_names[i];
-  out += fmt::format("{}{} — manipulator form D(q) q_ddot + C(q, q_dot) q_dot + g(q) = tau, q = "
-                     "({})\n",
-                     tex ? "% " : "", eq.model->name, coords);
+  out += fmt::format(
+      "{}{} — manipulator form D(q) q_ddot + C(q, q_dot) q_dot + g(q) = tau, q = "
+      "({})\n",
+      tex ? "% " : "", eq.model->name, coords);
   heading("Inertia matrix D(q)");
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i; j < n; ++j)
@@ -58,12 +59,12 @@ std::string format_text(const ManipulatorForm& f, Style style) {
   heading(tex ? "C(q, \\dot q)" : "C(q, q_dot), C_kj = sum_i c_ijk q_dot_i");
   for (size_t k = 0; k < n; ++k)
     for (size_t j = 0; j < n; ++j)
-      if (!f.C(k, j).is_zero()) line(fmt::format("C_{{{}}}", indices(n, {k, j})), str(f.C(k, j), style));
+      if (!f.C(k, j).is_zero())
+        line(fmt::format("C_{{{}}}", indices(n, {k, j})), str(f.C(k, j), style));
   heading(tex ? "g(q)" : "Gravity g(q) = dP/dq");
   for (size_t k = 0; k < n; ++k) line(fmt::format("g_{{{}}}", k + 1), str(f.g[k], style));
   heading(tex ? "\\tau" : "Joint forces tau (generalised forces)");
-  for (size_t k = 0; k < n; ++k)
-    line(fmt::format("tau_{{{}}}", k + 1), str(f.tau[k], style));
+  for (size_t k = 0; k < n; ++k) line(fmt::format("tau_{{{}}}", k + 1), str(f.tau[k], style));
   if (tex) out += "\\end{align*}\n";
   return out;
 }

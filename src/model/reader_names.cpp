@@ -68,14 +68,14 @@ void ModelReader::declare_at(const std::string& name, NameKind kind, size_t inde
                                       "'{}'",
                                       what, clip(name)));
   if (name.size() > kMaxNameLength)
-    throw ModelError(loc, fmt::format("expected a {} name of at most {} characters, got '{}'",
-                                      what, kMaxNameLength, clip(name)));
+    throw ModelError(loc, fmt::format("expected a {} name of at most {} characters, got '{}'", what,
+                                      kMaxNameLength, clip(name)));
   if (name == "t" || name == "pi" || is_builtin_function(name))
-    throw ModelError(loc, fmt::format("expected a {} name that is not reserved, got '{}' (it is {})",
-                                      what, name,
-                                      is_builtin_function(name) ? "a built-in function"
-                                      : name == "t"             ? "the time"
-                                                                : "the constant pi"));
+    throw ModelError(
+        loc, fmt::format("expected a {} name that is not reserved, got '{}' (it is {})", what, name,
+                         is_builtin_function(name) ? "a built-in function"
+                         : name == "t"             ? "the time"
+                                                   : "the constant pi"));
   auto it = names_.find(name);
   if (it != names_.end()) {
     // Report at whichever of the two is written later in the file, naming the other.

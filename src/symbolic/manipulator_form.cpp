@@ -1,13 +1,13 @@
 // docs/theory.md §4.8: D = M, c_ijk = ½(∂d_kj/∂qᵢ + ∂d_ki/∂qⱼ − ∂d_ij/∂q_k), C_kj = Σᵢ c_ijk q̇ᵢ,
 // g_k = ∂U/∂q_k, checked against the derived forcing h = −C q̇ − g.
 
-#include "lagrange/manipulator.hpp"
-
 #include <fmt/format.h>
 
 #include <random>
 #include <sstream>
 #include <stdexcept>
+
+#include "lagrange/manipulator.hpp"
 
 namespace lagrange {
 
@@ -52,7 +52,8 @@ class Probe {
     auto rational = [&](int lo) { return GiNaC::numeric(draw(rng) + lo, 1000); };
     for (int p = 0; p < 2; ++p) {
       GiNaC::exmap v;
-      for (const Parameter& par : m.parameters) v[par.sym] = GiNaC::abs(rational(0)) / 2 + GiNaC::numeric(1, 2);
+      for (const Parameter& par : m.parameters)
+        v[par.sym] = GiNaC::abs(rational(0)) / 2 + GiNaC::numeric(1, 2);
       for (size_t i = 0; i < eq.nv; ++i) {
         v[eq.kin.q[i]] = rational(0);
         v[eq.kin.v[i]] = rational(0);
@@ -94,8 +95,8 @@ GiNaC::ex trig_simplify(const GiNaC::ex& e) {
 ManipulatorForm manipulator_form(const Equations& eq) {
   const Model& m = *eq.model;
   if (eq.m > 0)
-    throw std::invalid_argument(fmt::format(
-        "the manipulator form needs an unconstrained model, got {} constraints", eq.m));
+    throw std::invalid_argument(
+        fmt::format("the manipulator form needs an unconstrained model, got {} constraints", eq.m));
   if (eq.kin.plain != eq.nv || eq.nq != eq.nv)
     throw std::invalid_argument(
         "the manipulator form needs plain coordinates only, got a free body (its R and omega are "
