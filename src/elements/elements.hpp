@@ -53,6 +53,7 @@ struct ElementContext {
   std::vector<Winch> winches;
   std::vector<Tether> tethers;
   LinkChain links;  ///< `links:`
+  LinkChain urdf;   ///< `urdf:`
 };
 
 /// Top-level keys owned by elements, in the order they are read.

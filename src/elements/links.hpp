@@ -69,4 +69,10 @@ void lower_chain(model::ModelReader& reader, const LinkChain& chain);
 void declare_links(model::ModelReader& reader, const YAML::Node& node, LinkChain& chain);
 void lower_links(model::ModelReader& reader, LinkChain& chain);
 
+/// A URDF file as a chain, links parents first (ModelError at the file's line for a missing
+/// link, a cycle, an unsupported or mimic joint, a negative mass, malformed numbers).
+LinkChain read_urdf(const std::string& path);
+/// `urdf:` in a model file: the file (relative to the model file) and initial joint values.
+void declare_urdf(model::ModelReader& reader, const YAML::Node& node, LinkChain& chain);
+
 }  // namespace lagrange::elements
