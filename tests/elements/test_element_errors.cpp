@@ -60,6 +60,12 @@ std::vector<BadElement> bad_elements() {
   };
 }
 
+std::string arm(const std::string& second) {
+  return "links:\n  a:\n    joint: {name: q1, type: revolute}\n    mass: 1\n"
+         "    inertia: [0, 0, 0.1]\n" +
+         second;
+}
+
 std::vector<BadElement> bad_links() {
   const std::string body = "    mass: 1\n    inertia: [0, 0, 0.1]\n";
   return {
