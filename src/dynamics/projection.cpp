@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <cmath>
+#include <limits>
 
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
@@ -16,6 +17,14 @@ double max_abs(const double* x, size_t n) {
   return r;
 }
 
+// The size of rounding errors in C near q: C's terms are of the order of |∂C/∂q| |q| (exactly
+// so for the quadratic ½(|d|² − ℓ²) of a tether), so below a few ulps of that no step can
+// reduce |C| — a 200 m tether stalls near 1e-11 however small the requested tolerance.
+double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
+  const Eigen::VectorXd terms = J.cwiseAbs() * q.cwiseAbs();
+  return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
+}
+
 }  // namespace
 
 // docs/theory.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
@@ -23,8 +32,9 @@ double max_abs(const double* x, size_t n) {
 // each step halved until ‖C‖₂ decreases, so that the residual never grows), then the
 // minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free body's R
 // moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back. Stops without
-// converging when no halving of the step reduces ‖C‖₂ (a least-squares minimum where C ≠ 0, or
-// fixed coordinates in the way) or after max_iterations, at the state of least ‖C‖₂ found.
+// converging when no halving of the step reduces ‖C‖₂, e.g. at a least-squares minimum where
+// C ≠ 0 (or fixed coordinates in the way) or after max_iterations, at the state of least ‖C‖₂
+// found. A residual at the rounding floor of C's terms counts as converged whatever `tol` asks.
 ProjectionResult Dynamics::try_project(double t, double* q, double* v,
                                        const std::vector<bool>& fixed, double tol,
                                        int max_iterations) {
@@ -64,13 +74,14 @@ ProjectionResult Dynamics::try_project(double t, double* q, double* v,
     res.residual = max_abs(out_.data() + cm.C_out(), cm.m);
     if (!std::isfinite(res.residual))
       throw SimulationError(t, "the constraints are not finite at the initial state");
-    if (res.residual <= tol) break;
+    const Eigen::MatrixXd J = position_jacobian();
+    if (res.residual <= std::max(tol, rounding_floor(J, qv))) break;
     if (res.iterations >= max_iterations) {
       res.converged = false;
       break;
     }
     for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.C_out() + static_cast<size_t>(r)];
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(position_jacobian());
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
     const Eigen::VectorXd step = cod.solve(rhs);
     const Eigen::VectorXd q_here = qv;
     const double here = norm_C();
@@ -87,7 +98,7 @@ ProjectionResult Dynamics::try_project(double t, double* q, double* v,
       qv = q_here;
       eval_dynamics(t, q, v);
       res.residual = max_abs(out_.data() + cm.C_out(), cm.m);
-      res.converged = res.residual <= tol;
+      res.converged = res.residual <= std::max(tol, rounding_floor(position_jacobian(), qv));
       break;
     }
   }

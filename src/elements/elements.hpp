@@ -65,7 +65,7 @@ void declare_elements(model::ModelReader& reader, const YAML::Node& root, Elemen
 /// reactions and outputs.
 void lower_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx);
 
-// One reader per kind (wind.cpp, winch.cpp, tether.cpp).
+// One reader per kind (wind.cpp, winch.cpp, tether.cpp; kites in kite.hpp).
 void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 void declare_winches(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 void lower_winches(model::ModelReader& reader, ElementContext& ctx);

@@ -87,8 +87,13 @@ class ModelReader {
   std::string names_of(NameKind kind) const;
 
   // reader_expressions.cpp — expressions inside YAML scalars.
-  Value parse(const YAML::Node& node, unsigned allowed, const std::string& what) const;
-  GiNaC::ex scalar_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
+  /// Names an element defines for its own expressions (a kite's `alpha`), found before the
+  /// model's names.
+  using LocalNames = std::map<std::string, GiNaC::ex>;
+  Value parse(const YAML::Node& node, unsigned allowed, const std::string& what,
+              const LocalNames* locals = nullptr) const;
+  GiNaC::ex scalar_expr(const YAML::Node& node, unsigned allowed, const std::string& what,
+                        const LocalNames* locals = nullptr) const;
   Vec3 vector_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
   /// A 3×3 matrix: a YAML list of three rows [x, y, z], or one matrix expression.
   Mat3 matrix_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;

@@ -44,14 +44,18 @@ std::optional<double> in_canonical_order(const GiNaC::ex& e,
 
 }  // namespace
 
-Value ModelReader::parse(const YAML::Node& node, unsigned allowed, const std::string& what) const {
+Value ModelReader::parse(const YAML::Node& node, unsigned allowed, const std::string& what,
+                         const LocalNames* locals) const {
   if (!node.IsScalar() || node.Scalar().find_first_not_of(" \t\r\n") == std::string::npos)
     fail(node, fmt::format("expected an expression for {}, got {}", what, describe(node)));
   const std::string& text = node.Scalar();
   if (is_yaml_nonfinite(text))
     fail(node, fmt::format("expected a finite number for {}, got '{}'", what, text));
   ParseContext ctx;
-  ctx.resolve = [this, allowed](const std::string& name, size_t offset) {
+  ctx.resolve = [this, allowed, locals](const std::string& name,
+                                        size_t offset) -> std::optional<Value> {
+    if (locals != nullptr)
+      if (auto it = locals->find(name); it != locals->end()) return Value::of(it->second);
     return lookup(name, offset, allowed);
   };
   ctx.time_derivative = [this](const GiNaC::ex& e) { return m_.time_derivative(e); };
@@ -63,8 +67,8 @@ Value ModelReader::parse(const YAML::Node& node, unsigned allowed, const std::st
 }
 
 GiNaC::ex ModelReader::scalar_expr(const YAML::Node& node, unsigned allowed,
-                                   const std::string& what) const {
-  Value v = parse(node, allowed, what);
+                                   const std::string& what, const LocalNames* locals) const {
+  Value v = parse(node, allowed, what, locals);
   if (v.is_vector || v.is_matrix)
     fail(node, fmt::format("expected a scalar for {}, got {}", what, kind_name(v)));
   return v.scalar;
