@@ -2,7 +2,8 @@
 # Runs each libFuzzer target on its corpus for a while: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]
 # Inputs that crash, hang (> 10 s) or use more than 2 GB are written to BUILD_DIR/fuzz/artifacts/;
 # the script fails if any target found one. New corpus entries stay in BUILD_DIR/fuzz/corpus/.
-# With FUZZ_RUNS=N each target instead executes exactly N inputs from seed 1 with address
+# With FUZZ_RUNS=N each target instead executes exactly N inputs from seed 1 (FUZZ_RUNS_MODEL and
+# FUZZ_RUNS_EXPRESSION set N per target: a model input costs ten times an expression) with address
 # randomisation off (GiNaC's term order, hence coverage, depends on load addresses): the same
 # build and corpus then explore the same inputs, so CI's short run is reproducible.
 set -euo pipefail
@@ -19,10 +20,12 @@ status=0
 for t in "${targets[@]}"; do
   budget=(-max_total_time="$seconds")
   runner=()
-  if [ -n "${FUZZ_RUNS:-}" ]; then
-    budget=(-runs="$FUZZ_RUNS" -seed=1)
+  per_target="FUZZ_RUNS_${t^^}"
+  runs=${!per_target:-${FUZZ_RUNS:-}}
+  if [ -n "$runs" ]; then
+    budget=(-runs="$runs" -seed=1)
     if setarch "$(uname -m)" -R true 2>/dev/null; then runner=(setarch "$(uname -m)" -R); fi
-    echo "fuzz: fuzz_$t for $FUZZ_RUNS inputs (seed 1) on $build/fuzz/corpus/$t"
+    echo "fuzz: fuzz_$t for $runs inputs (seed 1) on $build/fuzz/corpus/$t"
   else
     echo "fuzz: fuzz_$t for ${seconds} s on $build/fuzz/corpus/$t"
   fi

@@ -16,10 +16,18 @@ namespace lagrange {
 /// the reason and run statistics.
 void write_trajectory_csv(const Trajectory& traj, const std::string& path);
 
-/// An SVG plot of the chosen columns against t through gnuplot (throws std::runtime_error
-/// when gnuplot is missing or fails).
-void plot_trajectory_svg(const Trajectory& traj, const std::vector<std::string>& columns,
-                         const std::string& path, const std::string& title);
+/// Image formats of plot_trajectory, chosen by the file's extension.
+enum class PlotFormat { Svg, Png };
+/// The format for `path` (.svg or .png, any case); std::invalid_argument otherwise.
+PlotFormat plot_format(const std::string& path);
+/// The gnuplot terminal that writes `format` (svg, pngcairo).
+const char* gnuplot_terminal(PlotFormat format);
+/// True when gnuplot runs and lists the terminal for `format` in `gnuplot -e "set terminal"`.
+bool plot_format_available(PlotFormat format);
+/// A plot of the chosen columns against t through gnuplot, SVG or PNG by the extension of
+/// `path` (throws std::runtime_error when gnuplot is missing or fails).
+void plot_trajectory(const Trajectory& traj, const std::vector<std::string>& columns,
+                     const std::string& path, const std::string& title);
 
 /// Equations as human-readable text, LaTeX, or JSON (`format`: text | latex | json).
 std::string format_equations(const Equations& eq, const std::string& format);
@@ -32,7 +40,12 @@ std::string format_manipulator(const ManipulatorForm& form, const std::string& f
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.
 void export_c(const CompiledModel& model, const std::string& dir);
 
-/// Write `text` to `path` through a temporary file and an atomic rename.
+/// Creates the directories above `path` that do not exist yet (std::runtime_error naming the
+/// directory when that fails).
+void create_parent_directories(const std::string& path);
+
+/// Write `text` to `path` through a temporary file and an atomic rename, creating missing
+/// directories above it.
 void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace lagrange

@@ -42,6 +42,32 @@ SimulationOptions simulation_options(const Model& model, const Options& opt) {
   return so;
 }
 
+// --plot and --plot-columns, checked before the run: a known image format whose gnuplot terminal
+// is installed, and columns the trajectory will have (default: the coordinates).
+std::vector<std::string> checked_plot_columns(const Options& opt, const CompiledModel& cm) {
+  if (opt.plot.empty()) return {};
+  PlotFormat format;
+  try {
+    format = plot_format(opt.plot);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(fmt::format("--plot: {}", e.what()));
+  }
+  if (!plot_format_available(format))
+    throw UsageError(
+        fmt::format("--plot {}: gnuplot with the '{}' terminal is needed and was not "
+                    "found (see gnuplot -e \"set terminal\"); install it, or plot "
+                    "to {}",
+                    opt.plot, gnuplot_terminal(format),
+                    format == PlotFormat::Png ? "an .svg file" : "a .png file"));
+  std::vector<std::string> cols = opt.plot_columns;
+  if (cols.empty()) cols = cm.coordinate_names;
+  const std::vector<std::string> known = trajectory_columns(cm);
+  for (const auto& c : cols)
+    if (std::find(known.begin(), known.end(), c) == known.end())
+      throw UsageError("--plot-columns: no column '" + c + "' in the trajectory");
+  return cols;
+}
+
 // Progress line on a terminal for runs longer than about a second.
 std::function<void(double)> progress_line(const Options& opt, double t_end) {
   if (opt.quiet || !opt.terminal) return {};
@@ -100,6 +126,7 @@ int run_simulate(const Options& opt) {
   const Model& model = *p.model;
   const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);
+  const std::vector<std::string> plot_columns = checked_plot_columns(opt, *cm);
   if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
@@ -110,14 +137,8 @@ int run_simulate(const Options& opt) {
   for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
 
   if (!opt.csv.empty()) write_trajectory_csv(traj, opt.csv);
-  if (!opt.plot.empty() && traj.rows() > 1) {
-    std::vector<std::string> cols = opt.plot_columns;
-    if (cols.empty()) cols = cm->coordinate_names;
-    for (const auto& c : cols)
-      if (std::find(traj.columns.begin(), traj.columns.end(), c) == traj.columns.end())
-        throw UsageError("--plot-columns: no column '" + c + "' in the trajectory");
-    plot_trajectory_svg(traj, cols, opt.plot, model.name);
-  }
+  if (!opt.plot.empty() && traj.rows() > 1)
+    plot_trajectory(traj, plot_columns, opt.plot, model.name);
   if (!opt.quiet) {
     const size_t rows = traj.rows();
     fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->nq,

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   sim->add_option("--t-end", opt.t_end, "end time (overrides simulate.t_end)");
   sim->add_option("--output-step", opt.output_step, "output grid step");
   sim->add_option("-o,--output", opt.csv, "CSV file to write (default: print a summary only)");
-  sim->add_option("--plot", opt.plot, "SVG plot of the coordinates (through gnuplot)");
+  sim->add_option("--plot", opt.plot, "plot of the coordinates, .svg or .png (through gnuplot)");
   sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
       ->delimiter(',');
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");

@@ -206,9 +206,11 @@ class ExprCompiler {
     if (name == "atan2" && f.nops() == 2) {
       return b_.binary(Op::Atan2, value(f.op(0)), value(f.op(1)));
     }
-    // Every tape value is real: conjugate and real part are the identity (they appear in
-    // GiNaC's derivative of abs when an expression holds complex-domain symbols).
+    // Every tape value is real: conjugate and real part are the identity and the imaginary part
+    // is 0 (they appear in GiNaC's derivative of abs, and in its abs of a power, when an
+    // expression holds complex-domain symbols).
     if ((name == "conjugate" || name == "real_part") && f.nops() == 1) return value(f.op(0));
+    if (name == "imag_part" && f.nops() == 1) return b_.constant(0.0);
     const auto& table = unary_functions();
     if (auto it = table.find(name); it != table.end() && f.nops() == 1) {
       return b_.unary(it->second, value(f.op(0)));

@@ -96,6 +96,18 @@ Mat3 transpose(const Mat3& m) {
   return out;
 }
 
+GiNaC::ex real_abs(const GiNaC::ex& x) {
+  if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(0)) &&
+      GiNaC::ex_to<GiNaC::numeric>(x.op(0)).is_positive())
+    return x;
+  if (GiNaC::is_a<GiNaC::mul>(x)) {
+    GiNaC::exvector factors;
+    for (size_t i = 0; i < x.nops(); ++i) factors.push_back(real_abs(x.op(i)));
+    return GiNaC::mul(factors);
+  }
+  return GiNaC::abs(x);
+}
+
 // rot_x(a) = [[1, 0, 0], [0, cos a, −sin a], [0, sin a, cos a]] and cyclic.
 Mat3 axis_rotation(size_t axis, const GiNaC::ex& angle) {
   const size_t i = (axis + 1) % 3, j = (axis + 2) % 3;

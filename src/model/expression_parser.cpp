@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "model/exact_numbers.hpp"
 #include "model/expression_algebra.hpp"
 
 namespace lagrange::model {
@@ -22,6 +23,16 @@ const std::map<std::string, int>& builtin_arity() {
       {"sqrt", 1},  {"abs", 1},   {"dot", 2},   {"cross", 2}, {"norm", 1},     {"vel", 1},
       {"der", 1},   {"rot_x", 1}, {"rot_y", 1}, {"rot_z", 1}, {"transpose", 1}};
   return table;
+}
+
+/// " (did you mean 'log'?)" for names other languages give to built-in functions.
+std::string hint(const std::string& name) {
+  static const std::map<std::string, std::string> aliases = {
+      {"ln", "log"},     {"arcsin", "asin"},         {"arccos", "acos"}, {"arctan", "atan"},
+      {"pow", "a^b"},    {"power", "a^b"},           {"sqr", "x^2"},     {"fabs", "abs"},
+      {"exp10", "10^x"}, {"log10", "log(x)/log(10)"}};
+  auto it = aliases.find(name);
+  return it == aliases.end() ? "" : fmt::format(" (did you mean '{}'?)", it->second);
 }
 
 /// An exact GiNaC number for a decimal literal (rational when reasonably sized), finite.
@@ -55,37 +66,6 @@ GiNaC::ex number_value(const Token& tok) {
   if (digits.size() > 40 || std::labs(exponent) > 300) return GiNaC::numeric(d);
   GiNaC::numeric n(digits.c_str());
   return n * GiNaC::numeric(10).power(GiNaC::numeric(exponent));
-}
-
-/// Powers GiNaC must not be asked for (fuzz findings, tests/hardening/data/fuzz/expression/):
-/// 0 to a non-positive power makes GiNaC throw from inside pow(), leaking the half-built node,
-/// and a number to a huge integer power is evaluated exactly, which never finishes.
-void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset) {
-  constexpr int kMaxExponent = 1000;
-  constexpr double kMaxDigits = 10000;
-  // 0 to a symbolic power: its derivative holds log(0), on which GiNaC throws mid-construction
-  // and leaks (fuzz finding "der(0^y)").
-  if (base.is_zero() && !GiNaC::is_a<GiNaC::numeric>(exponent))
-    throw ExprError{offset, "expected a numeric positive exponent of 0, got a symbolic one"};
-  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
-  const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent);
-  if (base.is_zero() && !(e.is_real() && e.is_positive()))
-    throw ExprError{offset,
-                    "expected a positive exponent of 0, got 0 ^ (a number <= 0, or complex)"};
-  if (GiNaC::abs(e) > kMaxExponent)  // exact comparison: e may be far beyond double's range
-    throw ExprError{offset, fmt::format("expected an exponent of magnitude at most {}, got more",
-                                        kMaxExponent)};
-  const double magnitude = GiNaC::abs(e).to_double();
-  if (GiNaC::is_a<GiNaC::numeric>(base) && e.is_integer()) {
-    const auto& b = GiNaC::ex_to<GiNaC::numeric>(base);
-    if (!b.is_rational()) return;
-    const int bits = std::max(b.numer().int_length(), b.denom().int_length());
-    const double digits = magnitude * bits * std::log10(2.0);
-    if (!(digits <= kMaxDigits))
-      throw ExprError{offset, fmt::format("expected a power of at most {:g} digits, got one of "
-                                          "about {:.3g} digits",
-                                          kMaxDigits, digits)};
-  }
 }
 
 class Parser {
@@ -126,12 +106,25 @@ class Parser {
     }
   }
 
+  /// `v` after checking the numbers its operation folded (check_folded on every component).
+  static Value folded(const Value& v, size_t offset) {
+    if (v.is_matrix) {
+      for (const Vec3& row : v.mat)
+        for (const GiNaC::ex& x : row) check_folded(x, offset);
+    } else if (v.is_vector) {
+      for (const GiNaC::ex& x : v.vec) check_folded(x, offset);
+    } else {
+      check_folded(v.scalar, offset);
+    }
+    return v;
+  }
+
   Value expr() {
     Value lhs = term();
     while (at("+") || at("-")) {
       const Token& op = next();
       Value rhs = term();
-      lhs = add(lhs, rhs, op.text, op.offset);
+      lhs = folded(add(lhs, rhs, op.text, op.offset), op.offset);
     }
     return lhs;
   }
@@ -140,8 +133,13 @@ class Parser {
     Value lhs = unary();
     while (at("*") || at("/")) {
       const Token& op = next();
+      if (op.text == "*" && at("*") && peek().offset == op.offset + 1)
+        throw ExprError{op.offset,
+                        "expected an operand after '*', got '**' (did you mean '^'? "
+                        "powers are written a^b)"};
       Value rhs = unary();
-      lhs = op.text == "*" ? multiply(lhs, rhs, op.offset) : divide(lhs, rhs, op.offset);
+      lhs = folded(op.text == "*" ? multiply(lhs, rhs, op.offset) : divide(lhs, rhs, op.offset),
+                   op.offset);
     }
     return lhs;
   }
@@ -177,10 +175,13 @@ class Parser {
       const auto& b = GiNaC::ex_to<GiNaC::numeric>(base.scalar);
       const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent.scalar);
       if (e.is_integer() || !b.is_rational())
-        return Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); }));
+        return folded(Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); })),
+                      op.offset);
     }
-    return Value::of(
-        guarded(op.offset, [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); }));
+    return folded(
+        Value::of(guarded(op.offset,
+                          [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); })),
+        op.offset);
   }
 
   Value postfix() {
@@ -273,7 +274,8 @@ class Parser {
   Value call(const Token& name) {
     auto it = builtin_arity().find(name.text);
     if (it == builtin_arity().end())
-      throw ExprError{name.offset, fmt::format("unknown function '{}'", clip(name.text))};
+      throw ExprError{name.offset,
+                      fmt::format("unknown function '{}'{}", clip(name.text), hint(name.text))};
     expect("(");
     std::vector<Value> args{expr()};
     while (at(",")) {
@@ -285,7 +287,7 @@ class Parser {
       throw ExprError{name.offset,
                       fmt::format("expected {} argument{} for '{}', got {}", it->second,
                                   it->second == 1 ? "" : "s", name.text, args.size())};
-    return guarded(name.offset, [&] { return apply(name, args); });
+    return folded(guarded(name.offset, [&] { return apply(name, args); }), name.offset);
   }
 
   /// Argument `index` of `f` must be a vector (`vector`) or a scalar (otherwise).
@@ -354,7 +356,7 @@ class Parser {
     if (n == "exp") return Value::of(GiNaC::exp(x));
     if (n == "log") return Value::of(GiNaC::log(x));
     if (n == "sqrt") return Value::of(GiNaC::sqrt(x));
-    return Value::of(GiNaC::abs(x));  // the only remaining one-argument function
+    return Value::of(real_abs(x));  // the only remaining one-argument function
   }
 
   std::vector<Token> toks_;

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,41 @@ TEST(Cli, SimulateWritesCsvSidecarAndPlot) {
   std::string first;
   std::getline(plot, first);
   EXPECT_NE(first.find("<?xml"), std::string::npos);
+}
+
+// issue 8, item 8: --plot by extension (PNG through gnuplot's pngcairo), -o and --plot into
+// directories that do not exist yet, and plot options checked before anything is written.
+TEST(Cli, PlotsPngAndCreatesMissingDirectories) {
+  const fs::path dir = scratch("new_dir");
+  fs::remove_all(dir);
+  const fs::path csv = dir / "runs" / "p.csv", png = dir / "plots" / "p.png";
+  const Result r = run("simulate " + example("pendulum.yaml") + " --t-end 1 -q -o " + csv.string() +
+                       " --plot " + png.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(csv));
+  EXPECT_TRUE(fs::exists(csv.string() + ".json"));
+  std::ifstream in(png, std::ios::binary);
+  std::string magic(8, '\0');
+  in.read(magic.data(), 8);
+  EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, PlotOptionsAreCheckedBeforeTheRun) {
+  const fs::path csv = scratch("refused.csv");
+  const Result pdf = run("simulate " + example("pendulum.yaml") + " -o " + csv.string() +
+                         " --plot " + scratch("p.pdf").string());
+  EXPECT_EQ(pdf.code, 2);
+  EXPECT_NE(pdf.output.find("--plot: expected a plot file ending in .svg or .png, got '"),
+            std::string::npos)
+      << pdf.output;
+  const Result column = run("simulate " + example("pendulum.yaml") + " -o " + csv.string() +
+                            " --plot " + scratch("p.svg").string() + " --plot-columns nope");
+  EXPECT_EQ(column.code, 2);
+  EXPECT_NE(column.output.find("--plot-columns: no column 'nope'"), std::string::npos)
+      << column.output;
+  EXPECT_FALSE(fs::exists(csv));
+  EXPECT_FALSE(fs::exists(csv.string() + ".json"));
 }
 
 TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
@@ -138,7 +174,7 @@ void PrintTo(const BadCase& c, std::ostream* os) {
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
-TEST_P(BadInput, ExitsWithOneNamesThePlaceAndWritesNothing) {
+TEST_P(BadInput, Exit1Located) {
   const BadCase& c = GetParam();
   const fs::path model = write_model(std::string(c.name) + ".yaml", c.yaml);
   const fs::path csv = scratch(std::string(c.name) + ".csv");
@@ -171,6 +207,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"rotation_only_at_start",
                 posed_bar("[[cos(q), -2*q*sin(q), 0], [2*q*sin(q), cos(q), 0], [0, 0, 1]]"),
                 "9:15: ", "at a state drawn by the check (q = "},
+        // issue 8, item 12: exact arithmetic is bounded where the reader folds numbers
+        BadCase{"huge_exact_power",
+                "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\npotential: "
+                "(((2*q)^999)^999)^999\n",
+                "4:24: ", "expected exact numbers of at most 10000 digits"},
+        // issue 8, item 8: spellings from other languages
+        BadCase{"double_star_power",
+                "parameters: {k: 1}\ncoordinates:\n  q: {initial: 1}\nkinetic: "
+                "der(q)^2/2\npotential: k*q**2/2\n",
+                "5:15: ", "got '**' (did you mean '^'? powers are written a^b)"},
+        BadCase{"ln_for_log",
+                "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\npotential: ln(q)\n",
+                "4:12: ", "unknown function 'ln' (did you mean 'log'?)"},
         BadCase{"tab_indent", "coordinates:\n\tq: {initial: 1}\n",
                 "2:1: ", "YAML forbids tabs for indentation"},
         BadCase{"tab_after_spaces",
@@ -180,6 +229,20 @@ INSTANTIATE_TEST_SUITE_P(
                 "coordinates:\n  q: {initial: 1}\nkinetic: der(q)^2/2\n\t# note\n",
                 "4:1: ", "YAML forbids tabs for indentation"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// issue 8, item 12: a fuzz finding that once kept `check` busy for minutes.
+TEST(Cli, PowerTowerOfLongLiteralsEndsQuickly) {
+  const std::string tower =
+      std::string(LAGRANGE_SOURCE_DIR) + "/tests/hardening/data/fuzz/model/abs-power-tower.yaml";
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = run("check " + tower);
+  EXPECT_EQ(r.code, 1) << r.output;  // 9^822223^… overflows: the force is not finite at x = 1
+  EXPECT_NE(r.output.find("abs-power-tower.yaml:2:3: error: the dynamics cannot be evaluated at "
+                          "the initial state"),
+            std::string::npos)
+      << r.output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
 
 TEST(Cli, MissingFileIsAModelError) {
   const Result r = run("simulate /nonexistent/model.yaml");

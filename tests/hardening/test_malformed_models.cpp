@@ -122,7 +122,7 @@ void PrintTo(const BadModel& bad, std::ostream* os) {
 
 class MalformedModel : public ::testing::TestWithParam<BadModel> {};
 
-TEST_P(MalformedModel, ExitsOneWithLocatedMessageAndWritesNothing) {
+TEST_P(MalformedModel, Exit1Located) {
   const BadModel& bad = GetParam();
   ScratchDir dir(std::string("malformed-") +
                  std::to_string(static_cast<size_t>(std::hash<std::string>{}(bad.label))));
@@ -148,7 +148,7 @@ std::string test_name(const ::testing::TestParamInfo<BadModel>& info) {
   return s;
 }
 
-INSTANTIATE_TEST_SUITE_P(Table, MalformedModel, ::testing::ValuesIn(bad_models()), test_name);
+INSTANTIATE_TEST_SUITE_P(Cli, MalformedModel, ::testing::ValuesIn(bad_models()), test_name);
 
 TEST(MalformedModelTable, HasAtLeastFortyCases) {
   EXPECT_GE(bad_models().size(), 40u);

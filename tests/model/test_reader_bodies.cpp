@@ -292,7 +292,7 @@ std::vector<BadBody> bad_bodies() {
 
 class ReaderBodyErrors : public ::testing::TestWithParam<BadBody> {};
 
-TEST_P(ReaderBodyErrors, NameTheLocationAndTheCulprit) {
+TEST_P(ReaderBodyErrors, Located) {
   const BadBody& c = GetParam();
   try {
     read_model_string(c.yaml, "bad.yaml");

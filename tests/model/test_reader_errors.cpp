@@ -148,7 +148,7 @@ std::vector<BadModel> bad_models() {
 
 class ReaderErrors : public ::testing::TestWithParam<BadModel> {};
 
-TEST_P(ReaderErrors, NameTheLocationAndTheCulprit) {
+TEST_P(ReaderErrors, Located) {
   const BadModel& c = GetParam();
   try {
     read_model_string(c.yaml, "bad.yaml");
@@ -169,7 +169,7 @@ std::string test_name(const ::testing::TestParamInfo<BadModel>& info) {
   return s + "_" + std::to_string(info.index);
 }
 
-INSTANTIATE_TEST_SUITE_P(Malformed, ReaderErrors, ::testing::ValuesIn(bad_models()), test_name);
+INSTANTIATE_TEST_SUITE_P(Reader, ReaderErrors, ::testing::ValuesIn(bad_models()), test_name);
 
 TEST(ReaderErrors, RandomBytesNeverCrash) {
   uint32_t state = 12345;

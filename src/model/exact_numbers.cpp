@@ -1,0 +1,77 @@
+#include "model/exact_numbers.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/expression_lexer.hpp"
+
+namespace lagrange::model {
+
+namespace {
+
+/// Decimal digits of the larger of numerator and denominator of an exact rational (0 otherwise).
+double digits_of(const GiNaC::numeric& n) {
+  if (!n.is_rational()) return 0.0;
+  return std::max(n.numer().int_length(), n.denom().int_length()) * std::log10(2.0);
+}
+
+/// The digits of the largest exact number GiNaC builds when it raises `e` to a numeric power p,
+/// per unit of |p|: a number, and numbers inside products and powers of numbers, are raised
+/// with it ((2x)^p = 2^p x^p, (3^(1/2))^p = 3^(p/2)); sums and functions are not expanded.
+double digits_per_unit_power(const GiNaC::ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) return digits_of(GiNaC::ex_to<GiNaC::numeric>(e));
+  if (GiNaC::is_a<GiNaC::mul>(e)) {
+    double most = 0.0;
+    for (size_t i = 0; i < e.nops(); ++i) most = std::max(most, digits_per_unit_power(e.op(i)));
+    return most;
+  }
+  if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1))) {
+    const auto& p = GiNaC::ex_to<GiNaC::numeric>(e.op(1));
+    if (!p.is_real()) return 0.0;
+    return digits_per_unit_power(e.op(0)) * std::min(GiNaC::abs(p).to_double(), 1e300);
+  }
+  return 0.0;
+}
+
+[[noreturn]] void too_long(size_t offset, double digits) {
+  throw ExprError{offset, fmt::format("expected exact numbers of at most {:g} digits, got an "
+                                      "operation that builds one of about {:.3g} digits",
+                                      kMaxDigits, digits)};
+}
+
+}  // namespace
+
+// Fuzz findings (tests/hardening/data/fuzz/expression/): 0 to a non-positive power makes GiNaC
+// throw from inside pow(), leaking the half-built node; a number to a huge power is evaluated
+// exactly, which never finishes — also when the exponent is a fraction (x^(999 + 1/2) is
+// x^999 √x) or the number sits inside a product or an earlier power.
+void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset) {
+  // 0 to a symbolic power: its derivative holds log(0), on which GiNaC throws mid-construction
+  // and leaks (fuzz finding "der(0^y)").
+  if (base.is_zero() && !GiNaC::is_a<GiNaC::numeric>(exponent))
+    throw ExprError{offset, "expected a numeric positive exponent of 0, got a symbolic one"};
+  if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
+  const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent);
+  if (base.is_zero() && !(e.is_real() && e.is_positive()))
+    throw ExprError{offset,
+                    "expected a positive exponent of 0, got 0 ^ (a number <= 0, or complex)"};
+  if (GiNaC::abs(e) > kMaxExponent)  // exact comparison: e may be far beyond double's range
+    throw ExprError{offset, fmt::format("expected an exponent of magnitude at most {}, got more",
+                                        kMaxExponent)};
+  if (!e.is_rational()) return;  // a floating-point power is computed in floating point
+  const double digits = digits_per_unit_power(base) * GiNaC::abs(e).to_double();
+  if (!(digits <= kMaxDigits)) too_long(offset, digits);
+}
+
+void check_folded(const GiNaC::ex& result, size_t offset) {
+  GiNaC::ex coefficient = result;
+  if ((GiNaC::is_a<GiNaC::add>(result) || GiNaC::is_a<GiNaC::mul>(result)) && result.nops() > 0)
+    coefficient = result.op(result.nops() - 1);  // the overall coefficient comes last
+  if (!GiNaC::is_a<GiNaC::numeric>(coefficient)) return;
+  const double digits = digits_of(GiNaC::ex_to<GiNaC::numeric>(coefficient));
+  if (!(digits <= kMaxDigits)) too_long(offset, digits);
+}
+
+}  // namespace lagrange::model

@@ -1,0 +1,26 @@
+#pragma once
+// Bounds on the exact numbers the expression reader folds (issue 8, item 12). GiNaC evaluates
+// powers of numbers exactly, so a short text such as (((2*x)^999)^999)^999 asks for a number of
+// hundreds of millions of digits; each check here refuses such a fold before GiNaC starts it.
+
+#include <ginac/ginac.h>
+
+#include <cstddef>
+
+namespace lagrange::model {
+
+/// Largest |exponent| of a power with a numeric exponent.
+constexpr int kMaxExponent = 1000;
+/// Largest exact number (numerator or denominator, in decimal digits) a fold may build.
+constexpr double kMaxDigits = 10000;
+
+/// Throws ExprError at `offset` for powers GiNaC must not be asked for: 0 to a symbolic or
+/// non-positive power, an exponent beyond kMaxExponent, and a power whose exact numbers — the
+/// base's numeric factors raised to the exponent — would exceed kMaxDigits.
+void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset);
+
+/// Throws ExprError at `offset` when the number an operation folded (the result itself, or the
+/// numeric coefficient of a sum or product) has more than kMaxDigits digits.
+void check_folded(const GiNaC::ex& result, size_t offset);
+
+}  // namespace lagrange::model
