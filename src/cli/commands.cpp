@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 
 #include "cli/prepare.hpp"
 #include "lagrange/compiled_model.hpp"
@@ -91,7 +91,7 @@ int run_derive(const Options& opt) {
     fmt::print("{}", format_manipulator(manipulator_form(eq), opt.format));
     return 0;
   }
-  fmt::print("{}", format_equations(eq, opt.format));
+  fmt::print("{}", format_equations(eq, opt.format, opt.expand));
   return 0;
 }
 

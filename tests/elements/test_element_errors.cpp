@@ -110,7 +110,7 @@ std::vector<BadElement> bad_links() {
 
 class BadElementModel : public ::testing::TestWithParam<BadElement> {};
 
-TEST_P(BadElementModel, ExitsOneWithALocatedMessageAndWritesNothing) {
+TEST_P(BadElementModel, Exit1Located) {
   const BadElement& bad = GetParam();
   ScratchDir dir(std::string("element-") + std::to_string(getpid()) + "-" +
                  std::to_string(reinterpret_cast<uintptr_t>(&bad) % 100000));

@@ -58,7 +58,7 @@ std::vector<BadKite> bad_kites() {
 
 class BadKiteModel : public ::testing::TestWithParam<BadKite> {};
 
-TEST_P(BadKiteModel, ExitsOneWithALocatedMessageAndWritesNothing) {
+TEST_P(BadKiteModel, Exit1Located) {
   const BadKite& bad = GetParam();
   ScratchDir dir(std::string("kite-") + std::to_string(getpid()) + "-" +
                  std::to_string(reinterpret_cast<uintptr_t>(&bad) % 100000));
