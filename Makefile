@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 MAKEFLAGS += --no-print-directory
 
-.PHONY: deps configure build demo test bench asan fuzz clean
+.PHONY: deps configure build demo install test bench asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -20,6 +20,13 @@ demo: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target lagrange
 	@mkdir -p out
 	$(BUILD)/lagrange simulate examples/double_pendulum.yaml -o out/double_pendulum.csv --plot out/double_pendulum.svg
+
+# Installs the command, the headers, the libraries and the docs under PREFIX (bin/, include/,
+# lib/, share/doc/lagrange/); only the command and its libraries are built for it.
+PREFIX ?= /usr/local
+install: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target lagrange
+	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 # The benchmarks are built too (not run), so that API changes cannot leave them broken.
 test: build

@@ -24,6 +24,11 @@ struct ProjectionResult {
   bool converged = false;  ///< max |C| reached the tolerance
 };
 
+/// Replaces each free body's R in q by the nearest rotation (polar factor U Vᵀ of R = U Σ Vᵀ,
+/// docs/theory.md §4.4) where ‖RᵀR − 1‖_F exceeds `tol` (so q changed when the result exceeds
+/// tol); returns the largest ‖RᵀR − 1‖_F found before the change, 0 without free bodies.
+double orthonormalize_rotations(const CompiledModel& model, double* q, double tol);
+
 /// Mutable workspace over a CompiledModel: tapes specialised to the current parameter values
 /// and all scratch memory, so that forward() never allocates. Not thread-safe; make one per thread.
 class Dynamics {

@@ -3,7 +3,9 @@
 
 #include <ginac/ginac.h>
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagrange/model.hpp"
@@ -22,6 +24,11 @@ struct Kinematics {
   GiNaC::symbol gamma{"gamma"};  ///< SO(3) drift correction rate, a tape parameter
   /// K = ∂q̇/∂v by columns: for each v_k, the non-zeros (j, ∂q̇ⱼ/∂v_k).
   std::vector<std::vector<std::pair<size_t, GiNaC::ex>>> K;
+  /// The same non-zeros by rows: for each q_j, the pairs (k, ∂q̇ⱼ/∂v_k).
+  std::vector<std::vector<std::pair<size_t, GiNaC::ex>>> K_rows;
+  /// What each state symbol is ('q', 'v' or 'a') and its index, so that the dependencies of an
+  /// expression are found in one pass over it instead of one `has` per symbol.
+  std::map<GiNaC::ex, std::pair<char, size_t>, GiNaC::ex_is_less> role;
 };
 
 /// The kinematics of a model: plain coordinates, then free bodies with

@@ -28,8 +28,13 @@ bool plot_format_available(PlotFormat format);
 void plot_trajectory(const Trajectory& traj, const std::vector<std::string>& columns,
                      const std::string& path, const std::string& title);
 
-/// Equations as human-readable text, LaTeX, or JSON (`format`: text | latex | json).
-std::string format_equations(const Equations& eq, const std::string& format);
+/// Expression-tree nodes up to which `derive` prints the equations in full (about 1 MB of text).
+constexpr size_t kFullExpansionLimit = 100000;
+
+/// Equations as human-readable text, LaTeX, or JSON (`format`: text | latex | json). Models
+/// whose full expansion exceeds kFullExpansionLimit nodes are printed through the compiled
+/// tape's named common subexpressions instead, unless `expand` is set.
+std::string format_equations(const Equations& eq, const std::string& format, bool expand = false);
 
 /// Standalone C99 source (header + implementation) evaluating the dynamics
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lagrange {
@@ -41,6 +42,16 @@ class Tape {
   /// With `file_local`, the preamble (comment, #include) is left out and the function is
   /// `static`, for embedding in a larger generated file.
   std::string to_c(const std::string& function_name, bool file_local = false) const;
+
+  /// The tape as text through named common subexpressions (how `derive` prints large models):
+  /// `definitions` holds (name, expression) for every value read more than once, in evaluation
+  /// order, named prefix1, prefix2, …; `outputs` the expression of each output. Inputs appear
+  /// under `input_names`, values read once in place; the text grows linearly with the tape.
+  struct Text {
+    std::vector<std::pair<std::string, std::string>> definitions;
+    std::vector<std::string> outputs;
+  };
+  Text to_text(const std::vector<std::string>& input_names, const std::string& prefix = "x") const;
 
   /// Instruction set (public so tests and the emitter can inspect it). Operand layouts:
   /// Const c; Input in[a]; Sum Σᵢ coeffs_[a+i]·r[args_[a+i]] (i < b), then + c if c ≠ 0;

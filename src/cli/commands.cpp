@@ -87,7 +87,7 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
 int run_derive(const Options& opt) {
   const Model model = read_model_file(opt.model);
   const Equations eq = derive(model);
-  fmt::print("{}", format_equations(eq, opt.format));
+  fmt::print("{}", format_equations(eq, opt.format, opt.expand));
   return 0;
 }
 

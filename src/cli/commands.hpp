@@ -23,6 +23,7 @@ struct Options {
   std::string csv, plot, c_dir;
   std::vector<std::string> plot_columns, sets;
   bool quiet = false;
+  bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;
   const std::atomic<bool>* interrupt = nullptr;
 };

@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/version.hpp"
 #include "lagrange/error.hpp"
 
 namespace {
@@ -25,6 +26,8 @@ int main(int argc, char** argv) {
   using namespace lagrange::cli;
   CLI::App app{"lagrange: Lagrangian modelling and simulation of mechanical systems"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", lagrange::cli::version_text(),
+                       "print the version and the git revision it was built from");
   Options opt;
 
   auto* derive =
@@ -32,6 +35,9 @@ int main(int argc, char** argv) {
   derive->add_option("model", opt.model, "model file (YAML)")->required();
   derive->add_option("--format", opt.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}));
+  derive->add_flag("--expand", opt.expand,
+                   "print the full expansion even for large models (by default printed through "
+                   "named common subexpressions)");
 
   auto* sim = app.add_subcommand("simulate", "integrate the model and write the trajectory");
   sim->add_option("model", opt.model, "model file (YAML)")->required();

@@ -88,6 +88,40 @@ inline double apply_binary(Op op, double x, double y) {
   }
 }
 
+/// The C name of a one-argument math function op.
+inline const char* c_function(Op op) {
+  switch (op) {
+    case Op::Sqrt:
+      return "sqrt";
+    case Op::Sin:
+      return "sin";
+    case Op::Cos:
+      return "cos";
+    case Op::Tan:
+      return "tan";
+    case Op::Asin:
+      return "asin";
+    case Op::Acos:
+      return "acos";
+    case Op::Atan:
+      return "atan";
+    case Op::Sinh:
+      return "sinh";
+    case Op::Cosh:
+      return "cosh";
+    case Op::Tanh:
+      return "tanh";
+    case Op::Exp:
+      return "exp";
+    case Op::Log:
+      return "log";
+    case Op::Abs:
+      return "fabs";
+    default:
+      return nullptr;
+  }
+}
+
 /// True for ops with one register operand in `a` (PowInt included).
 inline bool is_unary(Op op) {
   return op == Op::Neg || op == Op::Inv || op == Op::PowInt ||

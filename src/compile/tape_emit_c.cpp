@@ -56,40 +56,6 @@ void append_constant(std::string& s, double c) {
   if (c != 0.0) s += (c < 0 ? " - " : " + ") + literal(std::fabs(c));
 }
 
-/// The C name of a one-argument math function op.
-const char* c_function(Op op) {
-  switch (op) {
-    case Op::Sqrt:
-      return "sqrt";
-    case Op::Sin:
-      return "sin";
-    case Op::Cos:
-      return "cos";
-    case Op::Tan:
-      return "tan";
-    case Op::Asin:
-      return "asin";
-    case Op::Acos:
-      return "acos";
-    case Op::Atan:
-      return "atan";
-    case Op::Sinh:
-      return "sinh";
-    case Op::Cosh:
-      return "cosh";
-    case Op::Tanh:
-      return "tanh";
-    case Op::Exp:
-      return "exp";
-    case Op::Log:
-      return "log";
-    case Op::Abs:
-      return "fabs";
-    default:
-      return nullptr;
-  }
-}
-
 /// Appends the C statement of one instruction, with eval's operation order.
 void append_statement(std::string& s, const Tape::Instr& ins,
                       const std::vector<std::uint32_t>& args, const std::vector<double>& coeffs) {
@@ -142,7 +108,7 @@ void append_statement(std::string& s, const Tape::Instr& ins,
       s += fmt::format("atan2({}, {})", reg(ins.a), reg(ins.b));
       break;
     default:
-      s += fmt::format("{}({})", c_function(ins.op), reg(ins.a));
+      s += fmt::format("{}({})", tape_detail::c_function(ins.op), reg(ins.a));
       break;
   }
   s += ";\n";

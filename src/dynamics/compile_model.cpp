@@ -21,6 +21,7 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   for (const auto& b : model.bodies) {  // free bodies, in the order of kinematics()
     if (!b.free) continue;
     cm->q0.insert(cm->q0.end(), b.r0.begin(), b.r0.end());
+    cm->rotations.push_back(cm->q0.size());
     cm->q0.insert(cm->q0.end(), b.R0.begin(), b.R0.end());
     cm->fixed.insert(cm->fixed.end(), 12, false);
     cm->v0.insert(cm->v0.end(), b.v0.begin(), b.v0.end());

@@ -23,6 +23,13 @@ std::string latex_escape(const std::string& name);
 /// The multiplier of a named constraint: lambda_name or \lambda_{\mathrm{name}}.
 std::string multiplier_str(const std::string& constraint, Style style);
 
+/// Size of the equations written out in full: expression-tree nodes of T, U, M, h, Q, C, c and
+/// Ċ with shared subexpressions counted at every use, saturating at `cap`.
+size_t expanded_size(const Equations& eq, size_t cap);
+/// The equations through the compiled tape's named common subexpressions (text, latex as a
+/// verbatim block, or json).
+std::string format_equations_cse(const Equations& eq, const std::string& format);
+
 /// Writes a section heading.
 using HeadingSink = std::function<void(const std::string&)>;
 /// Writes one equation lhs = rhs.

@@ -148,7 +148,13 @@ std::string format_json(const Equations& eq) {
 
 }  // namespace
 
-std::string format_equations(const Equations& eq, const std::string& format) {
+std::string format_equations(const Equations& eq, const std::string& format, bool expand) {
+  if (format != "text" && format != "latex" && format != "json")
+    throw std::invalid_argument("unknown format '" + format + "'; expected text, latex or json");
+  if (!expand) {
+    if (io::expanded_size(eq, kFullExpansionLimit + 1) > kFullExpansionLimit)
+      return io::format_equations_cse(eq, format);
+  }
   if (format == "text") return format_text(eq, Style::Text);
   if (format == "latex") return format_text(eq, Style::Latex);
   if (format == "json") return format_json(eq);

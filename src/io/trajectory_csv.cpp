@@ -27,6 +27,7 @@ void write_trajectory_csv(const Trajectory& traj, const std::string& path) {
   side["steps"] = traj.stats.steps;
   side["rhs_evaluations"] = traj.stats.rhs_evals;
   side["failed_steps"] = traj.stats.failed_steps;
+  if (traj.rotation_drift > 0) side["rotation_drift"] = traj.rotation_drift;
   if (!traj.notes.empty()) side["notes"] = traj.notes;
   // The sidecar goes first: a CSV under the final name always has a truthful sidecar.
   write_file_atomically(path + ".json", side.dump(2) + "\n");

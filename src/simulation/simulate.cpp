@@ -183,8 +183,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   last.q.resize(nq);
   last.v.resize(nv);
   last.a.resize(nv);
-  // At each output sample: check the state is finite, project drift away (docs/theory.md §4.3),
-  // record the row, honour interruption.
+  // At each output sample: check the state is finite, project drift away (docs/theory.md §4.3,
+  // §4.4), record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;
     for (size_t i = 0; i < n; ++i)
@@ -194,10 +194,21 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
             t, fmt::format("the state is not finite ({} = {})",
                            i < nq ? cm.coordinate_names[i] : cm.velocity_names[i - nq], yy[i]));
       }
-    if (m > 0 && opt.project) {
-      dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
-      if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
-        dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
+    // Free bodies' R back onto SO(3) (docs/theory.md §4.4), then the constraints (which may
+    // involve R) onto C = 0, Ċ = 0.
+    const double drift =
+        orthonormalize_rotations(cm, yy, opt.project ? opt.projection_tol : HUGE_VAL);
+    traj.rotation_drift = std::max(traj.rotation_drift, drift);
+    if (opt.project) {
+      bool moved = drift > opt.projection_tol;
+      if (m > 0) {
+        dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
+        if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
+          dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
+          moved = true;
+        }
+      }
+      if (moved) {
         if (dae) {  // keep (λ, y') consistent with the projected state
           dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
           std::fill(yp + n, yp + n + m, 0.0);

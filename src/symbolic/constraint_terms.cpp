@@ -20,11 +20,9 @@ void add_constraint_terms(const Kinematics& kin, Equations& eq) {
                                     "' depends on velocities; expected a holonomic constraint "
                                     "C(q, t) = 0");
     eq.C.push_back(con.expr);
-    for (size_t j = 0; j < nq; ++j)
-      if (con.expr.has(kin.q[j])) eq.Cq(r, j) = con.expr.diff(kin.q[j]);
+    for (size_t j : coordinates_in(kin, con.expr)) eq.Cq(r, j) = con.expr.diff(kin.q[j]);
     const GiNaC::ex cdot = derivative_without_accelerations(kin, con.expr);
-    for (size_t k = 0; k < nv; ++k)
-      if (cdot.has(kin.v[k])) eq.G(r, k) = cdot.diff(kin.v[k]);
+    for (size_t k : velocities_in(kin, cdot)) eq.G(r, k) = cdot.diff(kin.v[k]);
     eq.Cdot.push_back(cdot);
     eq.c.push_back(derivative_without_accelerations(kin, cdot));
   }

@@ -49,15 +49,18 @@ void add_energy_terms(const Kinematics& kin, MechanicalTerms& terms) {
     const std::vector<GiNaC::ex> f = velocity_gradient(kin, U);  // Kᵀ ∂U/∂q
     for (size_t k = kin.plain; k < kin.v.size(); ++k) terms.h[k] -= f[k];
   }
-  for (size_t i = 0; i < n; ++i) {
+  // Only the coordinates and velocities that L and each momentum actually contain are visited.
+  for (const auto& [kind, i] : state_symbols(kin, L)) {
+    if (i >= n) continue;  // free-body symbols: handled above
     const auto& ci = model.coordinates[i];
-    if (L.has(ci.q)) terms.h[i] += L.diff(ci.q);
-    if (!L.has(ci.v)) continue;
+    if (kind == 'q') terms.h[i] += L.diff(ci.q);
+    if (kind != 'v') continue;
     const GiNaC::ex p = L.diff(ci.v);  // generalised momentum of coordinate i
-    for (size_t j = 0; j < n; ++j) {
+    for (const auto& [kind_j, j] : state_symbols(kin, p)) {
+      if (j >= n) continue;
       const auto& cj = model.coordinates[j];
-      if (p.has(cj.v)) terms.M(i, j) += p.diff(cj.v);
-      if (p.has(cj.q)) terms.h[i] -= p.diff(cj.q) * cj.v;
+      if (kind_j == 'v') terms.M(i, j) += p.diff(cj.v);
+      if (kind_j == 'q') terms.h[i] -= p.diff(cj.q) * cj.v;
     }
     terms.h[i] -= partial_t(kin, p);
   }

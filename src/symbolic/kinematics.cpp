@@ -84,6 +84,14 @@ Kinematics kinematics(const Model& model) {
     for (size_t j = k.plain; j < k.q.size(); ++j)
       if (k.qdot[j].has(k.v[col])) k.K[col].emplace_back(j, k.qdot[j].diff(k.v[col]));
   }
+  k.K_rows.resize(k.q.size());
+  for (size_t col = 0; col < k.K.size(); ++col)
+    for (const auto& [j, kjk] : k.K[col]) k.K_rows[j].emplace_back(col, kjk);
+  for (size_t j = 0; j < k.q.size(); ++j) k.role.emplace(k.q[j], std::make_pair('q', j));
+  for (size_t i = 0; i < k.v.size(); ++i) {
+    k.role.emplace(k.v[i], std::make_pair('v', i));
+    k.role.emplace(k.a[i], std::make_pair('a', i));
+  }
   return k;
 }
 

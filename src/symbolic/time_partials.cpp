@@ -1,5 +1,7 @@
 #include "symbolic/time_partials.hpp"
 
+#include <algorithm>
+
 namespace lagrange::symbolic {
 
 GiNaC::ex partial_t(const Kinematics& kin, const GiNaC::ex& e) {
@@ -11,10 +13,41 @@ GiNaC::ex partial_t(const Kinematics& kin, const GiNaC::ex& e) {
   return d;
 }
 
+std::vector<std::pair<char, size_t>> state_symbols(const Kinematics& kin, const GiNaC::ex& e) {
+  std::vector<std::pair<char, size_t>> found;
+  std::vector<GiNaC::ex> stack{e};
+  while (!stack.empty()) {
+    const GiNaC::ex x = stack.back();
+    stack.pop_back();
+    if (GiNaC::is_a<GiNaC::symbol>(x)) {
+      auto it = kin.role.find(x);
+      if (it != kin.role.end()) found.push_back(it->second);
+      continue;
+    }
+    for (size_t i = 0; i < x.nops(); ++i) stack.push_back(x.op(i));
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
+std::vector<size_t> coordinates_in(const Kinematics& kin, const GiNaC::ex& e) {
+  std::vector<size_t> js;
+  for (const auto& [kind, index] : state_symbols(kin, e))
+    if (kind == 'q') js.push_back(index);
+  return js;
+}
+
+std::vector<size_t> velocities_in(const Kinematics& kin, const GiNaC::ex& e) {
+  std::vector<size_t> ks;
+  for (const auto& [kind, index] : state_symbols(kin, e))
+    if (kind == 'v') ks.push_back(index);
+  return ks;
+}
+
 GiNaC::ex derivative_without_accelerations(const Kinematics& kin, const GiNaC::ex& e) {
   GiNaC::ex d = partial_t(kin, e);
-  for (size_t j = 0; j < kin.q.size(); ++j)
-    if (e.has(kin.q[j])) d += e.diff(kin.q[j]) * kin.qdot[j];
+  for (size_t j : coordinates_in(kin, e)) d += e.diff(kin.q[j]) * kin.qdot[j];
   return d;
 }
 
@@ -26,18 +59,20 @@ Vec3 point_velocity(const Kinematics& kin, const Vec3& x) {
 
 std::vector<Vec3> point_jacobian(const Kinematics& kin, const Vec3& x) {
   std::vector<Vec3> J(kin.v.size(), Vec3{0, 0, 0});
-  for (size_t col = 0; col < J.size(); ++col)
-    for (const auto& [j, kjk] : kin.K[col])
-      for (size_t k = 0; k < 3; ++k)
-        if (x[k].has(kin.q[j])) J[col][k] += x[k].diff(kin.q[j]) * kjk;
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t j : coordinates_in(kin, x[k])) {
+      const GiNaC::ex dx = x[k].diff(kin.q[j]);
+      for (const auto& [col, kjk] : kin.K_rows[j]) J[col][k] += dx * kjk;
+    }
   return J;
 }
 
 std::vector<GiNaC::ex> velocity_gradient(const Kinematics& kin, const GiNaC::ex& f) {
   std::vector<GiNaC::ex> g(kin.v.size(), 0);
-  for (size_t col = 0; col < g.size(); ++col)
-    for (const auto& [j, kjk] : kin.K[col])
-      if (f.has(kin.q[j])) g[col] += f.diff(kin.q[j]) * kjk;
+  for (size_t j : coordinates_in(kin, f)) {
+    const GiNaC::ex df = f.diff(kin.q[j]);
+    for (const auto& [col, kjk] : kin.K_rows[j]) g[col] += df * kjk;
+  }
   return g;
 }
 
@@ -46,30 +81,26 @@ GiNaC::ex dot(const Vec3& a, const Vec3& b) {
 }
 
 bool depends_on_rates(const Kinematics& kin, const GiNaC::ex& e) {
-  for (size_t k = 0; k < kin.v.size(); ++k)
-    if (e.has(kin.v[k]) || e.has(kin.a[k])) return true;
+  for (const auto& [kind, index] : state_symbols(kin, e))
+    if (kind != 'q') return true;
   return false;
 }
 
 bool depends_on_state(const Kinematics& kin, const GiNaC::ex& e) {
-  for (const auto& q : kin.q)
-    if (e.has(q)) return true;
-  return depends_on_rates(kin, e);
+  return !state_symbols(kin, e).empty();
 }
 
 bool depends_on_accelerations(const Kinematics& kin, const GiNaC::ex& e) {
-  for (const auto& a : kin.a)
-    if (e.has(a)) return true;
+  for (const auto& [kind, index] : state_symbols(kin, e))
+    if (kind == 'a') return true;
   for (const auto& in : kin.model->inputs)
     if (e.has(in.udd)) return true;
   return false;
 }
 
 bool depends_on_body_state(const Kinematics& kin, const GiNaC::ex& e) {
-  for (size_t j = kin.plain; j < kin.q.size(); ++j)
-    if (e.has(kin.q[j])) return true;
-  for (size_t k = kin.plain; k < kin.v.size(); ++k)
-    if (e.has(kin.v[k]) || e.has(kin.a[k])) return true;
+  for (const auto& [kind, index] : state_symbols(kin, e))
+    if (index >= kin.plain) return true;
   return false;
 }
 

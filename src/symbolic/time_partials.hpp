@@ -26,6 +26,14 @@ std::vector<Vec3> point_jacobian(const Kinematics& kin, const Vec3& x);
 /// Generalised force of a scalar function f(q) along each velocity: (Kᵀ ∂f/∂q)_k.
 std::vector<GiNaC::ex> velocity_gradient(const Kinematics& kin, const GiNaC::ex& f);
 
+/// The state symbols in e as (role, index) pairs ('q', 'v', 'a'; Kinematics::role), sorted and
+/// without repeats: one pass over e.
+std::vector<std::pair<char, size_t>> state_symbols(const Kinematics& kin, const GiNaC::ex& e);
+/// Indices of the coordinates qⱼ that e depends on, ascending.
+std::vector<size_t> coordinates_in(const Kinematics& kin, const GiNaC::ex& e);
+/// Indices of the velocities v_k that e depends on, ascending.
+std::vector<size_t> velocities_in(const Kinematics& kin, const GiNaC::ex& e);
+
 /// a·b for 3-vectors of expressions.
 GiNaC::ex dot(const Vec3& a, const Vec3& b);
 

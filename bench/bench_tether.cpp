@@ -1,0 +1,97 @@
+// Tether element cost (issue: tethers, wind and winches): a tethered balloon on an N-segment
+// lumped tether with simple drag in a logarithmic wind, for N = 10, 50, 100, 200. Reports, in
+// CPU seconds of this process: read + derive + compile, the forward-dynamics call (KKT solve
+// included), and 60 s of simulation with output every 0.01 s at rtol 1e-6, atol 1e-8, with the
+// real-time factor. Targets: t_call(200)/t_call(50) ≤ 5, N = 100 at ≥ 20× real time, derive +
+// compile of N = 200 under 2 s.
+//   bench_tether [--quick]     (--quick: 5 s of simulation instead of 60, for a smoke run)
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace {
+
+std::string balloon_yaml(int segments) {
+  return fmt::format(R"(parameters: {{M: 2.0, B: 60, g: 9.81, L: 50, mu: 0.0046, d: 0.002, U: 8,
+             z0: 0.1, href: 10, k: 0.6}}
+coordinates:
+  x: {{initial: 10}}
+  y: {{initial: 0}}
+  z: {{initial: 48}}
+points:
+  balloon: [x, y, z]
+particles:
+  balloon: M
+gravity: [0, 0, -g]
+wind: {{profile: logarithmic, speed: U, reference_height: href, roughness: z0}}
+forces:
+  - point: balloon
+    force: [0, 0, B]
+  - point: balloon
+    force: -k*norm(vel(balloon) - [U*log(z/z0)/log(href/z0), 0, 0])*(vel(balloon) - [U*log(z/z0)/log(href/z0), 0, 0])
+tethers:
+  main:
+    between: [[0, 0, 0], balloon]
+    segments: {}
+    length: L
+    mass_per_length: mu
+    diameter: d
+    drag: simple
+)",
+                     segments);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lagrange;
+  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  const double t_end = quick ? 5.0 : 60.0;
+  const bench::Stopwatch clock;
+  std::map<int, double> call;
+  std::printf(
+      "| N | coordinates | constraints | read + derive + compile (CPU s) | forward call (µs) "
+      "| %g s simulated (CPU s) | steps | real-time factor |\n|---|---|---|---|---|---|---|---|\n",
+      t_end);
+  for (int n : {10, 50, 100, 200}) {
+    const auto b0 = clock.now();
+    bench::BuiltModel b = bench::build_model(balloon_yaml(n), fmt::format("<balloon N={}>", n));
+    const double build = clock.now().cpu - b0.cpu;
+    const CompiledModel& cm = *b.compiled;
+    std::vector<double> q = cm.q0, v = cm.v0, qdot(cm.nq), a(cm.nv), lambda(cm.m);
+    SimulationOptions so;
+    so.t_end = 0;
+    so.output_step = 0.01;
+    simulate(*b.dynamics, so, q, v);  // warm-up
+    long calls = 0;
+    const auto c0 = clock.now();
+    do {
+      for (int i = 0; i < 100; ++i)
+        b.dynamics->forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+      calls += 100;
+    } while (clock.now().cpu - c0.cpu < 0.3);
+    call[n] = (clock.now().cpu - c0.cpu) / static_cast<double>(calls);
+    so.t_end = t_end;
+    so.integrator.rtol = 1e-6;
+    so.integrator.atol = 1e-8;
+    const auto s0 = clock.now();
+    const Trajectory tr = simulate(*b.dynamics, so, cm.q0, cm.v0);
+    const double sim = clock.now().cpu - s0.cpu;
+    if (tr.status != Trajectory::Status::Complete) {
+      std::fprintf(stderr, "N = %d: %s\n", n, tr.message.c_str());
+      return 1;
+    }
+    std::printf("| %d | %zu | %zu | %.3f | %.2f | %.2f | %ld | %.0f× |\n", n, cm.nq, cm.m, build,
+                1e6 * call[n], sim, static_cast<long>(tr.stats.steps), t_end / sim);
+    std::fflush(stdout);
+  }
+  std::printf("\ntether_ratio t_call(200)/t_call(50) = %.2f (target <= 5)\n", call[200] / call[50]);
+  return 0;
+}

@@ -1,0 +1,99 @@
+// `lagrange derive` of a large model, as a user meets it: the 50-link pendulum (4.9 MB of text
+// written out in full) is printed through named common subexpressions, says so and how to get
+// the full expansion; small models are printed in full as before.
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hardening/cli_runner.hpp"
+
+namespace {
+
+using lagrange::hardening::run_lagrange;
+using lagrange::hardening::ScratchDir;
+using lagrange::hardening::spit;
+
+// The benchmark family (bench/n_link_pendulum.cpp): absolute angles, per-link masses and lengths.
+std::string n_link_pendulum(int n) {
+  std::string y = "name: " + std::to_string(n) + "-link pendulum\nparameters: {";
+  for (int k = 1; k <= n; ++k)
+    y += "m" + std::to_string(k) + ": " + std::to_string(1.0 + 0.1 * (k % 7)) + ", l" +
+         std::to_string(k) + ": " + std::to_string(0.5 + 0.05 * (k % 5)) + ", ";
+  y += "g: 9.81}\ncoordinates:\n";
+  for (int k = 1; k <= n; ++k) y += "  th" + std::to_string(k) + ": {initial: 0.3}\n";
+  y += "points:\n";
+  for (int k = 1; k <= n; ++k) {
+    const std::string K = std::to_string(k);
+    y += "  p" + K + ": " + (k > 1 ? "p" + std::to_string(k - 1) + " + " : "") + "[l" + K +
+         "*sin(th" + K + "), -l" + K + "*cos(th" + K + "), 0]\n";
+  }
+  y += "particles: {";
+  for (int k = 1; k <= n; ++k)
+    y += (k > 1 ? ", p" : "p") + std::to_string(k) + ": m" + std::to_string(k);
+  return y + "}\ngravity: [0, -g, 0]\n";
+}
+
+size_t count(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t p = text.find(needle); p != std::string::npos; p = text.find(needle, p + 1)) ++n;
+  return n;
+}
+
+TEST(CliDerive, LargeModelIsPrintedThroughCommonSubexpressions) {
+  ScratchDir dir("derive-large");
+  spit(dir.path() / "chain.yaml", n_link_pendulum(50));
+  const auto r = run_lagrange(dir.path(), {"derive", (dir.path() / "chain.yaml").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Large model"), std::string::npos) << r.out.substr(0, 500);
+  EXPECT_NE(r.out.find("named common subexpressions"), std::string::npos);
+  EXPECT_NE(r.out.find("lagrange derive --expand"), std::string::npos);
+  EXPECT_LT(r.out.size(), 400000u);                    // the full expansion is 4.9 MB
+  EXPECT_EQ(count(r.out, "\n  M_{"), 50u * 51u / 2u);  // every entry of the lower triangle
+  EXPECT_NE(r.out.find("\n  M_{50,50} = "), std::string::npos);
+  EXPECT_NE(r.out.find("\n  (h+Q)_{th50} = "), std::string::npos);
+  EXPECT_NE(r.out.find("\n  x1 = "), std::string::npos);
+  EXPECT_NE(r.out.find("\n  T = "), std::string::npos);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"chain.yaml"});
+
+  const auto json = run_lagrange(
+      dir.path(), {"derive", (dir.path() / "chain.yaml").string(), "--format", "json"});
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"form\": \"common_subexpressions\""), std::string::npos);
+}
+
+TEST(CliDerive, SmallModelIsPrintedInFullWithOrWithoutExpand) {
+  ScratchDir dir("derive-small");
+  const std::string model = std::string(LAGRANGE_SOURCE_DIR) + "/examples/double_pendulum.yaml";
+  const auto plain = run_lagrange(dir.path(), {"derive", model});
+  const auto expanded = run_lagrange(dir.path(), {"derive", model, "--expand"});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(expanded.exit_code, 0) << expanded.err;
+  EXPECT_EQ(plain.out.find("Large model"), std::string::npos);
+  EXPECT_NE(plain.out.find("Euler-Lagrange equations"), std::string::npos);
+  // The same sections with as many equations each (GiNaC's term order may differ between
+  // processes, so the expressions themselves are not compared).
+  auto outline = [](const std::string& text) {
+    std::vector<std::string> shape;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      shape.push_back(line.rfind("  ", 0) == 0 ? "equation" : line);
+    return shape;
+  };
+  EXPECT_EQ(outline(plain.out), outline(expanded.out));
+}
+
+TEST(CliDerive, ExpandForcesTheFullExpansion) {
+  ScratchDir dir("derive-expand");
+  spit(dir.path() / "chain.yaml", n_link_pendulum(30));
+  const auto r =
+      run_lagrange(dir.path(), {"derive", (dir.path() / "chain.yaml").string(), "--expand"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("Large model"), std::string::npos);
+  EXPECT_NE(r.out.find("Euler-Lagrange equations"), std::string::npos);
+  EXPECT_GT(r.out.size(), 1000000u);
+}
+
+}  // namespace
