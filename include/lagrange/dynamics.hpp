@@ -22,6 +22,9 @@ struct ProjectionResult {
   double rate_residual = 0.0;    ///< max |Ċ| after projection
   int iterations = 0;
   bool converged = false;  ///< max |C| reached the tolerance
+  /// Rounding floors of C and Ċ at the result (a few ulps of their terms |∂C/∂q||q|, |G||v|):
+  /// residuals below them are as consistent as floating point allows.
+  double floor = 0.0, rate_floor = 0.0;
 };
 
 /// Replaces each free body's R in q by the nearest rotation (polar factor U Vᵀ of R = U Σ Vᵀ,

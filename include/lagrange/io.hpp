@@ -6,6 +6,7 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/equations.hpp"
+#include "lagrange/manipulator.hpp"
 #include "lagrange/simulation.hpp"
 
 namespace lagrange {
@@ -35,6 +36,10 @@ constexpr size_t kFullExpansionLimit = 100000;
 /// whose full expansion exceeds kFullExpansionLimit nodes are printed through the compiled
 /// tape's named common subexpressions instead, unless `expand` is set.
 std::string format_equations(const Equations& eq, const std::string& format, bool expand = false);
+
+/// The manipulator form D, Christoffel symbols, C, g, τ (docs/theory.md §4.8) as text, LaTeX or
+/// JSON (`format`: text | latex | json).
+std::string format_manipulator(const ManipulatorForm& form, const std::string& format);
 
 /// Standalone C99 source (header + implementation) evaluating the dynamics
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.

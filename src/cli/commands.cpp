@@ -87,6 +87,10 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
 int run_derive(const Options& opt) {
   const Model model = read_model_file(opt.model);
   const Equations eq = derive(model);
+  if (opt.form == "manipulator") {
+    fmt::print("{}", format_manipulator(manipulator_form(eq), opt.format));
+    return 0;
+  }
   fmt::print("{}", format_equations(eq, opt.format, opt.expand));
   return 0;
 }

@@ -18,6 +18,7 @@ struct UsageError : std::runtime_error {
 struct Options {
   std::string model;
   std::string format = "text";
+  std::string form = "lagrange";  ///< derive: lagrange | manipulator
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
   std::string csv, plot, c_dir;

@@ -38,6 +38,10 @@ int main(int argc, char** argv) {
   derive->add_flag("--expand", opt.expand,
                    "print the full expansion even for large models (by default printed through "
                    "named common subexpressions)");
+  derive
+      ->add_option("--form", opt.form,
+                   "lagrange (default) | manipulator: D(q), Christoffel symbols, C, g, tau")
+      ->check(CLI::IsMember({"lagrange", "manipulator"}));
 
   auto* sim = app.add_subcommand("simulate", "integrate the model and write the trajectory");
   sim->add_option("model", opt.model, "model file (YAML)")->required();

@@ -19,7 +19,8 @@ double max_abs(const double* x, size_t n) {
 
 // The size of rounding errors in C near q: C's terms are of the order of |∂C/∂q| |q| (exactly
 // so for the quadratic ½(|d|² − ℓ²) of a tether), so below a few ulps of that no step can
-// reduce |C| — a 200 m tether stalls near 1e-11 however small the requested tolerance.
+// reduce |C| — a 200 m tether stalls near 1e-11 however small the requested tolerance. The same
+// with (G, v) bounds the rounding of Ċ = G v + ….
 double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
   const Eigen::VectorXd terms = J.cwiseAbs() * q.cwiseAbs();
   return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
@@ -103,10 +104,13 @@ ProjectionResult Dynamics::try_project(double t, double* q, double* v,
     }
   }
   for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.Cdot_out() + static_cast<size_t>(r)];
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(velocity_jacobian());
+  const Eigen::MatrixXd Gf = velocity_jacobian();
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Gf);
   vv += cod.solve(rhs);
   eval_dynamics(t, q, v);
   res.rate_residual = max_abs(out_.data() + cm.Cdot_out(), cm.m);
+  res.floor = rounding_floor(position_jacobian(), qv);
+  res.rate_floor = rounding_floor(Gf, vv);
   res.position_change = (qv - q_start).norm();
   res.velocity_change = (vv - v_start).norm();
   return res;

@@ -1,7 +1,8 @@
 #pragma once
-// Element kinds (tethers, winches, wind): each reads its own top-level section and lowers itself
-// into what the core derives — coordinates, points, particles, energies, constraints, forces,
-// outputs (docs/model-language.md, "Elements"). The derivation never sees the element kinds.
+// Element kinds (tethers, winches, wind, links): each reads its own top-level section and lowers
+// itself into what the core derives — coordinates, points, particles, energies, constraints,
+// forces, outputs (docs/model-language.md, "Elements"). The derivation never sees the element
+// kinds.
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "elements/links.hpp"
 #include "lagrange/model.hpp"
 
 namespace lagrange::model {
@@ -50,6 +52,8 @@ struct ElementContext {
   std::optional<Wind> wind;
   std::vector<Winch> winches;
   std::vector<Tether> tethers;
+  LinkChain links;  ///< `links:`
+  LinkChain urdf;   ///< `urdf:`
 };
 
 /// Top-level keys owned by elements, in the order they are read.
@@ -67,5 +71,6 @@ void declare_winches(model::ModelReader& reader, const YAML::Node& node, Element
 void lower_winches(model::ModelReader& reader, ElementContext& ctx);
 void declare_tethers(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 void lower_tethers(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
+// links.cpp, link_chain.cpp: joint chains (declared in links.hpp).
 
 }  // namespace lagrange::elements

@@ -13,7 +13,8 @@ std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
 }  // namespace
 
 const std::vector<std::string>& element_keys() {
-  static const std::vector<std::string> keys = {"wind", "winches", "tethers", "kites"};
+  static const std::vector<std::string> keys = {"wind",  "winches", "tethers",
+                                                "kites", "links",   "urdf"};
   return keys;
 }
 
@@ -22,12 +23,16 @@ void declare_elements(model::ModelReader& reader, const YAML::Node& root, Elemen
   if (auto n = section(root, "winches")) declare_winches(reader, *n, ctx);
   if (auto n = section(root, "tethers")) declare_tethers(reader, *n, ctx);
   if (auto n = section(root, "kites")) declare_kites(reader, *n, ctx);
+  if (auto n = section(root, "links")) declare_links(reader, *n, ctx.links);
+  if (auto n = section(root, "urdf")) declare_urdf(reader, *n, ctx.urdf);
 }
 
 void lower_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
   if (auto n = section(root, "tethers")) lower_tethers(reader, *n, ctx);
   lower_winches(reader, ctx);
   if (auto n = section(root, "kites")) lower_kites(reader, *n, ctx);
+  if (section(root, "links")) lower_links(reader, ctx.links);
+  if (section(root, "urdf")) lower_chain(reader, ctx.urdf);
 }
 
 }  // namespace lagrange::elements

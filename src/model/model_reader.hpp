@@ -75,6 +75,9 @@ class ModelReader {
   // outputs.
   void declare(const std::string& name, NameKind kind, size_t index, const YAML::Node& key,
                const std::string& owner = "");
+  /// The same, for a name written at `loc` (a generated name, or one from another file).
+  void declare_at(const std::string& name, NameKind kind, size_t index, const SourceLoc& loc,
+                  const std::string& owner = "");
   void declare_all(const YAML::Node& root);
   std::optional<Value> lookup(const std::string& name, size_t offset, unsigned allowed) const;
   /// `body.r`, `body.R` for a dotted name whose first part is a body; nullopt otherwise.
@@ -155,9 +158,18 @@ class ModelReader {
   void declare_element(const YAML::Node& key);
   /// A generated point `<owner>.<member>` (dotted, so it cannot clash with user names).
   void add_point(const std::string& name, const Vec3& pos, const YAML::Node& at);
+  void add_point(const std::string& name, const Vec3& pos, const SourceLoc& loc);
   /// A generated coordinate named `name` (dotted) with its initial value and rate; returns it.
   const Coordinate& add_coordinate(const std::string& name, double initial, double rate,
                                    const YAML::Node& at);
+  const Coordinate& add_coordinate(const std::string& name, double initial, double rate,
+                                   const SourceLoc& loc);
+  /// A coordinate under a name of the user's (a joint's), declared and checked like one written
+  /// in `coordinates:` (with its `_dot` and `_ddot`).
+  const Coordinate& add_named_coordinate(const std::string& name, double initial, double rate,
+                                         const SourceLoc& loc);
+  /// A generated posed body under a checked name: `body.r`, `body.R` work in expressions.
+  void add_body(const Body& body);
   /// The value of `e` at t = 0 and the initial state (coordinates, free bodies, inputs), with
   /// the file's parameter values; nullopt when it is not a finite real number.
   std::optional<double> initial_value(const GiNaC::ex& e) const;

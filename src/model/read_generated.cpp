@@ -14,14 +14,23 @@ void ModelReader::declare_element(const YAML::Node& key) {
 // Generated names contain a dot (`main.node3`), which no user-declared name can: they are
 // entered directly, after the element's own name was declared (and checked) by declare().
 void ModelReader::add_point(const std::string& name, const Vec3& pos, const YAML::Node& at) {
-  m_.points.push_back(Point{name, pos, src_.at(at)});
-  names_.emplace(name, NameEntry{NameKind::Point, m_.points.size() - 1, src_.at(at), ""});
+  add_point(name, pos, src_.at(at));
+}
+
+void ModelReader::add_point(const std::string& name, const Vec3& pos, const SourceLoc& loc) {
+  m_.points.push_back(Point{name, pos, loc});
+  names_.emplace(name, NameEntry{NameKind::Point, m_.points.size() - 1, loc, ""});
   point_ready_.resize(m_.points.size(), false);
   point_ready_.back() = true;
 }
 
 const Coordinate& ModelReader::add_coordinate(const std::string& name, double initial, double rate,
                                               const YAML::Node& at) {
+  return add_coordinate(name, initial, rate, src_.at(at));
+}
+
+const Coordinate& ModelReader::add_coordinate(const std::string& name, double initial, double rate,
+                                              const SourceLoc& loc) {
   Coordinate c{name,
                GiNaC::symbol(name, latex_name(name)),
                GiNaC::symbol(name + "_dot", latex_name(name, "\\dot")),
@@ -29,10 +38,24 @@ const Coordinate& ModelReader::add_coordinate(const std::string& name, double in
                initial,
                rate,
                false,
-               src_.at(at)};
+               loc};
   m_.coordinates.push_back(c);
-  names_.emplace(name, NameEntry{NameKind::Coordinate, m_.coordinates.size() - 1, src_.at(at), ""});
+  names_.emplace(name, NameEntry{NameKind::Coordinate, m_.coordinates.size() - 1, loc, ""});
   return m_.coordinates.back();
+}
+
+const Coordinate& ModelReader::add_named_coordinate(const std::string& name, double initial,
+                                                    double rate, const SourceLoc& loc) {
+  declare_at(name, NameKind::Coordinate, m_.coordinates.size(), loc);
+  declare_at(name + "_dot", NameKind::Derived, 0, loc, name);
+  declare_at(name + "_ddot", NameKind::Derived, 0, loc, name);
+  return add_coordinate(name, initial, rate, loc);
+}
+
+void ModelReader::add_body(const Body& body) {
+  declare_at(body.name, NameKind::Body, m_.bodies.size(), body.loc);
+  m_.bodies.push_back(body);
+  body_ready_.resize(m_.bodies.size(), true);
 }
 
 std::optional<double> ModelReader::initial_value(const GiNaC::ex& e) const {

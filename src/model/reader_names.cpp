@@ -57,20 +57,25 @@ std::string allowed_words(unsigned allowed) {
 
 void ModelReader::declare(const std::string& name, NameKind kind, size_t index,
                           const YAML::Node& key, const std::string& owner) {
-  SourceLoc loc = src_.at(key);
+  declare_at(name, kind, index, src_.at(key), owner);
+}
+
+void ModelReader::declare_at(const std::string& name, NameKind kind, size_t index,
+                             const SourceLoc& loc, const std::string& owner) {
   const char* what = kind_word(kind);
   if (!is_identifier(name))
-    fail(key, fmt::format("expected a {} name made of letters, digits and '_', got '{}'", what,
-                          clip(name)));
+    throw ModelError(loc, fmt::format("expected a {} name made of letters, digits and '_', got "
+                                      "'{}'",
+                                      what, clip(name)));
   if (name.size() > kMaxNameLength)
-    fail(key, fmt::format("expected a {} name of at most {} characters, got '{}'", what,
-                          kMaxNameLength, clip(name)));
+    throw ModelError(loc, fmt::format("expected a {} name of at most {} characters, got '{}'", what,
+                                      kMaxNameLength, clip(name)));
   if (name == "t" || name == "pi" || is_builtin_function(name))
-    fail(key,
-         fmt::format("expected a {} name that is not reserved, got '{}' (it is {})", what, name,
-                     is_builtin_function(name) ? "a built-in function"
-                     : name == "t"             ? "the time"
-                                               : "the constant pi"));
+    throw ModelError(
+        loc, fmt::format("expected a {} name that is not reserved, got '{}' (it is {})", what, name,
+                         is_builtin_function(name) ? "a built-in function"
+                         : name == "t"             ? "the time"
+                                                   : "the constant pi"));
   auto it = names_.find(name);
   if (it != names_.end()) {
     // Report at whichever of the two is written later in the file, naming the other.

@@ -47,7 +47,11 @@ InitialConsistency make_initial_state_consistent(Dynamics& dyn, double t0, std::
   const std::vector<double> q_old = q, v_old = v;
   ic.projection = dyn.try_project(t0, q.data(), v.data(), cm.fixed, kProjectionTarget);
   dyn.constraints(t0, q.data(), v.data(), ic.C.data(), ic.Cdot.data());
-  ic.consistent = within(ic.C, ic.Cdot);
+  // Consistent to the tolerance, or to the rounding floors of C and Ċ where those are larger
+  // (long tethers: |C| ~ 1e-11 at 200 m is as exact as floating point allows).
+  ic.consistent =
+      within(ic.C, ic.Cdot) || (max_abs(ic.C) <= std::max(tol, ic.projection.floor) &&
+                                max_abs(ic.Cdot) <= std::max(tol, ic.projection.rate_floor));
   for (size_t i = 0; i < cm.nq; ++i)
     if (q[i] != q_old[i])
       ic.changes +=

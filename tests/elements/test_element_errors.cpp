@@ -1,4 +1,4 @@
-// Bad tether, winch and wind input through the command line: exit code 1, a located message
+// Bad tether, winch, wind and link input through the command line: exit code 1, a located message
 // naming what is wrong, and no output file.
 
 #include <gtest/gtest.h>
@@ -60,6 +60,54 @@ std::vector<BadElement> bad_elements() {
   };
 }
 
+std::string arm(const std::string& second) {
+  return "links:\n  a:\n    joint: {name: q1, type: revolute}\n    mass: 1\n"
+         "    inertia: [0, 0, 0.1]\n" +
+         second;
+}
+
+std::vector<BadElement> bad_links() {
+  const std::string body = "    mass: 1\n    inertia: [0, 0, 0.1]\n";
+  return {
+      {"unknown parent", arm("  b:\n    parent: c\n    joint: {name: q2, type: revolute}\n" + body),
+       "expected 'world' or a link written before link 'b' as its parent, got 'c' (links before "
+       "it: a)"},
+      {"parent written later",
+       "links:\n  b:\n    parent: a\n    joint: {name: q2, type: revolute}\n" + body +
+           "  a:\n    joint: {name: q1, type: revolute}\n" + body,
+       "got 'a' (links before it: none)"},
+      {"unknown joint type",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: spherical}\n" + body),
+       "expected revolute, continuous, prismatic or fixed for the type of the joint of link 'b', "
+       "got 'spherical'"},
+      {"joint without name", arm("  b:\n    parent: a\n    joint: {type: revolute}\n" + body),
+       "expected 'name' (its coordinate's name) in the joint of link 'b'"},
+      {"fixed joint with a name",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: fixed}\n" + body),
+       "expected no 'name' in the joint of link 'b': a fixed joint has no coordinate"},
+      {"zero axis",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute, axis: [0, 0, 0]}\n" + body),
+       "expected a non-zero axis for joint 'q2'"},
+      {"joint name taken",
+       arm("  b:\n    parent: a\n    joint: {name: q1, type: revolute}\n" + body),
+       "expected a unique name, got coordinate 'q1' which is already the coordinate"},
+      {"negative mass",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute}\n    mass: -1\n"
+           "    inertia: [0, 0, 0.1]\n"),
+       "expected a positive mass for link 'b', got -1"},
+      {"non-physical inertia",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: prismatic, axis: [1, 0, 0]}\n"
+           "    mass: 1\n    inertia: [1, 1, 3]\n"),
+       "body 'b': non-physical inertia"},
+      {"negative damping",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute, damping: -1}\n" + body),
+       "expected a non-negative damping of joint q2, got -1"},
+      {"torque of an unknown name",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute, torque: -k*q2}\n" + body),
+       "unknown name 'k' (in torque of joint 'q2')"},
+  };
+}
+
 class BadElementModel : public ::testing::TestWithParam<BadElement> {};
 
 TEST_P(BadElementModel, Exit1Located) {
@@ -75,13 +123,15 @@ TEST_P(BadElementModel, Exit1Located) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"model.yaml"});
 }
 
-INSTANTIATE_TEST_SUITE_P(Elements, BadElementModel, ::testing::ValuesIn(bad_elements()),
-                         [](const auto& info) {
-                           std::string s = info.param.label;
-                           for (char& c : s)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return s;
-                         });
+std::string label(const ::testing::TestParamInfo<BadElement>& info) {
+  std::string s = info.param.label;
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return s;
+}
+
+INSTANTIATE_TEST_SUITE_P(Elements, BadElementModel, ::testing::ValuesIn(bad_elements()), label);
+INSTANTIATE_TEST_SUITE_P(Links, BadElementModel, ::testing::ValuesIn(bad_links()), label);
 
 }  // namespace
 }  // namespace lagrange::hardening

@@ -1,0 +1,111 @@
+// `lagrange derive --form manipulator`: D(q), the Christoffel symbols, C(q, q̇), g(q) and τ
+// (docs/theory.md §4.8) as text, LaTeX or JSON.
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "io/equation_text.hpp"
+#include "lagrange/io.hpp"
+
+namespace lagrange {
+
+namespace {
+
+using io::str;
+using io::Style;
+
+/// "121" for up to nine coordinates, "1,2,1" beyond.
+std::string indices(size_t n, std::initializer_list<size_t> ix) {
+  std::string s;
+  for (size_t i : ix) s += (s.empty() || n <= 9 ? "" : ",") + std::to_string(i + 1);
+  return s;
+}
+
+std::string format_text(const ManipulatorForm& f, Style style) {
+  const Equations& eq = *f.eq;
+  const size_t n = eq.nv;
+  const bool tex = style == Style::Latex;
+  std::string out;
+  bool open = false;
+  auto heading = [&](const std::string& h) {
+    if (!tex) {
+      out += fmt::format("\n{}\n", h);
+      return;
+    }
+    out += fmt::format("{}% {}\n\\begin{{align*}}\n", open ? "\\end{align*}\n" : "", h);
+    open = true;
+  };
+  auto line = [&](const std::string& lhs, const std::string& rhs) {
+    out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
+  };
+  std::string coords;
+  for (size_t i = 0; i < n; ++i) coords += (i ? ", " : "") + eq.kin.q_names[i];
+  out += fmt::format(
+      "{}{} — manipulator form D(q) q_ddot + C(q, q_dot) q_dot + g(q) = tau, q = "
+      "({})\n",
+      tex ? "% " : "", eq.model->name, coords);
+  heading("Inertia matrix D(q)");
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i; j < n; ++j)
+      line(fmt::format("d_{{{}}}", indices(n, {i, j})), str(f.D(i, j), style));
+  heading(tex ? "Christoffel symbols (non-zero)"
+              : "Christoffel symbols c_ijk = 1/2 (d d_kj/d q_i + d d_ki/d q_j - d d_ij/d q_k), "
+                "non-zero");
+  if (f.christoffel.empty()) out += tex ? "  % none\n" : "  (none)\n";
+  for (const Christoffel& c : f.christoffel)
+    line(fmt::format("c_{{{}}}", indices(n, {c.i, c.j, c.k})), str(c.value, style));
+  heading(tex ? "C(q, \\dot q)" : "C(q, q_dot), C_kj = sum_i c_ijk q_dot_i");
+  for (size_t k = 0; k < n; ++k)
+    for (size_t j = 0; j < n; ++j)
+      if (!f.C(k, j).is_zero())
+        line(fmt::format("C_{{{}}}", indices(n, {k, j})), str(f.C(k, j), style));
+  heading(tex ? "g(q)" : "Gravity g(q) = dP/dq");
+  for (size_t k = 0; k < n; ++k) line(fmt::format("g_{{{}}}", k + 1), str(f.g[k], style));
+  heading(tex ? "\\tau" : "Joint forces tau (generalised forces)");
+  for (size_t k = 0; k < n; ++k) line(fmt::format("tau_{{{}}}", k + 1), str(f.tau[k], style));
+  if (tex) out += "\\end{align*}\n";
+  return out;
+}
+
+std::string format_json(const ManipulatorForm& f) {
+  const Equations& eq = *f.eq;
+  const size_t n = eq.nv;
+  auto s = [](const GiNaC::ex& e) { return str(e, Style::Text); };
+  nlohmann::json j;
+  j["name"] = eq.model->name;
+  j["form"] = "manipulator";
+  for (const auto& c : eq.kin.q_names) j["coordinates"].push_back(c);
+  for (size_t i = 0; i < n; ++i) {
+    nlohmann::json d = nlohmann::json::array(), c = nlohmann::json::array();
+    for (size_t k = 0; k < n; ++k) {
+      d.push_back(s(f.D(i, k)));
+      c.push_back(s(f.C(i, k)));
+    }
+    j["D"].push_back(d);
+    j["C"].push_back(c);
+    j["g"].push_back(s(f.g[i]));
+    j["tau"].push_back(s(f.tau[i]));
+    j["latex"]["g"].push_back(str(f.g[i], Style::Latex));
+  }
+  j["christoffel"] = nlohmann::json::array();
+  for (const Christoffel& c : f.christoffel)
+    j["christoffel"].push_back({{"i", c.i + 1},
+                                {"j", c.j + 1},
+                                {"k", c.k + 1},
+                                {"value", s(c.value)},
+                                {"latex", str(c.value, Style::Latex)}});
+  return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+std::string format_manipulator(const ManipulatorForm& form, const std::string& format) {
+  if (format == "text") return format_text(form, Style::Text);
+  if (format == "latex") return format_text(form, Style::Latex);
+  if (format == "json") return format_json(form);
+  throw std::invalid_argument("unknown format '" + format + "'; expected text, latex or json");
+}
+
+}  // namespace lagrange

@@ -1,0 +1,172 @@
+// docs/theory.md §4.8: D = M, c_ijk = ½(∂d_kj/∂qᵢ + ∂d_ki/∂qⱼ − ∂d_ij/∂q_k), C_kj = Σᵢ c_ijk q̇ᵢ,
+// g_k = ∂U/∂q_k, checked against the derived forcing h = −C q̇ − g.
+
+#include <fmt/format.h>
+
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "lagrange/manipulator.hpp"
+
+namespace lagrange {
+
+namespace {
+
+// cos(a + b) = cos a cos b − sin a sin b, sin(a + b) = sin a cos b + cos a sin b, recursively.
+struct ExpandTrig : GiNaC::map_function {
+  GiNaC::ex operator()(const GiNaC::ex& e) override {
+    const GiNaC::ex m = e.map(*this);
+    if (!GiNaC::is_a<GiNaC::function>(m) || !GiNaC::is_a<GiNaC::add>(m.op(0))) return m;
+    const std::string name = GiNaC::ex_to<GiNaC::function>(m).get_name();
+    if (name != "sin" && name != "cos") return m;
+    const GiNaC::ex a = m.op(0).op(0), b = m.op(0) - a;
+    const GiNaC::ex sa = (*this)(GiNaC::sin(a)), ca = (*this)(GiNaC::cos(a));
+    const GiNaC::ex sb = (*this)(GiNaC::sin(b)), cb = (*this)(GiNaC::cos(b));
+    return name == "cos" ? ca * cb - sa * sb : sa * cb + ca * sb;
+  }
+};
+
+size_t printed_size(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str().size();
+}
+
+/// Small expressions in the shorter of their derived and trig-simplified forms (big arms' entries
+/// are left as derived).
+GiNaC::ex tidy(const GiNaC::ex& e) {
+  if (printed_size(e) > 4000) return e;
+  const GiNaC::ex s = trig_simplify(e);
+  return printed_size(s) < printed_size(e) ? s : e;
+}
+
+/// Evaluates expressions at a few random points (parameters in [0.5, 1.5], coordinates,
+/// velocities, t and inputs in [−2, 2]) with 40 digits: symbolic zeros come out below 1e-25.
+class Probe {
+ public:
+  explicit Probe(const Equations& eq) {
+    const Model& m = *eq.model;
+    std::mt19937 rng(20261122);
+    std::uniform_int_distribution<int> draw(-2000, 2000);
+    auto rational = [&](int lo) { return GiNaC::numeric(draw(rng) + lo, 1000); };
+    for (int p = 0; p < 2; ++p) {
+      GiNaC::exmap v;
+      for (const Parameter& par : m.parameters)
+        v[par.sym] = GiNaC::abs(rational(0)) / 2 + GiNaC::numeric(1, 2);
+      for (size_t i = 0; i < eq.nv; ++i) {
+        v[eq.kin.q[i]] = rational(0);
+        v[eq.kin.v[i]] = rational(0);
+      }
+      v[m.t] = rational(0);
+      for (const Input& u : m.inputs) {
+        v[u.u] = rational(0);
+        v[u.ud] = rational(0);
+        v[u.udd] = rational(0);
+      }
+      points_.push_back(v);
+    }
+  }
+  bool zero(const GiNaC::ex& e) const {
+    const long saved = GiNaC::Digits;
+    GiNaC::Digits = 40;
+    bool all = true;
+    for (const GiNaC::exmap& v : points_) {
+      const GiNaC::ex x = e.subs(v).evalf();
+      if (!GiNaC::is_a<GiNaC::numeric>(x) ||
+          !(GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(x)).to_double() < 1e-25))
+        all = false;
+    }
+    GiNaC::Digits = saved;
+    return all;
+  }
+
+ private:
+  std::vector<GiNaC::exmap> points_;
+};
+
+}  // namespace
+
+GiNaC::ex trig_simplify(const GiNaC::ex& e) {
+  ExpandTrig expand;
+  return simplify(expand(e));
+}
+
+ManipulatorForm manipulator_form(const Equations& eq) {
+  const Model& m = *eq.model;
+  if (eq.m > 0)
+    throw std::invalid_argument(
+        fmt::format("the manipulator form needs an unconstrained model, got {} constraints", eq.m));
+  if (eq.kin.plain != eq.nv || eq.nq != eq.nv)
+    throw std::invalid_argument(
+        "the manipulator form needs plain coordinates only, got a free body (its R and omega are "
+        "not joint coordinates)");
+  const size_t n = eq.nv;
+  ManipulatorForm f;
+  f.eq = &eq;
+  f.D = GiNaC::matrix(n, n);
+  f.C = GiNaC::matrix(n, n);
+  std::vector<GiNaC::symbol> moving{m.t};
+  for (const Input& u : m.inputs) moving.insert(moving.end(), {u.u, u.ud, u.udd});
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < n; ++j) {
+      for (const GiNaC::symbol& s : moving)
+        if (eq.M(i, j).has(s))
+          throw std::invalid_argument(fmt::format(
+              "the manipulator form needs D(q) of the coordinates and parameters only, got D_{}{} "
+              "depending on {}",
+              i + 1, j + 1, s.get_name()));
+      f.D(i, j) = j < i ? f.D(j, i) : tidy(eq.M(i, j));
+    }
+  const Probe probe(eq);
+  // dD[l] = ∂D/∂q_l; c_ijk = c_jik, computed for i ≤ j.
+  std::vector<GiNaC::matrix> dD;
+  for (size_t l = 0; l < n; ++l) dD.push_back(GiNaC::ex_to<GiNaC::matrix>(f.D.diff(eq.kin.q[l])));
+  std::vector<GiNaC::ex> c(n * n * n, 0);
+  for (size_t k = 0; k < n; ++k)
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i; j < n; ++j) {
+        GiNaC::ex v = (dD[i](k, j) + dD[j](k, i) - dD[k](i, j)) / 2;
+        v = probe.zero(v) ? GiNaC::ex(0) : tidy(v);
+        c[(i * n + j) * n + k] = c[(j * n + i) * n + k] = v;
+      }
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < n; ++j)
+      for (size_t k = 0; k < n; ++k)
+        if (!c[(i * n + j) * n + k].is_zero())
+          f.christoffel.push_back({i, j, k, c[(i * n + j) * n + k]});
+  for (size_t k = 0; k < n; ++k)
+    for (size_t j = 0; j < n; ++j) {
+      GiNaC::ex s = 0;
+      for (size_t i = 0; i < n; ++i) s += c[(i * n + j) * n + k] * eq.kin.v[i];
+      f.C(k, j) = s;
+    }
+  for (size_t k = 0; k < n; ++k) {
+    f.g.push_back(tidy(eq.U.diff(eq.kin.q[k])));
+    f.tau.push_back(eq.Q[k]);
+    GiNaC::ex residual = eq.h[k] + f.g[k];
+    for (size_t j = 0; j < n; ++j) residual += f.C(k, j) * eq.kin.v[j];
+    if (!probe.zero(residual))
+      throw std::invalid_argument(fmt::format(
+          "the manipulator form needs forcing h = -C(q, q_dot) q_dot - g(q), got other terms in "
+          "the equation of {} (a kinetic energy linear in the velocities, a moving base, forces "
+          "outside the potential)",
+          eq.kin.q_names[k]));
+  }
+  return f;
+}
+
+GiNaC::matrix d_dot_minus_2c(const ManipulatorForm& f) {
+  const Equations& eq = *f.eq;
+  const size_t n = eq.nv;
+  GiNaC::matrix N(n, n);
+  for (size_t k = 0; k < n; ++k)
+    for (size_t j = 0; j < n; ++j) {
+      GiNaC::ex ddot = 0;
+      for (size_t i = 0; i < n; ++i) ddot += f.D(k, j).diff(eq.kin.q[i]) * eq.kin.v[i];
+      N(k, j) = ddot - 2 * f.C(k, j);
+    }
+  return N;
+}
+
+}  // namespace lagrange
