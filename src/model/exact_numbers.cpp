@@ -61,6 +61,15 @@ void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset
     throw ExprError{offset, fmt::format("expected an exponent of magnitude at most {}, got more",
                                         kMaxExponent)};
   if (!e.is_rational()) return;  // a floating-point power is computed in floating point
+  // A number to a fraction with a huge denominator: GiNaC may work through floating point and
+  // throw an underflow from inside pow(), leaking the half-built node (fuzz finding
+  // "fraction-of-negative-power-leak.txt": (-1/3)^(-1/2^150)).
+  if (GiNaC::is_a<GiNaC::numeric>(base) && !e.is_integer() && e.denom() > kMaxDenominator)
+    throw ExprError{offset,
+                    fmt::format("expected a fractional exponent of a number with a "
+                                "denominator of at most {:g}, got one of about {:.3g} "
+                                "digits",
+                                static_cast<double>(kMaxDenominator), digits_of(e.denom()))};
   const double digits = digits_per_unit_power(base) * GiNaC::abs(e).to_double();
   if (!(digits <= kMaxDigits)) too_long(offset, digits);
 }

@@ -13,9 +13,12 @@ namespace lagrange::model {
 constexpr int kMaxExponent = 1000;
 /// Largest exact number (numerator or denominator, in decimal digits) a fold may build.
 constexpr double kMaxDigits = 10000;
+/// Largest denominator of a fractional exponent of a number (2^(1/10^12) is fine).
+constexpr long long kMaxDenominator = 1000000000000LL;
 
 /// Throws ExprError at `offset` for powers GiNaC must not be asked for: 0 to a symbolic or
-/// non-positive power, an exponent beyond kMaxExponent, and a power whose exact numbers — the
+/// non-positive power, an exponent beyond kMaxExponent, a number to a fraction whose
+/// denominator exceeds kMaxDenominator, and a power whose exact numbers — the
 /// base's numeric factors raised to the exponent — would exceed kMaxDigits.
 void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset);
 
