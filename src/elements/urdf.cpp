@@ -175,7 +175,7 @@ LinkChain read_urdf(const std::string& path) {
   std::map<std::string, int> index;
   std::vector<std::string> queue{roots[0]};
   for (size_t head = 0; head < queue.size(); ++head) {
-    const std::string& n = queue[head];
+    const std::string n = queue[head];  // a copy: queue grows below
     const XMLElement* le = links[n];
     LinkSpec link;
     link.name = n;
