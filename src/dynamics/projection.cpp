@@ -18,9 +18,9 @@ double max_abs(const double* x, size_t n) {
 }
 
 // The size of rounding errors in C near q: C's terms are of the order of |∂C/∂q| |q| (exactly
-// so for the quadratic ½(|d|² − ℓ²) of a tether), so below a few ulps of that no step can
-// reduce |C| — a 200 m tether stalls near 1e-11 however small the requested tolerance. The same
-// with (G, v) bounds the rounding of Ċ = G v + ….
+// so for a distance constraint ½(|d|² − ℓ²)), so below a few ulps of that no step can
+// reduce |C| — with ℓ of 200 m that floor is near 1e-11 however small the requested tolerance. The
+// same with (G, v) bounds the rounding of Ċ = G v + ….
 double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
   const Eigen::VectorXd terms = J.cwiseAbs() * q.cwiseAbs();
   return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);

@@ -48,7 +48,7 @@ InitialConsistency make_initial_state_consistent(Dynamics& dyn, double t0, std::
   ic.projection = dyn.try_project(t0, q.data(), v.data(), cm.fixed, kProjectionTarget);
   dyn.constraints(t0, q.data(), v.data(), ic.C.data(), ic.Cdot.data());
   // Consistent to the tolerance, or to the rounding floors of C and Ċ where those are larger
-  // (long tethers: |C| ~ 1e-11 at 200 m is as exact as floating point allows).
+  // (distance constraints over 200 m: |C| ~ 1e-11 is as exact as floating point allows).
   ic.consistent =
       within(ic.C, ic.Cdot) || (max_abs(ic.C) <= std::max(tol, ic.projection.floor) &&
                                 max_abs(ic.Cdot) <= std::max(tol, ic.projection.rate_floor));

@@ -12,15 +12,6 @@
 namespace lagrange {
 namespace {
 
-std::vector<std::string> example_files() {
-  std::vector<std::string> names;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples"))
-    if (e.path().extension() == ".yaml") names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 class Example : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Example, RunsAndKeepsItsInvariants) {
@@ -47,7 +38,7 @@ TEST_P(Example, RunsAndKeepsItsInvariants) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, Example, ::testing::ValuesIn(example_files()),
+INSTANTIATE_TEST_SUITE_P(Examples, Example, ::testing::ValuesIn(testing::example_files()),
                          [](const auto& info) {
                            std::string s = info.param.substr(0, info.param.size() - 5);
                            for (char& c : s)

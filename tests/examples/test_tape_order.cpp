@@ -33,17 +33,8 @@ Fingerprint fingerprint(const std::string& file) {
   return f;
 }
 
-std::vector<std::string> example_files() {
-  std::vector<std::string> names;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples"))
-    if (e.path().extension() == ".yaml") names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 TEST(TapeOrder, SameTapesWhicheverModelsCameFirst) {
-  const std::vector<std::string> names = example_files();
+  const std::vector<std::string> names = testing::example_files();
   ASSERT_GE(names.size(), 2u);
   std::map<std::string, Fingerprint> first;
   for (const auto& name : names) first.emplace(name, fingerprint(name));

@@ -4,6 +4,8 @@
 #include <ginac/ginac.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -93,6 +95,16 @@ inline Eigen::Matrix3d rotation_at(const Trajectory& tr, size_t r, const std::st
 /// A free body's body-frame angular velocity at row r.
 inline Eigen::Vector3d omega_at(const Trajectory& tr, size_t r, const std::string& body) {
   return {tr.at(r, body + ".wx"), tr.at(r, body + ".wy"), tr.at(r, body + ".wz")};
+}
+
+/// File names of every bundled example (examples/*.yaml), sorted.
+inline std::vector<std::string> example_files() {
+  std::vector<std::string> names;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples"))
+    if (e.path().extension() == ".yaml") names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 inline Loaded load_example(const std::string& name) {
