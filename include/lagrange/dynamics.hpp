@@ -14,7 +14,7 @@ namespace lagrange {
 namespace dynamics {
 class SparseRangeSpace;
 struct NativeTapes;
-}
+}  // namespace dynamics
 
 /// What evaluates a Dynamics' tapes (docs/theory.md §8, machine code). Both give the same
 /// numbers bit for bit; machine code is faster per call but costs a compiler run when not cached.

@@ -15,7 +15,8 @@ namespace lagrange {
 /// Where and with what MachineCode compiles.
 struct MachineCodeOptions {
   std::string compiler;   ///< empty: $LAGRANGE_CC, else $CC, else `cc`, looked up on PATH
-  std::string cache_dir;  ///< empty: $LAGRANGE_CACHE_DIR, else $XDG_CACHE_HOME/lagrange or ~/.cache/lagrange
+  std::string cache_dir;  ///< empty: $LAGRANGE_CACHE_DIR, else $XDG_CACHE_HOME/lagrange or
+                          ///< ~/.cache/lagrange
   const std::atomic<bool>* cancel = nullptr;  ///< when set, a running compiler is stopped
 };
 

@@ -144,8 +144,8 @@ int run_simulate(const Options& opt) {
   if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
-  const auto t2 = Clock::now();
   choose_evaluation(*p.dynamics, opt.compile);
+  const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);
   if (so.progress) fmt::print(stderr, "\r{:60}\r", "");

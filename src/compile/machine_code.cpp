@@ -33,7 +33,7 @@ namespace {
 // -ffp-contract=off keeps a·b + c from becoming a fused multiply-add, so that the library and
 // Tape::eval agree bit for bit; -fno-math-errno lets sqrt compile to one instruction (same
 // value). Changing the flags changes every cache key.
-constexpr const char* kFlags[] = {"-std=c99", "-O2",         "-fPIC", "-shared", "-ffp-contract=off",
+constexpr const char* kFlags[] = {"-std=c99",        "-O2", "-fPIC", "-shared", "-ffp-contract=off",
                                   "-fno-math-errno", "-w"};
 constexpr const char* kFormat = "lagrange machine code 1";
 
@@ -96,8 +96,8 @@ Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& optio
   p.dir = cache_directory(options);
   struct stat st {};
   if (::stat(p.compiler.c_str(), &st) != 0)
-    throw MachineCodeError(fmt::format("cannot read the C compiler '{}': {}", p.compiler,
-                                       std::strerror(errno)));
+    throw MachineCodeError(
+        fmt::format("cannot read the C compiler '{}': {}", p.compiler, std::strerror(errno)));
   Fnv h;
   h.add(kFormat);
   h.add(p.source);
@@ -126,8 +126,8 @@ void write_file(const std::string& path, const std::string& text) {
   if (!out) {
     const int err = errno;
     std::remove(path.c_str());
-    throw MachineCodeError(fmt::format("cannot write '{}' into the machine-code cache: {}", path,
-                                       std::strerror(err)));
+    throw MachineCodeError(
+        fmt::format("cannot write '{}' into the machine-code cache: {}", path, std::strerror(err)));
   }
 }
 
@@ -189,7 +189,7 @@ MachineCode::~MachineCode() {
   if (handle_ != nullptr) ::dlclose(handle_);
 }
 
-std::shared_ptr<const MachineCode> MachineCode::load(const std::string& path, size_t count) {
+std::shared_ptr<MachineCode> MachineCode::load(const std::string& path, size_t count) {
   if (::access(path.c_str(), R_OK) != 0) return nullptr;
   std::shared_ptr<MachineCode> code(new MachineCode());
   code->handle_ = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -237,8 +237,8 @@ std::shared_ptr<const MachineCode> MachineCode::build(const std::vector<const Ta
     write_file(c_file, p.source);
     run_compiler(p, c_file, so_file, log_file, options.cancel);
     if (std::rename(so_file.c_str(), p.path.c_str()) != 0)
-      throw MachineCodeError(fmt::format("cannot move '{}' into place: {}", so_file,
-                                         std::strerror(errno)));
+      throw MachineCodeError(
+          fmt::format("cannot move '{}' into place: {}", so_file, std::strerror(errno)));
   } catch (...) {
     std::remove(c_file.c_str());
     std::remove(so_file.c_str());

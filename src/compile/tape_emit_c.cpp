@@ -154,8 +154,7 @@ std::string Tape::emit_c(const std::string& function_name, bool preamble, bool e
       split && scratch ? "  double* r = work;\n"
                        : fmt::format("  double r[{}];\n", num_registers_ > 0 ? num_registers_ : 1);
   const std::string unused = scratch && !split ? "  (void)work;\n" : "";
-  if (!split)
-    s += fmt::format("\n{}void {}({}) {{\n", linkage, function_name, parameters);
+  if (!split) s += fmt::format("\n{}void {}({}) {{\n", linkage, function_name, parameters);
   if (!split) s += registers + unused;
   for (size_t i = 0; i < code_.size(); ++i) {
     if (split && i % kChunk == 0) {

@@ -86,8 +86,9 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
 std::string NativeTapes::note() const {
   const std::lock_guard<std::mutex> lock(mutex);
   if (ready.load(std::memory_order_acquire) && library)
-    return library->from_cache() ? "machine code (from the cache)"
-                                 : fmt::format("machine code (compiled in {:.2f} s)", library->seconds());
+    return library->from_cache()
+               ? "machine code (from the cache)"
+               : fmt::format("machine code (compiled in {:.2f} s)", library->seconds());
   if (!why.empty()) return fmt::format("interpreter (machine code: {})", why);
   if (!skipped.empty()) return fmt::format("interpreter ({})", skipped);
   if (worker.joinable()) return "interpreter (machine code still compiling)";

@@ -54,22 +54,22 @@ size_t differing_outputs(const Tape& t, MachineCode::Function f,
 
 TEST_F(MachineCodeTest, EveryOpIsBitIdenticalToEval) {
   GiNaC::symbol x("x"), y("y");
-  const Tape t = Tape::compile({-3 * x + 2 * y - 7, -x * y * 5, 1 / x, x / y,
-                                pow(x, 3) - pow(y, -2), pow(x * x, GiNaC::numeric(1, 3)),
-                                sqrt(y * y + 1), sin(x) - cos(y) * tan(x) + sin(y) * cos(x),
-                                asin(x / 2) + acos(y / 3) + atan(x), atan2(x, y),
-                                sinh(x) + cosh(y) + tanh(x * y), exp(x) * log(y * y) + abs(x)},
-                               {x, y});
+  const Tape t = Tape::compile(
+      {-3 * x + 2 * y - 7, -x * y * 5, 1 / x, x / y, pow(x, 3) - pow(y, -2),
+       pow(x * x, GiNaC::numeric(1, 3)), sqrt(y * y + 1),
+       sin(x) - cos(y) * tan(x) + sin(y) * cos(x), asin(x / 2) + acos(y / 3) + atan(x), atan2(x, y),
+       sinh(x) + cosh(y) + tanh(x * y), exp(x) * log(y * y) + abs(x)},
+      {x, y});
   const auto code = MachineCode::build({&t}, options_);
   EXPECT_FALSE(code->from_cache());
   EXPECT_EQ(differing_outputs(t, code->function(0), {{0.3, -1.7}, {-1.1, 2.5}, {1.9, 0.01}}), 0u);
 }
 
 TEST_F(MachineCodeTest, LargeTapeKeepsItsRegistersInTheScratchArray) {
-  const int n = 12;  // several 256-statement parts
+  const int n = 20;  // several 256-statement parts
   const test::Pendulum p = test::make_pendulum(n);
   const Tape t = Tape::compile(p.outputs, p.inputs);
-  ASSERT_GT(t.num_instructions(), 1000u);
+  ASSERT_GT(t.num_instructions(), 3 * 256u);
   const auto code = MachineCode::build({&t}, options_);
   std::vector<std::vector<double>> points;
   for (unsigned seed = 0; seed < 5; ++seed) points.push_back(test::pendulum_point(n, seed));
@@ -115,8 +115,9 @@ TEST_F(MachineCodeTest, MissingCompilerSaysSo) {
     (void)MachineCode::build({&t}, options_);
     FAIL() << "expected MachineCodeError";
   } catch (const MachineCodeError& e) {
-    EXPECT_NE(std::string(e.what()).find("no C compiler: 'no-such-compiler-for-lagrange' is not on PATH"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("no C compiler: 'no-such-compiler-for-lagrange' is not on PATH"),
+        std::string::npos)
         << e.what();
   }
 }

@@ -72,8 +72,7 @@ TEST_P(MachineCodeExample, SameBitsAsTheInterpreter) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Examples, MachineCodeExample,
-                         ::testing::ValuesIn(testing::example_files()),
-                         [](const auto& info) {
+                         ::testing::ValuesIn(testing::example_files()), [](const auto& info) {
                            std::string n = info.param.substr(0, info.param.find('.'));
                            for (char& c : n)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
@@ -95,10 +94,12 @@ TEST(MachineCodeBackground, SwitchingMidRunChangesNoOutput) {
   std::filesystem::remove_all(dir);
   MachineCodeOptions o;
   o.cache_dir = dir.string();
-  auto sys = testing::load_string(bench::n_link_pendulum_yaml(8));
-  ASSERT_GE(sys.compiled->dynamics.num_instructions(), Dynamics::kBackgroundMinInstructions);
+  auto sys = testing::load_string(bench::n_link_pendulum_yaml(16));
+  const CompiledModel& cm = *sys.compiled;
+  ASSERT_GE(cm.dynamics.specialize(cm.p_offset(), cm.parameter_defaults).num_instructions(),
+            Dynamics::kBackgroundMinInstructions);
   SimulationOptions so = sys.options();
-  so.t_end = 4.0;
+  so.t_end = 2.0;
   const Trajectory reference = sys.run(so);
   Dynamics background(sys.compiled, sys.compiled->parameter_defaults);
   background.set_baumgarte(sys.dynamics->baumgarte());
