@@ -33,7 +33,7 @@ namespace {
 // -ffp-contract=off keeps a·b + c from becoming a fused multiply-add, so that the library and
 // Tape::eval agree bit for bit; -fno-math-errno lets sqrt compile to one instruction (same
 // value). Changing the flags changes every cache key.
-constexpr const char* kFlags[] = {"-std=c99",        "-O2", "-fPIC", "-shared", "-ffp-contract=off",
+constexpr const char* kFlags[] = {"-std=c99",        "-O1", "-fPIC", "-shared", "-ffp-contract=off",
                                   "-fno-math-errno", "-w"};
 constexpr const char* kFormat = "lagrange machine code 1";
 

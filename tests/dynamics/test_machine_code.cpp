@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -71,9 +72,19 @@ TEST_P(MachineCodeExample, SameBitsAsTheInterpreter) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, MachineCodeExample,
-                         ::testing::ValuesIn(testing::example_files()), [](const auto& info) {
-                           std::string n = info.param.substr(0, info.param.find('.'));
+/// Every example model and every robot description beside them (examples/robots/*.urdf).
+std::vector<std::string> models() {
+  std::vector<std::string> names = testing::example_files();
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots"))
+    if (e.path().extension() == ".urdf") names.push_back("robots/" + e.path().filename().string());
+  std::sort(names.begin() + static_cast<long>(testing::example_files().size()), names.end());
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, MachineCodeExample, ::testing::ValuesIn(models()),
+                         [](const auto& info) {
+                           std::string n = info.param.substr(0, info.param.rfind('.'));
                            for (char& c : n)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
