@@ -48,6 +48,10 @@ std::vector<BadModel> bad_kites() {
       {"point without a tether", "    point: spot\n    preset: ap2\n    CL: 1\n",
        "expected a tether ending at point 'spot' (its second end) for kite 'wing'"},
       {"misspelt key", "    point: kite\n    preset: ap2\n    CL: 1\n    rol: 0.1\n", "rol"},
+      {"tension in a law",
+       "    point: kite\n    preset: ap2\n    CL: 1\n    roll: 1e-4*main.tension_ground\n",
+       "expected an expression of t and the state in roll of kite wing, got the constraint force "
+       "'main.tension_ground'"},
   };
   for (BadModel& c : cases) c.yaml = model(c.yaml);
   return cases;
