@@ -97,6 +97,9 @@ struct Body {
   std::array<double, 9> R0{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< free: initial R
   Vec3 position{0, 0, 0};  ///< posed: world position of the body origin
   Mat3 rotation{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};  ///< posed: rotation body → world
+  /// Posed: the body-frame angular velocity U(RᵀṘ) when an element composes it along a chain
+  /// (ω_child = R_relᵀ ω_parent + k q̇, docs/theory.md §4.8); unset, it is derived from R (§4.4).
+  std::optional<Vec3> angular_velocity;
   SourceLoc loc;
 
   /// Make this a free body with fresh symbols named `<name>.x`, `<name>.R11`, `<name>.wx`, ….

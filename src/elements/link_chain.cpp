@@ -27,7 +27,17 @@ struct Frame {
   bool identity = true;
   std::optional<size_t> spin_axis;
   GiNaC::ex spin_angle = 0;
+  /// Body-frame angular velocity, composed recursively: ω = R_relᵀ ω_parent + k q̇ (§4.8). Kept
+  /// nested, it is far smaller than U(RᵀṘ) expanded from a product of rotations.
+  Vec3 w{0, 0, 0};
 };
+
+/// Aᵀ x.
+Vec3 transpose_times(const Mat3& A, const Vec3& x) {
+  return {A[0][0] * x[0] + A[1][0] * x[1] + A[2][0] * x[2],
+          A[0][1] * x[0] + A[1][1] * x[1] + A[2][1] * x[2],
+          A[0][2] * x[0] + A[1][2] * x[1] + A[2][2] * x[2]};
+}
 
 Vec3 add(const Vec3& a, const Vec3& b) {
   return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
@@ -61,9 +71,15 @@ int along(const Vec3& k, size_t axis) {
   return 0;
 }
 
-Frame child_frame(const Frame& p, const JointSpec& j, const Vec3& k, const GiNaC::ex& q) {
+Frame child_frame(const Frame& p, const JointSpec& j, const Vec3& k, const GiNaC::ex& q,
+                  const GiNaC::ex& qd) {
   const bool plain = j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
   Frame f;
+  f.w = plain ? p.w : transpose_times(rpy_rotation(j.rpy), p.w);
+  if (j.type == JointSpec::Type::Revolute) {
+    f.w = transpose_times(axis_angle_rotation(k, q), f.w);
+    for (size_t i = 0; i < 3; ++i) f.w[i] += k[i] * qd;
+  }
   f.r = add(p.r, p.identity ? j.xyz : mat_vec(p.R, j.xyz));
   f.R = plain ? p.R : mat_mul(p.R, rpy_rotation(j.rpy));
   if (plain) {
@@ -114,14 +130,16 @@ void declare_chain(ModelReader& r, LinkChain& chain) {
     const LinkSpec& link = chain.links[i];
     const JointSpec& j = link.joint;
     const Frame& parent = link.parent < 0 ? Frame{} : frames.at(static_cast<size_t>(link.parent));
-    GiNaC::ex q = 0;
+    GiNaC::ex q = 0, qd = 0;
     Vec3 k = j.axis;
     if (j.type != JointSpec::Type::Fixed) {
       k = unit_axis(r, j);
-      q = r.add_named_coordinate(j.name, j.initial, j.rate, j.loc).q;
+      const Coordinate& c = r.add_named_coordinate(j.name, j.initial, j.rate, j.loc);
+      q = c.q;
+      qd = c.v;
       chain.coordinate[i] = static_cast<int>(r.model().coordinates.size() - 1);
     }
-    frames.push_back(child_frame(parent, j, k, q));
+    frames.push_back(child_frame(parent, j, k, q, qd));
     const Frame& f = frames.back();
     if (!link.mass.is_zero()) {
       Body b;
@@ -131,6 +149,7 @@ void declare_chain(ModelReader& r, LinkChain& chain) {
       b.com = link.com;
       b.position = f.r;
       b.rotation = f.R;
+      b.angular_velocity = f.w;
       b.loc = link.loc;
       check_body_inertia(r.model(), b, f.spin_axis);
       r.add_body(b);

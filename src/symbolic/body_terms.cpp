@@ -34,6 +34,7 @@ bool is_zero(const Vec3& v) {
 // docs/theory.md §4.4: Ω = RᵀṘ, ω = U(Ω) = ½(Ω₃₂ − Ω₂₃, Ω₁₃ − Ω₃₁, Ω₂₁ − Ω₁₂).
 Vec3 body_angular_velocity(const Kinematics& kin, const Body& body) {
   if (body.free) return {body.w[0], body.w[1], body.w[2]};
+  if (body.angular_velocity) return *body.angular_velocity;
   const Mat3 R = body.rotation;
   Mat3 Rd;
   for (size_t i = 0; i < 3; ++i)
