@@ -21,6 +21,7 @@ struct Options {
   std::string form = "lagrange";  ///< derive: lagrange | manipulator
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
+  std::string compile = "auto";  ///< simulate --compile: auto | on | off
   std::string csv, plot, c_dir;
   std::vector<std::string> plot_columns, sets;
   std::vector<std::string> initial;  ///< --initial NAME=VALUE (coordinates, NAME_dot rates)
