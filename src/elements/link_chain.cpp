@@ -73,15 +73,16 @@ int along(const Vec3& k, size_t axis) {
 
 Frame child_frame(const Frame& p, const JointSpec& j, const Vec3& k, const GiNaC::ex& q,
                   const GiNaC::ex& qd) {
-  const bool plain = j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
+  const bool plain = !j.rotation && j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
+  const Mat3 fixed = plain ? kIdentity : (j.rotation ? *j.rotation : rpy_rotation(j.rpy));
   Frame f;
-  f.w = plain ? p.w : transpose_times(rpy_rotation(j.rpy), p.w);
+  f.w = plain ? p.w : transpose_times(fixed, p.w);
   if (j.type == JointSpec::Type::Revolute) {
     f.w = transpose_times(axis_angle_rotation(k, q), f.w);
     for (size_t i = 0; i < 3; ++i) f.w[i] += k[i] * qd;
   }
   f.r = add(p.r, p.identity ? j.xyz : mat_vec(p.R, j.xyz));
-  f.R = plain ? p.R : mat_mul(p.R, rpy_rotation(j.rpy));
+  f.R = plain ? p.R : mat_mul(p.R, fixed);
   if (plain) {
     f.identity = p.identity;
     f.spin_axis = p.spin_axis;
