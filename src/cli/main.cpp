@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "cli/version.hpp"
 #include "lagrange/error.hpp"
+#include "lagrange/integrator.hpp"
 
 namespace {
 std::atomic<bool> g_interrupt{false};
@@ -52,11 +53,12 @@ int main(int argc, char** argv) {
   sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
       ->delimiter(',');
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
-  sim->add_option("--integrator", opt.integrator, "arkode | cvode | rk4 | ida")
-      ->check(CLI::IsMember({"arkode", "cvode", "rk4", "ida"}));
+  sim->add_option("--integrator", opt.integrator,
+                  "arkode (default table per tolerance), arkode:<table>, cvode, rk4, midpoint, ida")
+      ->check(CLI::IsMember(lagrange::integrator_methods()));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");
-  sim->add_option("--step", opt.step, "fixed step of rk4");
+  sim->add_option("--step", opt.step, "fixed step of rk4 and midpoint");
   sim->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -47,19 +48,22 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
                           std::vector<double> y0, double t_end, double dt,
                           const Observer& observer) {
   const std::string& method = options.method;
-  if (method != "arkode" && method != "cvode" && method != "rk4") {
+  const std::vector<std::string>& known = integrator_methods();
+  if (method == "ida" || std::find(known.begin(), known.end(), method) == known.end()) {
     throw std::invalid_argument(
-        fmt::format("integrator: unknown ODE method '{}', expected one of arkode, cvode, rk4{}",
-                    method, method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
+        fmt::format("integrator: unknown ODE method '{}', expected one of {}{}", method,
+                    integrator_method_list(),
+                    method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
   }
   validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
   const integration::OutputGrid grid(t0, t_end, dt);
-  if (method == "arkode")
-    return integration::integrate_arkode(problem, options, grid, y0, observer);
   if (method == "cvode") return integration::integrate_cvode(problem, options, grid, y0, observer);
-  return integration::integrate_rk4(problem, options, grid, y0, observer);
+  if (method == "rk4") return integration::integrate_rk4(problem, options, grid, y0, observer);
+  if (method == "midpoint")
+    return integration::integrate_midpoint(problem, options, grid, y0, observer);
+  return integration::integrate_arkode(problem, options, grid, y0, observer);
 }
 
 IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
@@ -69,6 +73,8 @@ IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions
     throw std::invalid_argument(
         fmt::format("integrator: unknown DAE method '{}', expected ida", options.method));
   }
+  if (options.after_step)
+    throw std::invalid_argument("integrator: ida takes no step hook (it restarts at samples)");
   validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   validate_size(problem.size, yp0.size(), "yp0");

@@ -1,5 +1,9 @@
 #pragma once
-// The observer loop shared by every method: sample t0, then advance to each t_k and sample it.
+// The observer loops: walk_grid (sample t0, then advance to each t_k and sample it; IDA) and
+// walk_dense (step freely and sample the dense output between steps; ARKODE, CVODE, fixed-step).
+
+#include <algorithm>
+#include <vector>
 
 #include "integrate/output_grid.hpp"
 #include "lagrange/integrator.hpp"
@@ -17,6 +21,51 @@ void walk_grid(const OutputGrid& grid, const Observer& observer, double* y, doub
     const ObserverAction action = observer ? observer(t, y, yp) : ObserverAction::Continue;
     if (action == ObserverAction::Stop || k == grid.intervals()) return;
     if (action == ObserverAction::StateChanged) restart(t);
+  }
+}
+
+/// Walks the grid with dense output: observe t0; then repeatedly step(t_next) (one internal step
+/// of y toward the next sample t_next, returning the time reached; the last one lands exactly on t_end), observe every sample t_k up
+/// to that time from interpolate(t_k, out) (y itself at the step's end), then offer y to
+/// `after_step`. A sample's StateChanged discards the rest of the step: y becomes the observed
+/// state and restart(t_k, false) starts afresh from it; a hook that changed y calls
+/// restart(t, true) (a small correction: the method may keep its step size). Stop ends the walk.
+template <class Step, class Interpolate, class Restart>
+void walk_dense(const OutputGrid& grid, const Observer& observer, const StepHook& after_step,
+                std::vector<double>& y, Step&& step, Interpolate&& interpolate,
+                Restart&& restart) {
+  std::vector<double> sample = y;
+  const auto observe = [&](double t) {
+    return observer ? observer(t, sample.data(), nullptr) : ObserverAction::Continue;
+  };
+  const size_t last = grid.intervals();
+  ObserverAction action = observe(grid.time(0));
+  if (action == ObserverAction::Stop || last == 0) return;
+  if (action == ObserverAction::StateChanged) {
+    y = sample;
+    restart(grid.time(0), false);
+  }
+  for (size_t k = 1;;) {
+    const double t = step(grid.time(k));
+    bool restarted = false;
+    while (k <= last && grid.time(k) <= t) {
+      const double t_k = grid.time(k);
+      if (t_k == t) {
+        sample = y;
+      } else {
+        interpolate(t_k, sample.data());
+      }
+      action = observe(t_k);
+      if (action == ObserverAction::Stop || k == last) return;
+      ++k;
+      if (action == ObserverAction::StateChanged) {
+        y = sample;
+        restart(t_k, false);
+        restarted = true;
+        break;
+      }
+    }
+    if (!restarted && after_step && after_step(t, y.data())) restart(t, true);
   }
 }
 
