@@ -48,6 +48,7 @@ struct IntegratorStats {
   long steps = 0;
   long rhs_evals = 0;
   long failed_steps = 0;
+  std::string method;  ///< what ran: plain `arkode` names its table, e.g. arkode:dormand-prince
 };
 
 /// What the observer wants after seeing an output sample.

@@ -147,7 +147,7 @@ int run_simulate(const Options& opt) {
         "  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, "
         "{})\n",
         p.derive_seconds, p.compile_seconds, t_sim, traj.stats.steps, traj.stats.rhs_evals,
-        so.integrator.method);
+        traj.stats.method.empty() ? so.integrator.method : traj.stats.method);
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
       fmt::print(

@@ -5,6 +5,7 @@
 
 #include "integrate/callbacks.hpp"
 #include "integrate/erk_tables.hpp"
+#include "integrate/hermite_dense.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 #include "integrate/sundials_handles.hpp"
@@ -22,7 +23,7 @@ IntegratorStats erk_stats(void* mem, double t, ErrorLog& log) {
         &log);
   check(ERKStepGetNumErrTestFails(mem, &failed), "ERKStepGetNumErrTestFails",
         ERKStepGetReturnFlagName, t, &log);
-  return {steps, evals, failed};
+  return {steps, evals, failed, {}};
 }
 
 /// Hands ARKODE its table `id`. SUNDIALS 6.4's ERKStep reuses the last stage's f as the next
@@ -93,27 +94,39 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
   ok(ERKStepSStolerances(mem.get(), options.rtol, options.atol), "ERKStepSStolerances", t0);
   if (options.step > 0.0)  // fixed step, no error control (order studies, fixed-cost runs)
     ok(ERKStepSetFixedStep(mem.get(), options.step), "ERKStepSetFixedStep", t0);
-  // Cubic Hermite dense output: from y and f at both ends of the step, no further evaluations
-  // (ARKODE's degree 4 and 5 evaluate the right-hand side at every sample).
-  ok(ERKStepSetInterpolantType(mem.get(), ARK_INTERP_LAGRANGE), "ERKStepSetInterpolantType", t0);
-  ok(ERKStepSetInterpolantDegree(mem.get(), 5), "ERKStepSetInterpolantDegree", t0);
+  // ARKODE's cubic Hermite interpolant gives y and f exactly at the ends of the last step; the
+  // samples come from the quintic through the last three step ends (hermite_dense.hpp).
+  ok(ERKStepSetInterpolantType(mem.get(), ARK_INTERP_HERMITE), "ERKStepSetInterpolantType", t0);
+  ok(ERKStepSetInterpolantDegree(mem.get(), 3), "ERKStepSetInterpolantDegree", t0);
   // Samples come from the interpolant, so the steps need not stop at them; only t_end is a stop.
   ok(ERKStepSetStopTime(mem.get(), t_end), "ERKStepSetStopTime", t0);
 
   IntegratorStats before_restart;
   StepBudget budget(options.max_steps);
+  HermiteDense dense(y.size());
   double t_reached = t0;
+  const auto node = [&](double t, int derivative) {
+    ok(ERKStepGetDky(mem.get(), t, derivative, sample_vec.get()), "ERKStepGetDky", t);
+    return sample.data();
+  };
+  std::vector<double> y_start(y.size());
   const auto step = [&](double t_next) {
     budget.spend(t_next, t_reached, "ERKStepEvolve", "ARK_TOO_MUCH_WORK");
+    const double t_start = t_reached;
     const int flag = ERKStepEvolve(mem.get(), t_end, y_vec.get(), &t_reached, ARK_ONE_STEP);
     callback.guard.rethrow_pending();
     ok(flag, "ERKStepEvolve", t_reached);
+    if (dense.newest() != t_start) {  // the first step since a (re)start: its start is a node
+      dense.clear();
+      y_start.assign(sample.size(), 0.0);
+      const double* start = node(t_start, 0);
+      std::copy(start, start + sample.size(), y_start.begin());
+      dense.push(t_start, y_start.data(), node(t_start, 1));
+    }
+    dense.push(t_reached, y.data(), node(t_reached, 1));
     return t_reached;
   };
-  const auto interpolate = [&](double t, double* out) {
-    ok(ERKStepGetDky(mem.get(), t, 0, sample_vec.get()), "ERKStepGetDky", t);
-    std::copy(sample.begin(), sample.end(), out);
-  };
+  const auto interpolate = [&](double t, double* out) { dense.evaluate(t, out); };
   // A correction after a step: ERKStepReset keeps the step size and the counters. A new state
   // from the observer: ERKStepReInit, as a fresh run from there would start.
   const auto restart = [&](double t, bool keep_step) {

@@ -25,7 +25,7 @@ IntegratorStats cvode_stats(void* mem, double t, ErrorLog& log) {
   ok(CVodeGetNumLinRhsEvals(mem, &jac_evals), "CVodeGetNumLinRhsEvals");
   ok(CVodeGetNumErrTestFails(mem, &err_fails), "CVodeGetNumErrTestFails");
   ok(CVodeGetNumStepSolveFails(mem, &solve_fails), "CVodeGetNumStepSolveFails");
-  return {steps, evals + jac_evals, err_fails + solve_fails};
+  return {steps, evals + jac_evals, err_fails + solve_fails, {}};
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrate/erk_tables.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/output_grid.hpp"
 
@@ -59,11 +60,20 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
   validate_size(problem.size, y0.size(), "y0");
   if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
   const integration::OutputGrid grid(t0, t_end, dt);
-  if (method == "cvode") return integration::integrate_cvode(problem, options, grid, y0, observer);
-  if (method == "rk4") return integration::integrate_rk4(problem, options, grid, y0, observer);
-  if (method == "midpoint")
-    return integration::integrate_midpoint(problem, options, grid, y0, observer);
-  return integration::integrate_arkode(problem, options, grid, y0, observer);
+  IntegratorStats stats;
+  if (method == "cvode") {
+    stats = integration::integrate_cvode(problem, options, grid, y0, observer);
+  } else if (method == "rk4") {
+    stats = integration::integrate_rk4(problem, options, grid, y0, observer);
+  } else if (method == "midpoint") {
+    stats = integration::integrate_midpoint(problem, options, grid, y0, observer);
+  } else {
+    stats = integration::integrate_arkode(problem, options, grid, y0, observer);
+  }
+  stats.method = method == "arkode"
+                     ? std::string("arkode:") + integration::default_erk_table(options.rtol).name
+                     : method;
+  return stats;
 }
 
 IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
@@ -81,7 +91,9 @@ IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions
   validate_size(problem.size, problem.differential.size(), "differential");
   if (!problem.residual) throw std::invalid_argument("integrator: the DAE has no residual");
   const integration::OutputGrid grid(t0, t_end, dt);
-  return integration::integrate_ida(problem, options, grid, y0, yp0, observer);
+  IntegratorStats stats = integration::integrate_ida(problem, options, grid, y0, yp0, observer);
+  stats.method = "ida";
+  return stats;
 }
 
 }  // namespace lagrange

@@ -71,7 +71,8 @@ void walk_dense(const OutputGrid& grid, const Observer& observer, const StepHook
 
 /// Component-wise sum, used to carry counters across integrator re-initialisations.
 inline IntegratorStats operator+(const IntegratorStats& a, const IntegratorStats& b) {
-  return {a.steps + b.steps, a.rhs_evals + b.rhs_evals, a.failed_steps + b.failed_steps};
+  return {a.steps + b.steps, a.rhs_evals + b.rhs_evals, a.failed_steps + b.failed_steps,
+          b.method.empty() ? a.method : b.method};
 }
 
 }  // namespace lagrange::integration

@@ -53,7 +53,7 @@ TEST(IntegratorOption, AnUnknownNameExitsTwoListingTheValidOnes) {
 TEST(IntegratorOption, AnUnknownNameInTheModelFileIsAModelError) {
   const fs::path model = fs::temp_directory_path() / "lagrange_integrator_option.yaml";
   std::ofstream(model) << "name: p\nparameters: {g: 9.81}\ncoordinates:\n  x: {initial: 1}\n"
-                          "kinetic: x_dot^2/2\npotential: g*x^2/2\n"
+                          "kinetic: der(x)^2/2\npotential: g*x^2/2\n"
                           "simulate: {integrator: arkode:rk45}\n";
   const Result r = run("simulate " + model.string());
   EXPECT_EQ(r.code, 1) << r.output;
