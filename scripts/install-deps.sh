@@ -10,6 +10,8 @@ packages=(
   gnuplot-nox python3 python3-sympy
 )
 if [ "${LAGRANGE_FUZZ:-0}" = 1 ]; then packages+=(clang libclang-rt-14-dev); fi
+# The benchmarks' peers (bench/work_precision.py): SciPy's solve_ivp, Debian's build.
+if [ "${LAGRANGE_BENCH:-0}" = 1 ]; then packages+=(python3-numpy python3-scipy); fi
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)

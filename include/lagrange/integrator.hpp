@@ -56,19 +56,21 @@ enum class ObserverAction { Continue, StateChanged, Stop };
 
 /// Called at t0, t0 + dt, …, t_end with the state; it may modify y (return StateChanged so the
 /// integrator restarts from it) or stop the run (Stop). For DAEs `yp` is the derivative, else null.
-/// ARKODE and CVODE step freely and hand the observer their dense-output interpolant at each sample;
-/// changes to y there only take effect with StateChanged (the step past the sample is discarded).
+/// ARKODE and CVODE step freely and hand the observer their dense-output interpolant at each
+/// sample; changes to y there only take effect with StateChanged (the step past the sample is
+/// discarded).
 using Observer = std::function<ObserverAction(double t, double* y, double* yp)>;
 
 /// Integrate an ODE on the uniform grid t0 + k·dt (last sample exactly t_end).
 /// Throws SimulationError (with t) when the integrator fails, naming the SUNDIALS call and flag.
 IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& options, double t0,
-                          std::vector<double> y0, double t_end, double dt, const Observer& observer);
+                          std::vector<double> y0, double t_end, double dt,
+                          const Observer& observer);
 
 /// Integrate a DAE with IDA; y0/yp0 must be consistent (or nearly: IDACalcIC corrects y' of
 /// the algebraic part). Same grid and observer contract as `integrate`.
-IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options, double t0,
-                              std::vector<double> y0, std::vector<double> yp0, double t_end,
-                              double dt, const Observer& observer);
+IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
+                              double t0, std::vector<double> y0, std::vector<double> yp0,
+                              double t_end, double dt, const Observer& observer);
 
 }  // namespace lagrange

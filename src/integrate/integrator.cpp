@@ -51,10 +51,9 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
   const std::string& method = options.method;
   const std::vector<std::string>& known = integrator_methods();
   if (method == "ida" || std::find(known.begin(), known.end(), method) == known.end()) {
-    throw std::invalid_argument(
-        fmt::format("integrator: unknown ODE method '{}', expected one of {}{}", method,
-                    integrator_method_list(),
-                    method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
+    throw std::invalid_argument(fmt::format(
+        "integrator: unknown ODE method '{}', expected one of {}{}", method,
+        integrator_method_list(), method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
   }
   validate_options(options);
   validate_size(problem.size, y0.size(), "y0");

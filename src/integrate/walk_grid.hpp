@@ -25,15 +25,15 @@ void walk_grid(const OutputGrid& grid, const Observer& observer, double* y, doub
 }
 
 /// Walks the grid with dense output: observe t0; then repeatedly step(t_next) (one internal step
-/// of y toward the next sample t_next, returning the time reached; the last one lands exactly on t_end), observe every sample t_k up
-/// to that time from interpolate(t_k, out) (y itself at the step's end), then offer y to
-/// `after_step`. A sample's StateChanged discards the rest of the step: y becomes the observed
-/// state and restart(t_k, false) starts afresh from it; a hook that changed y calls
-/// restart(t, true) (a small correction: the method may keep its step size). Stop ends the walk.
+/// of y toward the next sample t_next, returning the time reached; the last one lands exactly on
+/// t_end), observe every sample t_k up to that time from interpolate(t_k, out) (y itself at the
+/// step's end), then offer y to `after_step`. A sample's StateChanged discards the rest of the
+/// step: y becomes the observed state and restart(t_k, false) starts afresh from it; a hook that
+/// changed y calls restart(t, true) (a small correction: the method may keep its step size). Stop
+/// ends the walk.
 template <class Step, class Interpolate, class Restart>
 void walk_dense(const OutputGrid& grid, const Observer& observer, const StepHook& after_step,
-                std::vector<double>& y, Step&& step, Interpolate&& interpolate,
-                Restart&& restart) {
+                std::vector<double>& y, Step&& step, Interpolate&& interpolate, Restart&& restart) {
   std::vector<double> sample = y;
   const auto observe = [&](double t) {
     return observer ? observer(t, sample.data(), nullptr) : ObserverAction::Continue;

@@ -249,8 +249,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         last.reported = false;
         last.record(t, yy, yy + nq, ypp + nq);
       };
-      traj.stats = integrate_dae(problem, integrator, opt.t0, y, yp, opt.t_end, opt.output_step,
-                                 observer);
+      traj.stats =
+          integrate_dae(problem, integrator, opt.t0, y, yp, opt.t_end, opt.output_step, observer);
     } else {
       std::vector<double> y(n);
       std::copy(q0.begin(), q0.end(), y.begin());

@@ -24,9 +24,10 @@ struct DoublePendulum {
               ydot[2] = (p.m2 * p.l1 * w1 * w1 * s * c + p.m2 * p.g * std::sin(y[1]) * c +
                          p.m2 * p.l2 * w2 * w2 * s - M * p.g * std::sin(y[0])) /
                         den1;
-              ydot[3] = (-p.m2 * p.l2 * w2 * w2 * s * c +
-                         M * (p.g * std::sin(y[0]) * c - p.l1 * w1 * w1 * s - p.g * std::sin(y[1]))) /
-                        den2;
+              ydot[3] =
+                  (-p.m2 * p.l2 * w2 * w2 * s * c +
+                   M * (p.g * std::sin(y[0]) * c - p.l1 * w1 * w1 * s - p.g * std::sin(y[1]))) /
+                  den2;
             }};
   }
   /// T + U at y.

@@ -22,11 +22,11 @@ std::vector<double> samples(const IntegratorOptions& options, double t_end, doub
                             IntegratorStats* stats = nullptr) {
   const Oscillator osc;
   std::vector<double> out;
-  const IntegratorStats s =
-      integrate(osc.problem(), options, 0.0, {1.0, 0.0}, t_end, dt, [&](double, double* y, double*) {
-        out.insert(out.end(), {y[0], y[1]});
-        return ObserverAction::Continue;
-      });
+  const IntegratorStats s = integrate(osc.problem(), options, 0.0, {1.0, 0.0}, t_end, dt,
+                                      [&](double, double* y, double*) {
+                                        out.insert(out.end(), {y[0], y[1]});
+                                        return ObserverAction::Continue;
+                                      });
   if (stats) *stats = s;
   return out;
 }
@@ -58,8 +58,8 @@ TEST_P(DenseOutput, InterpolatedSamplesMatchRunsThatStopThere) {
     const double t = static_cast<double>(k) * dt;
     const std::vector<double> stopped = samples(options, t, t);  // one interval: t is a stop
     ASSERT_EQ(stopped.size(), 4u);
-    worst = std::max({worst, std::abs(dense[2 * k] - stopped[2]),
-                      std::abs(dense[2 * k + 1] - stopped[3])});
+    worst = std::max(
+        {worst, std::abs(dense[2 * k] - stopped[2]), std::abs(dense[2 * k + 1] - stopped[3])});
     EXPECT_NEAR(dense[2 * k], osc.x(t, 0.0, 1.0, 0.0), 1e-8) << "t = " << t;
   }
   EXPECT_LT(worst, 1e-9);
@@ -91,12 +91,11 @@ TEST(StepHook, ChangesMadeAfterAStepAreWhereTheRunContinues) {
       return true;
     };
     double x_end = 0.0;
-    const IntegratorStats stats =
-        integrate(osc.problem(), options, 0.0, {1.0, 0.0}, 2.0, 0.5,
-                  [&](double t, double* y, double*) {
-                    if (t == 2.0) x_end = y[0];
-                    return ObserverAction::Continue;
-                  });
+    const IntegratorStats stats = integrate(osc.problem(), options, 0.0, {1.0, 0.0}, 2.0, 0.5,
+                                            [&](double t, double* y, double*) {
+                                              if (t == 2.0) x_end = y[0];
+                                              return ObserverAction::Continue;
+                                            });
     EXPECT_GE(calls, stats.steps - 1) << method;
     ASSERT_GE(t_changed, 1.0) << method;
     EXPECT_NEAR(x_end, osc.x(2.0, t_changed, 0.0, v_changed), 1e-6) << method;

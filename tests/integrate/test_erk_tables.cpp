@@ -24,10 +24,10 @@ struct Table {
 };
 
 const Table kTables[] = {
-    {"arkode:heun-euler", 2, 0.005},     {"arkode:bogacki-shampine", 3, 0.005},
-    {"arkode:zonneveld", 4, 0.01},       {"arkode:sayfy-aburub", 4, 0.01},
-    {"arkode:cash-karp", 5, 0.02},       {"arkode:fehlberg", 5, 0.02},
-    {"arkode:dormand-prince", 5, 0.02},  {"arkode:verner65", 6, 0.03},
+    {"arkode:heun-euler", 2, 0.005},    {"arkode:bogacki-shampine", 3, 0.005},
+    {"arkode:zonneveld", 4, 0.01},      {"arkode:sayfy-aburub", 4, 0.01},
+    {"arkode:cash-karp", 5, 0.02},      {"arkode:fehlberg", 5, 0.02},
+    {"arkode:dormand-prince", 5, 0.02}, {"arkode:verner65", 6, 0.03},
 };
 
 /// |x − x_exact| + |v − v_exact| at t = 2 for the oscillator from (1, 0) at fixed step h.

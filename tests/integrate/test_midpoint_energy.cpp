@@ -29,7 +29,7 @@ constexpr double kSteps = 1e6;
 
 /// Largest |E − E0| in each hundredth of [0, t_end] (2000 samples).
 std::vector<double> energy_error_by_hundredth(const IntegratorOptions& options, double t_end,
-                                          IntegratorStats* stats) {
+                                              IntegratorStats* stats) {
   const DoublePendulum pendulum;
   const std::vector<double> y0{1.2, 0.4, 0.0, 0.0};
   const double e0 = pendulum.energy(y0.data());
