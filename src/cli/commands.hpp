@@ -21,8 +21,11 @@ struct Options {
   std::string form = "lagrange";  ///< derive: lagrange | manipulator
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
+  std::string compile = "auto";  ///< simulate --compile: auto | on | off
   std::string csv, plot, c_dir;
   std::vector<std::string> plot_columns, sets;
+  std::vector<std::string> initial;  ///< --initial NAME=VALUE (coordinates, NAME_dot rates)
+  std::vector<std::string> tau;      ///< eval --tau NAME=VALUE (joint forces)
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;
@@ -33,5 +36,7 @@ int run_derive(const Options& opt);
 int run_simulate(const Options& opt);
 int run_export(const Options& opt);
 int run_check(const Options& opt);
+/// M, bias forces, accelerations and inverse dynamics at the state of --state (src/cli/eval.cpp).
+int run_eval(const Options& opt);
 
 }  // namespace lagrange::cli

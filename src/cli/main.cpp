@@ -1,4 +1,4 @@
-// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check.
+// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
@@ -53,22 +53,49 @@ int main(int argc, char** argv) {
   sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
       ->delimiter(',');
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  sim->add_option("--initial", opt.initial,
+                  "initial value of a coordinate or a rate NAME_dot, NAME=VALUE (repeatable, or "
+                  "comma-separated)")
+      ->delimiter(',');
   sim->add_option("--integrator", opt.integrator,
                   "arkode (default table per tolerance), arkode:<table>, cvode, rk4, midpoint, ida")
       ->check(CLI::IsMember(lagrange::integrator_methods()));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");
   sim->add_option("--step", opt.step, "fixed step of rk4 and midpoint");
+  sim->add_option("--compile", opt.compile,
+                  "auto (default): machine code from the cache, or compiled in the background "
+                  "for large models | on: compile before the run | off: interpreter only")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   sim->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");
   exp->add_option("model", opt.model, "model file (YAML)")->required();
   exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->required();
+  exp->add_option("--form", opt.form,
+                  "lagrange (default): forward dynamics | manipulator: D, C q_dot, g, inverse "
+                  "and forward dynamics")
+      ->check(CLI::IsMember({"lagrange", "manipulator"}));
 
   auto* check =
       app.add_subcommand("check", "validate the model and the consistency of its initial state");
   check->add_option("model", opt.model, "model file (YAML)")->required();
   check->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  check->add_option("--initial", opt.initial, "initial value NAME=VALUE, as for simulate")
+      ->delimiter(',');
+
+  auto* eval = app.add_subcommand(
+      "eval", "print M, the bias forces, the accelerations and inverse dynamics at one state");
+  eval->add_option("model", opt.model, "model file (YAML or URDF)")->required();
+  eval->add_option("--state", opt.initial,
+                   "coordinate or rate NAME_dot, NAME=VALUE (comma-separated; others keep the "
+                   "model's initial values)")
+      ->delimiter(',');
+  eval->add_option("--tau", opt.tau,
+                   "joint forces NAME=VALUE replacing the model's (manipulators; others 0)")
+      ->delimiter(',');
+  eval->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  eval->add_option("--format", opt.format, "text | json")->check(CLI::IsMember({"text", "json"}));
 
   try {
     app.parse(argc, argv);
@@ -84,6 +111,7 @@ int main(int argc, char** argv) {
     if (*sim) return run_simulate(opt);
     if (*exp) return run_export(opt);
     if (*check) return run_check(opt);
+    if (*eval) return run_eval(opt);
   } catch (const lagrange::ModelError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return 1;
