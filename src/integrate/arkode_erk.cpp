@@ -139,7 +139,7 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
     }
     ok(ERKStepSetStopTime(mem.get(), t_end), "ERKStepSetStopTime", t);  // both forget it
   };
-  walk_dense(grid, observer, options.after_step, y, step, interpolate, restart);
+  walk_dense(grid, observer, options.after_step, false, y, step, interpolate, restart);
   return before_restart + erk_stats(mem.get(), t_reached, log);
 }
 

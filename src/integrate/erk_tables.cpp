@@ -31,7 +31,7 @@ const ErkTable* find_erk_table(const std::string& name) {
 }
 
 const ErkTable& default_erk_table(double rtol) {
-  return rtol >= 1e-7 ? *find_erk_table("dormand-prince") : *find_erk_table("verner65");
+  return rtol >= 1e-5 ? *find_erk_table("dormand-prince") : *find_erk_table("verner65");
 }
 
 }  // namespace lagrange::integration

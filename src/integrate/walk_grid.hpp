@@ -27,13 +27,15 @@ void walk_grid(const OutputGrid& grid, const Observer& observer, double* y, doub
 /// Walks the grid with dense output: observe t0; then repeatedly step(t_next) (one internal step
 /// of y toward the next sample t_next, returning the time reached; the last one lands exactly on
 /// t_end), observe every sample t_k up to that time from interpolate(t_k, out) (y itself at the
-/// step's end), then offer y to `after_step`. A sample's StateChanged discards the rest of the
-/// step: y becomes the observed state and restart(t_k, false) starts afresh from it; a hook that
-/// changed y calls restart(t, true) (a small correction: the method may keep its step size). Stop
-/// ends the walk.
+/// step's end), then offer y to `after_step` (after every step, or with `hook_at_samples_only`
+/// only after steps that reached a sample: for methods whose restart is expensive). A sample's
+/// StateChanged discards the rest of the step: y becomes the observed state and
+/// restart(t_k, false) starts afresh from it; a hook that changed y calls restart(t, true) (a
+/// small correction: the method may keep its step size). Stop ends the walk.
 template <class Step, class Interpolate, class Restart>
 void walk_dense(const OutputGrid& grid, const Observer& observer, const StepHook& after_step,
-                std::vector<double>& y, Step&& step, Interpolate&& interpolate, Restart&& restart) {
+                bool hook_at_samples_only, std::vector<double>& y, Step&& step,
+                Interpolate&& interpolate, Restart&& restart) {
   std::vector<double> sample = y;
   const auto observe = [&](double t) {
     return observer ? observer(t, sample.data(), nullptr) : ObserverAction::Continue;
@@ -47,6 +49,7 @@ void walk_dense(const OutputGrid& grid, const Observer& observer, const StepHook
   }
   for (size_t k = 1;;) {
     const double t = step(grid.time(k));
+    const size_t k_before = k;
     bool restarted = false;
     while (k <= last && grid.time(k) <= t) {
       const double t_k = grid.time(k);
@@ -65,7 +68,8 @@ void walk_dense(const OutputGrid& grid, const Observer& observer, const StepHook
         break;
       }
     }
-    if (!restarted && after_step && after_step(t, y.data())) restart(t, true);
+    const bool hook = after_step && (!hook_at_samples_only || k != k_before);
+    if (!restarted && hook && after_step(t, y.data())) restart(t, true);
   }
 }
 

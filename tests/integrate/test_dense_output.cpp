@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "integrate/oscillator.hpp"
@@ -70,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(Methods, DenseOutput,
                          ::testing::Values("arkode", "arkode:dormand-prince", "arkode:verner65",
                                            "cvode"));
 
-// The step hook sees the internal steps in order; a change it makes is where the run continues:
+// The step hook sees the internal steps in order (CVODE: those that reach a sample); a change it makes is where the run continues:
 // here x is set to 0 after the first step past t = 1, and the end state must be the closed form
 // restarted from there.
 TEST(StepHook, ChangesMadeAfterAStepAreWhereTheRunContinues) {
@@ -96,7 +97,8 @@ TEST(StepHook, ChangesMadeAfterAStepAreWhereTheRunContinues) {
                                               if (t == 2.0) x_end = y[0];
                                               return ObserverAction::Continue;
                                             });
-    EXPECT_GE(calls, stats.steps - 1) << method;
+    // CVODE offers only the first step past each sample (its restart is costly), the others all.
+    EXPECT_GE(calls, std::string(method) == "cvode" ? 4 : stats.steps - 1) << method;
     ASSERT_GE(t_changed, 1.0) << method;
     EXPECT_NEAR(x_end, osc.x(2.0, t_changed, 0.0, v_changed), 1e-6) << method;
   }
