@@ -71,9 +71,9 @@ INSTANTIATE_TEST_SUITE_P(Methods, DenseOutput,
                          ::testing::Values("arkode", "arkode:dormand-prince", "arkode:verner65",
                                            "cvode"));
 
-// The step hook sees the internal steps in order (CVODE: those that reach a sample); a change it makes is where the run continues:
-// here x is set to 0 after the first step past t = 1, and the end state must be the closed form
-// restarted from there.
+// The step hook sees the internal steps in order (CVODE: those that reach a sample); a change it
+// makes is where the run continues: here x is set to 0 after the first step past t = 1, and the end
+// state must be the closed form restarted from there.
 TEST(StepHook, ChangesMadeAfterAStepAreWhereTheRunContinues) {
   const Oscillator osc;
   for (const char* method : {"arkode", "cvode", "rk4", "midpoint"}) {
