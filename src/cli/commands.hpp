@@ -22,6 +22,8 @@ struct Options {
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
   std::string csv, plot, c_dir;
+  std::string report;      ///< simulate --report, report -o: the HTML report to write
+  std::string trajectory;  ///< report: the saved trajectory CSV
   std::vector<std::string> plot_columns, sets;
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
@@ -33,5 +35,6 @@ int run_derive(const Options& opt);
 int run_simulate(const Options& opt);
 int run_export(const Options& opt);
 int run_check(const Options& opt);
+int run_report(const Options& opt);
 
 }  // namespace lagrange::cli
