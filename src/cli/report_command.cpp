@@ -13,7 +13,8 @@ namespace lagrange::cli {
 
 void check_report(const std::string& path, const Model& model) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext != ".html" && ext != ".htm")
     throw UsageError(fmt::format("--report {}: expected a file name ending in .html", path));
   io::read_visual(model);
@@ -47,7 +48,8 @@ int run_report(const Options& opt) {
       throw UsageError(fmt::format("{}: {}", opt.trajectory, e.what()));
     throw;
   }
-  if (!opt.quiet) fmt::print("wrote {} ({} samples of {})\n", opt.report, traj.rows(), p.model->name);
+  if (!opt.quiet)
+    fmt::print("wrote {} ({} samples of {})\n", opt.report, traj.rows(), p.model->name);
   return 0;
 }
 

@@ -42,7 +42,8 @@ nlohmann::json plot_series(const CompiledModel& cm, const Trajectory& traj,
   const size_t nc = traj.columns.size();
   const std::vector<size_t> rows = io::sample_rows(
       traj.rows(),
-      std::min(limits.max_plot_rows, std::max<size_t>(2, limits.max_plot_numbers / std::max<size_t>(nc, 1))));
+      std::min(limits.max_plot_rows,
+               std::max<size_t>(2, limits.max_plot_numbers / std::max<size_t>(nc, 1))));
   nlohmann::json series = nlohmann::json::array();
   std::vector<double> t;
   for (size_t r : rows) t.push_back(traj.data[r * nc]);

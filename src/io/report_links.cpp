@@ -38,9 +38,9 @@ double round_decimals(double x, int decimals) {
   return decimals >= 0 ? std::round(x * scale) / scale : std::round(x / scale) * scale;
 }
 
-std::vector<std::pair<size_t, size_t>> rigid_links(const Frames& pos, double extent,
-                                                   const std::vector<std::pair<size_t, size_t>>& exclude,
-                                                   size_t max_links) {
+std::vector<std::pair<size_t, size_t>> rigid_links(
+    const Frames& pos, double extent, const std::vector<std::pair<size_t, size_t>>& exclude,
+    size_t max_links) {
   if (pos.empty()) return {};
   const size_t n = pos[0].size();
   const double still = 1e-6 * extent;

@@ -3,6 +3,8 @@
 // its declared shape or its inertia), springs and dampers, and rigid links found from the motion.
 // Elements appear through the points and bodies they lower into; none is named here.
 
+#include "io/report_scene.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
@@ -11,7 +13,6 @@
 #include <set>
 #include <stdexcept>
 
-#include "io/report_scene.hpp"
 #include "io/report_visual.hpp"
 
 namespace lagrange::io {
@@ -58,9 +59,8 @@ class RowEvaluator {
   static size_t column(const Trajectory& traj, const std::string& name) {
     const auto it = std::find(traj.columns.begin(), traj.columns.end(), name);
     if (it == traj.columns.end())
-      throw std::runtime_error(
-          fmt::format("the trajectory has no column '{}' of the model (a CSV of another model?)",
-                      name));
+      throw std::runtime_error(fmt::format(
+          "the trajectory has no column '{}' of the model (a CSV of another model?)", name));
     return static_cast<size_t>(it - traj.columns.begin());
   }
   const CompiledModel& cm_;
@@ -110,7 +110,8 @@ BodyShape shape_from_inertia(const std::string& declared, double mass, const Eig
   Eigen::Vector3d m = eig.eigenvalues();
   s.axes = eig.eigenvectors();
   if (s.axes.determinant() < 0) s.axes.col(2) *= -1;
-  if (declared == "cylinder" || declared == "sphere") s.axes = Eigen::Matrix3d::Identity(), m = I.diagonal();
+  if (declared == "cylinder" || declared == "sphere")
+    s.axes = Eigen::Matrix3d::Identity(), m = I.diagonal();
   auto root = [](double x) { return x > 0 && std::isfinite(x) ? std::sqrt(x) : 0.0; };
   if (mass > 0 && declared == "sphere") {
     const double r = root(2.5 * m[0] / mass);
@@ -178,11 +179,13 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   const size_t np = points.size(), nb = bodies.size();
   const size_t per_frame = std::max<size_t>(1, 3 * np + 12 * nb);
   const std::vector<size_t> rows = sample_rows(
-      traj.rows(), std::min(limits.max_frames, std::max<size_t>(2, limits.max_scene_numbers / per_frame)));
+      traj.rows(),
+      std::min(limits.max_frames, std::max<size_t>(2, limits.max_scene_numbers / per_frame)));
   const size_t nf = rows.size();
   if (nf == 0) throw std::runtime_error("the trajectory has no samples to show");
   std::vector<std::vector<P3>> pos(nf, std::vector<P3>(np));
-  std::vector<std::vector<std::array<double, 12>>> pose(nf, std::vector<std::array<double, 12>>(nb));
+  std::vector<std::vector<std::array<double, 12>>> pose(nf,
+                                                        std::vector<std::array<double, 12>>(nb));
   std::vector<P3> ground(np);
   std::vector<double> statics;
   for (size_t f = 0; f < nf; ++f) {
@@ -290,8 +293,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     jpoints.push_back(p);
   }
   for (size_t a = 0; a < anchors.size(); ++a)
-    jpoints.push_back({{"name", "ground"}, {"kind", used[np + a] ? "anchor" : "unused"},
-                       {"radius", 0.5 * base}});
+    jpoints.push_back(
+        {{"name", "ground"}, {"kind", used[np + a] ? "anchor" : "unused"}, {"radius", 0.5 * base}});
 
   // Trails: as the visual section says, or the moving particle that travels furthest when there
   // are few of them.
@@ -305,7 +308,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     for (size_t i = 0; i < np; ++i)
       if (particle_mass.count(points[i]->name) && travelled[i] > 1e-3 * extent) {
         ++count;
-        if (best < 0 || travelled[i] > travelled[static_cast<size_t>(best)]) best = static_cast<long>(i);
+        if (best < 0 || travelled[i] > travelled[static_cast<size_t>(best)])
+          best = static_cast<long>(i);
       }
     if (best >= 0 && count <= 4) trail.push_back(best);
   }
@@ -318,8 +322,9 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) I(r, c) = s[1 + 3 * r + c];
     const auto declared_shape = visual.shapes.find(bodies[j]->name);
-    BodyShape shape = shape_from_inertia(
-        declared_shape == visual.shapes.end() ? "" : declared_shape->second, s[0], I, 0.08 * extent);
+    BodyShape shape =
+        shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
+                           s[0], I, 0.08 * extent);
     if (const double* scale = visual_lookup(visual.size, bodies[j]->name))
       for (double& x : shape.size) x *= *scale;
     nlohmann::json b{{"name", bodies[j]->name}, {"shape", shape.kind}};
@@ -353,7 +358,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   j["name"] = model.name;
   j["extent"] = extent;
   j["up"] = {up[0], up[1], up[2]};
-  j["normal"] = flat >= 0 ? nlohmann::json{int(flat == 0), int(flat == 1), int(flat == 2)} : nlohmann::json();
+  j["normal"] =
+      flat >= 0 ? nlohmann::json{int(flat == 0), int(flat == 1), int(flat == 2)} : nlohmann::json();
   j["points"] = jpoints;
   j["bodies"] = jbodies;
   j["segments"] = segments;

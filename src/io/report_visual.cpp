@@ -23,11 +23,10 @@ void check_name(const Model& model, const YAML::Node& key) {
   const std::string name = key.Scalar();
   std::map<std::string, int> probe{{name, 0}};
   auto matches = [&](const std::string& n) { return visual_lookup(probe, n) != nullptr; };
-  const bool known =
-      std::any_of(model.points.begin(), model.points.end(),
-                  [&](const Point& p) { return matches(p.name); }) ||
-      std::any_of(model.bodies.begin(), model.bodies.end(),
-                  [&](const Body& b) { return matches(b.name); });
+  const bool known = std::any_of(model.points.begin(), model.points.end(),
+                                 [&](const Point& p) { return matches(p.name); }) ||
+                     std::any_of(model.bodies.begin(), model.bodies.end(),
+                                 [&](const Body& b) { return matches(b.name); });
   if (!known)
     fail(model, key,
          fmt::format("expected a point, body or element name in visual, got '{}'", name));
@@ -117,7 +116,8 @@ Visual read_visual(const Model& model) {
     } else if (key == "size") {
       read_sizes(model, kv.second, v);
     } else if (key == "trail") {
-      v.trail = kv.second.IsNull() ? std::vector<std::string>{} : name_list(model, kv.second, "trail");
+      v.trail =
+          kv.second.IsNull() ? std::vector<std::string>{} : name_list(model, kv.second, "trail");
       v.trail_given = true;
     } else if (key == "hide") {
       v.hide = name_list(model, kv.second, "hide");

@@ -14,7 +14,7 @@ struct Visual {
   std::map<std::string, std::string> color;  ///< name → CSS colour
   std::map<std::string, double> size;        ///< name → radius (points) or scale (bodies)
   std::vector<std::string> trail, hide;
-  bool trail_given = false;                     ///< `trail:` was written (even empty)
+  bool trail_given = false;                   ///< `trail:` was written (even empty)
   std::map<std::string, std::string> shapes;  ///< body → declared shape (box, cylinder, sphere)
 };
 

@@ -31,8 +31,8 @@ SceneRun run_example(const std::string& name, double t_end, const ReportLimits& 
   SimulationOptions so = r.sys.options();
   so.t_end = t_end;
   r.traj = r.sys.run(so);
-  r.scene = nlohmann::json::parse(report_scene_json(r.eq, *r.sys.compiled, r.traj,
-                                                    r.sys.dynamics->parameters(), limits));
+  r.scene = nlohmann::json::parse(
+      report_scene_json(r.eq, *r.sys.compiled, r.traj, r.sys.dynamics->parameters(), limits));
   return r;
 }
 
@@ -115,7 +115,8 @@ TEST(ReportScene, FiveBarGroundPivotsAreFoundFromThePointExpressions) {
   const size_t B = point_index(s, "B"), C = point_index(s, "C"), D = point_index(s, "D"),
                C2 = point_index(s, "C2");
   auto linked = [&](size_t a, size_t b) { return links.count({a, b}) + links.count({b, a}) > 0; };
-  EXPECT_TRUE(linked(B, C) && linked(D, C2) && linked(B, C2) && linked(D, C)) << s["segments"].dump();
+  EXPECT_TRUE(linked(B, C) && linked(D, C2) && linked(B, C2) && linked(D, C))
+      << s["segments"].dump();
   EXPECT_FALSE(linked(B, D));
   EXPECT_EQ(links.size(), 6u) << s["segments"].dump();
 }
@@ -226,15 +227,17 @@ TEST(ReportVisual, MistakesNameTheLineAndWhatWasExpected) {
   } catch (const ModelError& e) {
     EXPECT_EQ(e.loc().line, 12);
     EXPECT_EQ(e.loc().column, 11);
-    EXPECT_NE(std::string(e.what()).find("expected a point, body or element name in visual, got 'nope'"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("expected a point, body or element name in visual, got 'nope'"),
+        std::string::npos)
         << e.what();
   }
   const auto colour = scratch_model("colour.yaml", std::string(kPendulum) + R"(visual:
   color: {bob: 'rgb(1,2,3)'}
 )");
   EXPECT_THROW(scene_of(colour), ModelError);
-  const auto key = scratch_model("key.yaml", std::string(kPendulum) + "visual: {colour: {bob: red}}\n");
+  const auto key =
+      scratch_model("key.yaml", std::string(kPendulum) + "visual: {colour: {bob: red}}\n");
   EXPECT_THROW(scene_of(key), ModelError);
 }
 

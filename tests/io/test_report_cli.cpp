@@ -39,8 +39,9 @@ TEST(ReportCli, ReportOfASavedTrajectory) {
                                       "--t-end", "0.5", "-q", "-o", csv.string()})
                 .exit_code,
             0);
-  const RunResult r = run_lagrange(dir.path(), {"report", testing::example_path("tumbling_brick.yaml"),
-                                                csv.string(), "-o", html.string()});
+  const RunResult r = run_lagrange(
+      dir.path(),
+      {"report", testing::example_path("tumbling_brick.yaml"), csv.string(), "-o", html.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("wrote " + html.string() + " (51 samples of tumbling brick)"),
             std::string::npos)
@@ -55,14 +56,16 @@ TEST(ReportCli, ACsvOfAnotherModelIsAUsageError) {
                                       "0.2", "-q", "-o", csv.string()})
                 .exit_code,
             0);
-  const RunResult r = run_lagrange(dir.path(), {"report", testing::example_path("double_pendulum.yaml"),
-                                                csv.string(), "-o", html.string()});
+  const RunResult r = run_lagrange(
+      dir.path(),
+      {"report", testing::example_path("double_pendulum.yaml"), csv.string(), "-o", html.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("the trajectory has no column 'theta1' of the model"), std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(html));
   const RunResult missing = run_lagrange(
-      dir.path(), {"report", testing::example_path("pendulum.yaml"), "nope.csv", "-o", html.string()});
+      dir.path(),
+      {"report", testing::example_path("pendulum.yaml"), "nope.csv", "-o", html.string()});
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("cannot open the trajectory 'nope.csv'"), std::string::npos)
       << missing.err;
@@ -88,8 +91,9 @@ TEST(ReportCli, AVisualMistakeIsAModelErrorBeforeTheRun) {
   const RunResult r = run_lagrange(dir.path(), {"simulate", model.string(), "-o", csv.string(),
                                                 "--report", (dir.path() / "m.html").string()});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("m.yaml:7:11: error: expected a point, body or element name in visual, got 'q'"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("m.yaml:7:11: error: expected a point, body or element name in visual, got 'q'"),
+      std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(csv));
 }
