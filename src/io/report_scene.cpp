@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -259,9 +260,11 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     used[a] = used[b] = true;
   }
   // A moving mass attached to nothing (a spring written as a potential) gets a guide line to
-  // where its position expression is anchored.
+  // where its position expression is anchored. Without particles (energies written by hand) the
+  // moving points stand for the masses.
+  const bool hand_written = particle_mass.empty();
   for (size_t i = 0; i < np; ++i)
-    if (!used[i] && ground_of[i] >= 0 && particle_mass.count(points[i]->name)) {
+    if (!used[i] && ground_of[i] >= 0 && (hand_written || particle_mass.count(points[i]->name))) {
       segments.push_back({{"a", ground_of[i]}, {"b", i}, {"kind", "guide"}});
       used[i] = used[static_cast<size_t>(ground_of[i])] = true;
     }
@@ -271,6 +274,11 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   for (size_t j = 0; j < massive.size(); ++j)
     heaviest = std::max(heaviest, statics[3 + 13 * nb + j]);
   const double base = 0.035 * extent;
+  // Points are coloured by group: the name up to its first '.', so that an element's points
+  // (`cable.n1`, `cable.n2`, …) share a colour; particles of a group of many are beads.
+  std::map<std::string, size_t> groups, group_size;
+  auto group_of = [](const std::string& name) { return name.substr(0, name.find('.')); };
+  for (const Point* p : points) ++group_size[group_of(p->name)];
   nlohmann::json jpoints = nlohmann::json::array();
   std::vector<double> travelled(np, 0.0);
   for (size_t i = 0; i < np; ++i) {
@@ -278,17 +286,21 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     const std::string& name = points[i]->name;
     const auto m = std::find(massive.begin(), massive.end(), name);
     nlohmann::json p{{"name", name}};
-    double radius = 0.35 * base;
+    double radius = (hand_written ? 0.8 : 0.35) * base;
     if (m != massive.end()) {
       const double mass = statics[3 + 13 * nb + static_cast<size_t>(m - massive.begin())];
       radius = heaviest > 0 && mass > 0 ? base * std::max(0.4, std::cbrt(mass / heaviest)) : base;
+      if (group_size[group_of(name)] > 3 || model.find_body(group_of(name))) radius *= 0.4;
       p["kind"] = "particle";
       p["mass"] = mass;
     } else {
-      p["kind"] = travelled[i] > 1e-6 * extent ? "point" : "fixed";
+      const bool moves = travelled[i] > 1e-6 * extent;
+      // Energies written by hand: the moving points are where the masses are.
+      p["kind"] = moves ? (hand_written ? "particle" : "point") : "fixed";
     }
     if (const double* s = visual_lookup(visual.size, name)) radius = *s;
     if (const std::string* c = visual_lookup(visual.color, name)) p["color"] = *c;
+    p["group"] = groups.emplace(group_of(name), groups.size()).first->second;
     p["radius"] = radius;
     jpoints.push_back(p);
   }
@@ -296,22 +308,22 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     jpoints.push_back(
         {{"name", "ground"}, {"kind", used[np + a] ? "anchor" : "unused"}, {"radius", 0.5 * base}});
 
-  // Trails: as the visual section says, or the moving particle that travels furthest when there
-  // are few of them.
+  // Trails: as the visual section says, or the moving particle that travels furthest when the
+  // moving particles belong to at most four groups.
   nlohmann::json trail = nlohmann::json::array();
   if (visual.trail_given) {
     for (size_t i = 0; i < np; ++i)
       if (visual_listed(visual.trail, points[i]->name)) trail.push_back(i);
   } else {
     long best = -1;
-    size_t count = 0;
+    std::set<std::string> moving_groups;
     for (size_t i = 0; i < np; ++i)
-      if (particle_mass.count(points[i]->name) && travelled[i] > 1e-3 * extent) {
-        ++count;
+      if (jpoints[i]["kind"] == "particle" && travelled[i] > 1e-3 * extent) {
+        moving_groups.insert(group_of(points[i]->name));
         if (best < 0 || travelled[i] > travelled[static_cast<size_t>(best)])
           best = static_cast<long>(i);
       }
-    if (best >= 0 && count <= 4) trail.push_back(best);
+    if (best >= 0 && moving_groups.size() <= 4) trail.push_back(best);
   }
 
   // Bodies: shape from the declared shape or the inertia, centred on the centre of mass.
@@ -325,6 +337,10 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     BodyShape shape =
         shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
                            s[0], I, 0.08 * extent);
+    // A body small against the scene (a kite on a long tether) is enlarged to be seen.
+    const double largest = std::max({shape.size[0], shape.size[1], shape.size[2]});
+    if (largest < 0.06 * extent)
+      for (double& x : shape.size) x *= 0.06 * extent / largest;
     if (const double* scale = visual_lookup(visual.size, bodies[j]->name))
       for (double& x : shape.size) x *= *scale;
     nlohmann::json b{{"name", bodies[j]->name}, {"shape", shape.kind}};

@@ -43,6 +43,7 @@ function statistics(s) {
 }
 
 function main() {
+  const timings = { start: performance.now() };
   const data = JSON.parse(document.getElementById('lagrange-data').textContent);
   const app = document.getElementById('app');
   const scene = data.scene;
@@ -74,9 +75,18 @@ function main() {
   );
   if (data.stats.status !== 'complete') label.classList.add('failed');
 
+  timings.parsed = performance.now();
   const view = new View(viewBox, scene);
+  timings.view = performance.now();
   const plots = new Plots(plotBox, data.plots);
-  renderEquations(eqBox, data.latex);
+  timings.plots = performance.now();
+  // The equations after the first frame: the motion shows first.
+  const equations = { ready: false };
+  const typesetEquations = () => {
+    renderEquations(eqBox, data.latex);
+    timings.equations = performance.now();
+    equations.ready = true;
+  };
 
   let t = t0;
   let playing = true;
@@ -109,12 +119,18 @@ function main() {
     if (playing && last !== null) t = advance(t, (now - last) / 1000, Number(speed.value), t0, t1);
     last = now;
     if (playing || frames.count === 0) show();
+    if (frames.count === 0) {
+      timings.firstFrame = performance.now();
+      setTimeout(typesetEquations, 0);
+    }
     frames.count++;
     requestAnimationFrame(tick);
   };
   show();
   window.lagrangeReport = {
+    timings,
     frames,
+    equations,
     time: () => t,
     playing: () => playing,
     play: () => setPlaying(true),

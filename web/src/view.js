@@ -62,7 +62,6 @@ export class View {
     const e = s.extent;
     this.tmp = new Float64Array(Math.max(12, 3 * s.points.length));
     this.pointMeshes = [];
-    let particle = 0;
     const sphere = new THREE.SphereGeometry(1, 24, 16);
     const cube = new THREE.BoxGeometry(1.4, 1.4, 1.4);
     s.points.forEach((p) => {
@@ -71,7 +70,7 @@ export class View {
         return;
       }
       const fixed = p.kind === 'anchor' || p.kind === 'fixed';
-      const color = p.color ?? (p.kind === 'particle' ? PALETTE[particle++ % PALETTE.length] : fixed ? '#444444' : '#888888');
+      const color = p.color ?? (p.kind === 'particle' ? PALETTE[p.group % PALETTE.length] : fixed ? '#444444' : '#888888');
       const mesh = new THREE.Mesh(fixed ? cube : sphere, new THREE.MeshStandardMaterial({ color, roughness: 0.5 }));
       mesh.scale.setScalar(p.radius);
       mesh.name = p.name;
@@ -103,7 +102,7 @@ export class View {
     this.segments = s.segments.map((g) => {
       if (g.kind === 'link') {
         const mesh = new THREE.Mesh(rod, new THREE.MeshStandardMaterial({ color: '#555a60', roughness: 0.4 }));
-        mesh.userData.radius = 0.008 * e;
+        mesh.userData.radius = 0.005 * e;
         this.scene.add(mesh);
         return { g, mesh };
       }
@@ -121,12 +120,12 @@ export class View {
     });
     // Trails: the whole path, drawn up to the current frame.
     const nf = s.t.length;
-    this.trails = s.trail.map((i, k) => {
+    this.trails = s.trail.map((i) => {
       const pos = new Float32Array(3 * nf);
       for (let f = 0; f < nf; ++f) for (let c = 0; c < 3; ++c) pos[3 * f + c] = s.positions[f * this.stride + 3 * i + c];
       const geometry = new THREE.BufferGeometry();
       geometry.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-      const color = s.points[i].color ?? PALETTE[k % PALETTE.length];
+      const color = s.points[i].color ?? PALETTE[s.points[i].group % PALETTE.length];
       const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color, transparent: true, opacity: 0.7 }));
       line.frustumCulled = false;
       this.scene.add(line);

@@ -115,6 +115,7 @@ async function checkReport(browser, html, csvHeader) {
   expect(plot.groups.includes('energy'), `no energy plot group (${plot.groups})`);
 
   // Equations rendered by KaTeX without error nodes.
+  await page.waitForFunction(() => window.lagrangeReport.equations.ready, null, { timeout: 60000 });
   const tex = await page.evaluate(() => ({
     math: document.querySelectorAll('#equations .katex math').length,
     errors: [...document.querySelectorAll('#equations .katex-error')].map((e) => e.title || e.textContent).slice(0, 3),
