@@ -45,6 +45,11 @@ std::string format_manipulator(const ManipulatorForm& form, const std::string& f
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.
 void export_c(const CompiledModel& model, const std::string& dir);
 
+/// C99 of the manipulator form — D(q), C(q, q̇) q̇, g(q), inverse and forward dynamics — in
+/// lagrange_manipulator.h/.c with an example main.c in `dir`. Throws std::invalid_argument for a
+/// constrained model, free bodies, or D, C q̇, g depending on t or inputs.
+void export_manipulator_c(const Equations& eq, const std::string& dir);
+
 /// Creates the directories above `path` that do not exist yet (std::runtime_error naming the
 /// directory when that fails).
 void create_parent_directories(const std::string& path);

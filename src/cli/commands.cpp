@@ -98,6 +98,12 @@ int run_derive(const Options& opt) {
 
 int run_export(const Options& opt) {
   const Model model = read_model_file(opt.model);
+  if (opt.form == "manipulator") {
+    export_manipulator_c(derive(model), opt.c_dir);
+    fmt::print("wrote {0}/lagrange_manipulator.h, {0}/lagrange_manipulator.c and {0}/main.c\n",
+               opt.c_dir);
+    return 0;
+  }
   const auto cm = compile(derive(model));
   export_c(*cm, opt.c_dir);
   fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions)\n",
@@ -106,7 +112,7 @@ int run_export(const Options& opt) {
 }
 
 int run_check(const Options& opt) {
-  const Prepared p = prepare(opt.model, opt.sets);
+  const Prepared p = prepare(opt.model, opt.sets, opt.initial);
   const CompiledModel& cm = *p.compiled;
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
              p.model->name, cm.nq, cm.m, cm.np, cm.k);
@@ -123,7 +129,7 @@ int run_check(const Options& opt) {
 }
 
 int run_simulate(const Options& opt) {
-  Prepared p = prepare(opt.model, opt.sets);
+  Prepared p = prepare(opt.model, opt.sets, opt.initial);
   const Model& model = *p.model;
   const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);

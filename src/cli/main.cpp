@@ -1,4 +1,5 @@
-// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, report.
+// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval,
+// report.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
@@ -54,6 +55,10 @@ int main(int argc, char** argv) {
   sim->add_option("--report", opt.report,
                   "self-contained HTML report: 3-D animation, plots, equations (.html)");
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  sim->add_option("--initial", opt.initial,
+                  "initial value of a coordinate or a rate NAME_dot, NAME=VALUE (repeatable, or "
+                  "comma-separated)")
+      ->delimiter(',');
   sim->add_option("--integrator", opt.integrator, "arkode | cvode | rk4 | ida")
       ->check(CLI::IsMember({"arkode", "cvode", "rk4", "ida"}));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
@@ -64,11 +69,30 @@ int main(int argc, char** argv) {
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");
   exp->add_option("model", opt.model, "model file (YAML)")->required();
   exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->required();
+  exp->add_option("--form", opt.form,
+                  "lagrange (default): forward dynamics | manipulator: D, C q_dot, g, inverse "
+                  "and forward dynamics")
+      ->check(CLI::IsMember({"lagrange", "manipulator"}));
 
   auto* check =
       app.add_subcommand("check", "validate the model and the consistency of its initial state");
   check->add_option("model", opt.model, "model file (YAML)")->required();
   check->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  check->add_option("--initial", opt.initial, "initial value NAME=VALUE, as for simulate")
+      ->delimiter(',');
+
+  auto* eval = app.add_subcommand(
+      "eval", "print M, the bias forces, the accelerations and inverse dynamics at one state");
+  eval->add_option("model", opt.model, "model file (YAML or URDF)")->required();
+  eval->add_option("--state", opt.initial,
+                   "coordinate or rate NAME_dot, NAME=VALUE (comma-separated; others keep the "
+                   "model's initial values)")
+      ->delimiter(',');
+  eval->add_option("--tau", opt.tau,
+                   "joint forces NAME=VALUE replacing the model's (manipulators; others 0)")
+      ->delimiter(',');
+  eval->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  eval->add_option("--format", opt.format, "text | json")->check(CLI::IsMember({"text", "json"}));
 
   auto* report = app.add_subcommand(
       "report", "write the HTML report (3-D animation, plots, equations) of a saved trajectory");
@@ -94,6 +118,7 @@ int main(int argc, char** argv) {
     if (*exp) return run_export(opt);
     if (*check) return run_check(opt);
     if (*report) return run_report(opt);
+    if (*eval) return run_eval(opt);
   } catch (const lagrange::ModelError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return 1;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -19,7 +20,50 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-Prepared prepare_with(const std::string& path, const ParameterOverrides& overrides) {
+// `--initial NAME=VALUE`: a coordinate (position) or `NAME_dot` (velocity) of the compiled model.
+// A free body's rotation entries are left to the model file: nine numbers that must stay a
+// rotation.
+void apply_initial(const CompiledModel& cm,
+                   const std::vector<std::pair<std::string, double>>& given,
+                   const std::string& option, std::vector<double>& q, std::vector<double>& v) {
+  for (const auto& [name, value] : given) {
+    const auto in = [&](const std::vector<std::string>& names) {
+      return std::find(names.begin(), names.end(), name) - names.begin();
+    };
+    const auto iq = static_cast<size_t>(in(cm.coordinate_names));
+    const auto iv = static_cast<size_t>(in(cm.velocity_names));
+    const bool rotation =
+        iq < cm.nq && std::any_of(cm.rotations.begin(), cm.rotations.end(),
+                                  [&](size_t r) { return iq >= r && iq < r + 9; });
+    if (rotation)
+      throw UsageError(
+          fmt::format("{} {}: a body's rotation matrix entry; set the body's "
+                      "initial orientation in the model file",
+                      option, name));
+    if (iq < cm.nq) {
+      q[iq] = value;
+    } else if (iv < cm.nv) {
+      v[iv] = value;
+    } else {
+      std::string known;
+      for (size_t i = 0; i < cm.plain; ++i)
+        known += (known.empty() ? "" : ", ") + cm.coordinate_names[i];
+      throw UsageError(fmt::format(
+          "{}: no coordinate or velocity '{}' in the model (coordinates: {}; velocities are "
+          "NAME_dot)",
+          option, name, known.empty() ? "none" : known));
+    }
+  }
+}
+
+/// The state given on the command line (`--initial` or `--state`) and its option's name.
+struct GivenState {
+  std::vector<std::pair<std::string, double>> values;
+  std::string option;
+};
+
+Prepared prepare_with(const std::string& path, const ParameterOverrides& overrides,
+                      const GivenState& initial) {
   Prepared p;
   const auto t0 = Clock::now();
   p.model = std::make_unique<const Model>(read_model_file(path, overrides));
@@ -32,6 +76,7 @@ Prepared prepare_with(const std::string& path, const ParameterOverrides& overrid
   p.compile_seconds = seconds_since(t1);
   p.q = p.compiled->q0;
   p.v = p.compiled->v0;
+  apply_initial(*p.compiled, initial.values, initial.option, p.q, p.v);
   p.initial = require_consistent_initial_state(*p.model, *p.dynamics, p.q, p.v);
   require_regular_initial_state(*p.model, p.equations, *p.dynamics, p.q, p.v);
   return p;
@@ -39,7 +84,7 @@ Prepared prepare_with(const std::string& path, const ParameterOverrides& overrid
 
 bool prepares_as_written(const std::string& path) {
   try {
-    (void)prepare_with(path, {});
+    (void)prepare_with(path, {}, {});
     return true;
   } catch (const ModelError&) {
     return false;
@@ -48,28 +93,38 @@ bool prepares_as_written(const std::string& path) {
 
 }  // namespace
 
-ParameterOverrides parse_sets(const std::vector<std::string>& sets) {
-  ParameterOverrides out;
-  for (const auto& s : sets) {
+std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
+                                                              const std::string& option) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& s : args) {
     const auto eq = s.find('=');
-    if (eq == std::string::npos) throw UsageError("--set expects NAME=VALUE, got '" + s + "'");
+    if (eq == std::string::npos) throw UsageError(option + " expects NAME=VALUE, got '" + s + "'");
     const std::string name = s.substr(0, eq), text = s.substr(eq + 1);
     try {
       size_t used = 0;
       const double value = std::stod(text, &used);
       if (used != text.size() || !std::isfinite(value)) throw std::invalid_argument(s);
-      out[name] = value;
+      out.emplace_back(name, value);
     } catch (const std::exception&) {
-      throw UsageError("--set: expected a finite number after '" + name + "=', got '" + text + "'");
+      throw UsageError(option + ": expected a finite number after '" + name + "=', got '" + text +
+                       "'");
     }
   }
   return out;
 }
 
-Prepared prepare(const std::string& path, const std::vector<std::string>& sets) {
+ParameterOverrides parse_sets(const std::vector<std::string>& sets) {
+  ParameterOverrides out;
+  for (const auto& [name, value] : parse_assignments(sets, "--set")) out[name] = value;
+  return out;
+}
+
+Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
+                 const std::vector<std::string>& initial, const std::string& initial_option) {
   const ParameterOverrides overrides = parse_sets(sets);
+  const GivenState initial_values{parse_assignments(initial, initial_option), initial_option};
   try {
-    return prepare_with(path, overrides);
+    return prepare_with(path, overrides, initial_values);
   } catch (const ParameterOverrideError& e) {
     throw UsageError(fmt::format("--set: {}", e.what()));
   } catch (const ModelError& e) {

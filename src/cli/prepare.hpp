@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagrange/compiled_model.hpp"
@@ -30,10 +31,20 @@ struct Prepared {
 /// not a finite number.
 ParameterOverrides parse_sets(const std::vector<std::string>& sets);
 
+/// `NAME=VALUE` arguments of `option` in order; UsageError for a missing '=' or a value that is
+/// not a finite number.
+std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
+                                                              const std::string& option);
+
 /// Reads `path` with the --set values applied by the reader, derives, compiles and checks the
 /// initial state (ModelError for a mistake in the file). A --set naming no parameter, or one whose
 /// value makes the model invalid when the file alone is not, is a UsageError (exit 2) that
-/// names the --set and says what the model rejected and where it uses the value.
-Prepared prepare(const std::string& path, const std::vector<std::string>& sets);
+/// names the --set and says what the model rejected and where it uses the value. `initial`
+/// (NAME=VALUE of the option `initial_option`) replaces the file's initial value of a coordinate
+/// or of a velocity `NAME_dot` before the state is made consistent; an unknown name is a
+/// UsageError naming it.
+Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
+                 const std::vector<std::string>& initial = {},
+                 const std::string& initial_option = "--initial");
 
 }  // namespace lagrange::cli

@@ -26,13 +26,66 @@ double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
   return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
 }
 
+// A Gauss–Newton step for (∂C/∂q) Δq = rhs that moves each free body's R along SO(3): R's nine
+// columns of J give way to three, ∂C/∂θ_k = Σ_ij J_{R_ij} (R [e_k]×)_ij, and the minimum-norm
+// solution in those coordinates maps back to ΔR = R [Δθ]×, tangent to SO(3) (its distance from
+// SO(3) is then of the order of |Δθ|², not |Δθ|).
+Eigen::VectorXd tangent_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& rhs,
+                             const Eigen::VectorXd& q, const std::vector<size_t>& rotations) {
+  if (rotations.empty())
+    return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(J).solve(rhs);
+  const long nq = J.cols();
+  std::vector<long> plain;  // columns of q outside every R
+  std::vector<bool> in_rotation(static_cast<size_t>(nq), false);
+  for (const size_t o : rotations)
+    for (size_t e = 0; e < 9; ++e) in_rotation[o + e] = true;
+  for (long j = 0; j < nq; ++j)
+    if (!in_rotation[static_cast<size_t>(j)]) plain.push_back(j);
+  const long np = static_cast<long>(plain.size()), nr = 3 * static_cast<long>(rotations.size());
+  // dR/dθ_k = R [e_k]×, row-major: column c of R [e_k]× is R times column c of [e_k]×.
+  auto tangent = [&](size_t o, int k) {
+    Eigen::Matrix3d R;
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) R(i, c) = q[static_cast<long>(o) + 3 * i + c];
+    Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    E(b, a) = 1;
+    E(a, b) = -1;
+    return Eigen::Matrix3d(R * E);
+  };
+  Eigen::MatrixXd Jr(J.rows(), np + nr);
+  for (long c = 0; c < np; ++c) Jr.col(c) = J.col(plain[static_cast<size_t>(c)]);
+  for (size_t b = 0; b < rotations.size(); ++b)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Matrix3d T = tangent(rotations[b], k);
+      Eigen::VectorXd col = Eigen::VectorXd::Zero(J.rows());
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c)
+          col += T(i, c) * J.col(static_cast<long>(rotations[b]) + 3 * i + c);
+      Jr.col(np + 3 * static_cast<long>(b) + k) = col;
+    }
+  const Eigen::VectorXd x = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jr).solve(rhs);
+  Eigen::VectorXd step = Eigen::VectorXd::Zero(nq);
+  for (long c = 0; c < np; ++c) step[plain[static_cast<size_t>(c)]] = x[c];
+  for (size_t b = 0; b < rotations.size(); ++b)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Matrix3d T = tangent(rotations[b], k);
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c)
+          step[static_cast<long>(rotations[b]) + 3 * i + c] +=
+              x[np + 3 * static_cast<long>(b) + k] * T(i, c);
+    }
+  return step;
+}
+
 }  // namespace
 
 // docs/theory.md §4.3, consistent initial state: the least-squares (minimum-norm) change of the
 // free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation (∂C/∂q) Δq = −C,
 // each step halved until ‖C‖₂ decreases, so that the residual never grows), then the
 // minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free body's R
-// moves off SO(3) by the size of the correction; Ξ (§4.4) pulls it back. Stops without
+// moves along SO(3) (tangent_step), so that a constraint on a body point does not push R off
+// it by the size of the correction. Stops without
 // converging when no halving of the step reduces ‖C‖₂, e.g. at a least-squares minimum where
 // C ≠ 0 (or fixed coordinates in the way) or after max_iterations, at the state of least ‖C‖₂
 // found. A residual at the rounding floor of C's terms counts as converged whatever `tol` asks.
@@ -82,8 +135,7 @@ ProjectionResult Dynamics::try_project(double t, double* q, double* v,
       break;
     }
     for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.C_out() + static_cast<size_t>(r)];
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
-    const Eigen::VectorXd step = cod.solve(rhs);
+    const Eigen::VectorXd step = tangent_step(J, rhs, qv, cm.rotations);
     const Eigen::VectorXd q_here = qv;
     const double here = norm_C();
     double scale = 1.0;

@@ -79,12 +79,15 @@ void declare_elements(model::ModelReader& reader, const YAML::Node& root, Elemen
 /// reactions and outputs.
 void lower_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx);
 
-// One reader per kind (wind.cpp, winch.cpp, tether.cpp; kites in kite.hpp).
+// One reader per kind (wind.cpp, winch.cpp, tether.cpp, bridle.cpp; kites in kite.hpp).
 void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 void declare_winches(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 void lower_winches(model::ModelReader& reader, ElementContext& ctx);
 void declare_tethers(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 void lower_tethers(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
+// bridle.cpp: lines from points of a kite to a knot, a point with coordinates of its own.
+void declare_bridles(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
+void lower_bridles(model::ModelReader& reader, const YAML::Node& node, ElementContext& ctx);
 // links.cpp, link_chain.cpp: joint chains (declared in links.hpp).
 
 }  // namespace lagrange::elements

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+
 #include "elements/tether.hpp"
 #include "model/model_reader.hpp"
 
@@ -35,6 +37,34 @@ const std::vector<std::string>& kite_keys() {
       "chord", "cd0",  "aspect_ratio", "air_density", "tether", "CL",
       "CD",    "roll", "aileron",      "elevator",    "rudder", "coefficients"};
   return keys;
+}
+
+/// A control law or coefficient: an expression of t, the state and the kite's names. A tension
+/// column (`main.tension_ground`) is a constraint force λ·ℓ, known only once the accelerations
+/// are solved with the forces already in place, so a law cannot use it (docs/model-language.md,
+/// "Kites").
+GiNaC::ex law(ModelReader& r, const YAML::Node& node, const std::string& what,
+              const LocalNames& names) {
+  if (node.IsScalar()) {
+    const std::string& text = node.Scalar();
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (const Reaction& reaction : r.model().reactions) {
+      const std::string& name = reaction.name;
+      for (size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+        const size_t end = at + name.size();
+        if ((at > 0 && (word(text[at - 1]) || text[at - 1] == '.')) ||
+            (end < text.size() && word(text[end])))
+          continue;
+        r.fail(node, fmt::format("expected an expression of t and the state in {}, got the "
+                                 "constraint force '{}': it is known only after the "
+                                 "accelerations are solved with the kite's forces in place. "
+                                 "Feed back the state instead (positions, speeds, airspeed, "
+                                 "alpha, a winch's der(reeled_out), …)",
+                                 what, name));
+      }
+    }
+  }
+  return r.scalar_expr(node, model::kAll, what, &names);
 }
 
 GiNaC::ex positive(ModelReader& r, const KiteSpec& k, const char* key, bool strict,
@@ -157,13 +187,12 @@ void lower_point_mass(ModelReader& r, const KiteSpec& k, const ElementContext& c
                       {"heading", s.heading}};
   const std::string what = "kite " + k.name;
   if (!k.spec["CL"]) r.fail(k.key, fmt::format("expected 'CL' (lift coefficient) in {}", what));
-  const GiNaC::ex cl = r.scalar_expr(k.spec["CL"], model::kAll, "CL of " + what, &names);
-  const GiNaC::ex roll =
-      k.spec["roll"] ? r.scalar_expr(k.spec["roll"], model::kAll, "roll of " + what, &names) : 0;
+  const GiNaC::ex cl = law(r, k.spec["CL"], "CL of " + what, names);
+  const GiNaC::ex roll = k.spec["roll"] ? law(r, k.spec["roll"], "roll of " + what, names) : 0;
   names["CL"] = s.cl;
   GiNaC::ex cd;
   if (k.spec["CD"]) {
-    cd = r.scalar_expr(k.spec["CD"], model::kAll, "CD of " + what, &names);
+    cd = law(r, k.spec["CD"], "CD of " + what, names);
   } else {
     const GiNaC::ex cd0 = positive(r, k, "cd0", false, k.preset ? &k.preset->cd0 : nullptr);
     GiNaC::ex ar;
@@ -289,10 +318,10 @@ void lower_rigid(ModelReader& r, const KiteSpec& k, const ElementContext& ctx) {
                       {"heading", s.heading}};
   for (const char* key : {"aileron", "elevator", "rudder"}) {
     const GiNaC::symbol& sym = key[0] == 'a' ? s.aileron : key[0] == 'e' ? s.elevator : s.rudder;
-    values[sym] = k.spec[key] ? r.scalar_expr(k.spec[key], model::kAll,
-                                              fmt::format("{} deflection of {}", key, what), &names)
-                                    .subs(values)
-                              : GiNaC::ex(0);
+    values[sym] =
+        k.spec[key]
+            ? law(r, k.spec[key], fmt::format("{} deflection of {}", key, what), names).subs(values)
+            : GiNaC::ex(0);
   }
   names["aileron"] = s.aileron;
   names["elevator"] = s.elevator;
@@ -310,9 +339,8 @@ void lower_rigid(ModelReader& r, const KiteSpec& k, const ElementContext& ctx) {
     r.check_keys(cs, {"CX", "CY", "CZ", "Cl", "Cm", "Cn", "CL", "CD"}, "coefficients of " + what);
     for (const auto& kv : cs) {
       const std::string key = kv.first.Scalar();
-      coeff[key] = r.scalar_expr(
-          kv.second, model::kAll,
-          fmt::format("{} of {} (an expression of alpha, beta, …)", key, what), &names);
+      coeff[key] = law(r, kv.second,
+                       fmt::format("{} of {} (an expression of alpha, beta, …)", key, what), names);
     }
   }
   const bool wind_axes = coeff.count("CL") || coeff.count("CD");

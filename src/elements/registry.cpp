@@ -30,7 +30,7 @@ std::vector<ElementEntry> element_entries(model::ModelReader& r, const YAML::Nod
 }
 
 const std::vector<std::string>& element_keys() {
-  static const std::vector<std::string> keys = {"wind",  "winches", "tethers",
+  static const std::vector<std::string> keys = {"wind",  "winches", "bridles", "tethers",
                                                 "kites", "links",   "urdf"};
   return keys;
 }
@@ -38,6 +38,7 @@ const std::vector<std::string>& element_keys() {
 void declare_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
   if (auto n = section(root, "wind")) read_wind(reader, *n, ctx);
   if (auto n = section(root, "winches")) declare_winches(reader, *n, ctx);
+  if (auto n = section(root, "bridles")) declare_bridles(reader, *n, ctx);
   if (auto n = section(root, "tethers")) declare_tethers(reader, *n, ctx);
   if (auto n = section(root, "kites")) declare_kites(reader, *n, ctx);
   if (auto n = section(root, "links")) declare_links(reader, *n, ctx.links);
@@ -46,6 +47,7 @@ void declare_elements(model::ModelReader& reader, const YAML::Node& root, Elemen
 
 void lower_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
   if (auto n = section(root, "tethers")) lower_tethers(reader, *n, ctx);
+  if (auto n = section(root, "bridles")) lower_bridles(reader, *n, ctx);
   lower_winches(reader, ctx);
   if (auto n = section(root, "kites")) lower_kites(reader, *n, ctx);
   if (section(root, "links")) lower_links(reader, ctx.links);

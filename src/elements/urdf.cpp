@@ -206,13 +206,21 @@ LinkChain read_urdf(const std::string& path) {
                         UrdfReader::angle(rpy[2])};
       link.joint.axis = u.triple(e->FirstChildElement("axis"), "xyz", {1, 0, 0},
                                  "the axis of joint '" + j.name + "'");
-      if (const XMLElement* dyn = e->FirstChildElement("dynamics"))
+      if (const XMLElement* dyn = e->FirstChildElement("dynamics")) {
         if (const char* d = dyn->Attribute("damping")) {
           link.joint.damping = u.decimal(d, dyn, "the damping of joint '" + j.name + "'");
           if (GiNaC::ex_to<GiNaC::numeric>(link.joint.damping).is_negative())
             u.fail(dyn, fmt::format("expected a non-negative damping for joint '{}', got {}",
                                     j.name, d));
         }
+        // Coulomb friction (a force discontinuous at q̇ = 0) is not modelled: say so.
+        if (const char* f = dyn->Attribute("friction"))
+          if (!u.decimal(f, dyn, "the friction of joint '" + j.name + "'").is_zero())
+            fmt::print(stderr,
+                       "{}: warning: joint '{}' has friction=\"{}\": Coulomb joint friction is "
+                       "ignored (damping is applied)\n",
+                       u.loc(dyn).str(), j.name, f);
+      }
     }
     if (const XMLElement* in = le->FirstChildElement("inertial")) {
       const XMLElement* mass = in->FirstChildElement("mass");

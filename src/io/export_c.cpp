@@ -1,8 +1,11 @@
+// `lagrange export --c DIR`: the compiled dynamics tape as standalone C99 with the KKT solve.
+
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <stdexcept>
 
+#include "io/export_c_common.hpp"
 #include "lagrange/io.hpp"
 
 namespace lagrange {
@@ -24,36 +27,6 @@ std::string pattern_array(const char* name, const std::vector<std::pair<size_t, 
 // The dense range-space KKT solve of docs/theory.md §4.3 in plain C (Cholesky of M, then of
 // G M⁻¹ Gᵀ), mirroring Dynamics::forward.
 const char* kSolverC = R"C(
-/* Cholesky factorisation in place (lower triangle of A, n×n row-major); 1 when not SPD. */
-static int lg_chol(double* A, int n) {
-  for (int j = 0; j < n; ++j) {
-    double s = A[j * n + j];
-    for (int k = 0; k < j; ++k) s -= A[j * n + k] * A[j * n + k];
-    if (!(s > 0.0)) return 1;
-    A[j * n + j] = sqrt(s);
-    for (int i = j + 1; i < n; ++i) {
-      double r = A[i * n + j];
-      for (int k = 0; k < j; ++k) r -= A[i * n + k] * A[j * n + k];
-      A[i * n + j] = r / A[j * n + j];
-    }
-  }
-  return 0;
-}
-
-/* Solve L Lᵀ x = b in place. */
-static void lg_chol_solve(const double* L, int n, double* b) {
-  for (int i = 0; i < n; ++i) {
-    double s = b[i];
-    for (int k = 0; k < i; ++k) s -= L[i * n + k] * b[k];
-    b[i] = s / L[i * n + i];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    double s = b[i];
-    for (int k = i + 1; k < n; ++k) s -= L[k * n + i] * b[k];
-    b[i] = s / L[i * n + i];
-  }
-}
-
 int lagrange_dynamics(double t, const double* q, const double* v, const double* u,
                       const double* p, double alpha, double* qdot, double* a, double* lambda) {
   double in[LAGRANGE_NIN];
@@ -119,11 +92,7 @@ void export_c(const CompiledModel& cm, const std::string& dir) {
       "constraints */\n"
       "#define LAGRANGE_K {}  /* inputs */\n#define LAGRANGE_NP {} /* parameters */\n\n",
       cm.nq, cm.nv, cm.m, cm.k, cm.np);
-  auto names = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (size_t i = 0; i < v.size(); ++i) s += fmt::format("{}{}", i ? ", " : "", v[i]);
-    return s.empty() ? std::string("(none)") : s;
-  };
+  const auto names = c_name_list;
   header += fmt::format(
       "/* q order: {}\n   v order: {}\n   constraints (lambda order): {}\n"
       "   inputs: {}\n   parameters: {} */\n\n",
@@ -162,6 +131,7 @@ void export_c(const CompiledModel& cm, const std::string& dir) {
         "void lagrange_inputs(double t, const double* p, double* u) { (void)t; (void)p; (void)u; "
         "}\n";
   }
+  source += c_cholesky_source();
   source += kSolverC;
   write_file_atomically(dir + "/lagrange_model.h", header);
   write_file_atomically(dir + "/lagrange_model.c", source);

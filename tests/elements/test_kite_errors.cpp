@@ -48,6 +48,10 @@ std::vector<BadModel> bad_kites() {
       {"point without a tether", "    point: spot\n    preset: ap2\n    CL: 1\n",
        "expected a tether ending at point 'spot' (its second end) for kite 'wing'"},
       {"misspelt key", "    point: kite\n    preset: ap2\n    CL: 1\n    rol: 0.1\n", "rol"},
+      {"tension in a law",
+       "    point: kite\n    preset: ap2\n    CL: 1\n    roll: 1e-4*main.tension_ground\n",
+       "expected an expression of t and the state in roll of kite wing, got the constraint force "
+       "'main.tension_ground'"},
   };
   for (BadModel& c : cases) c.yaml = model(c.yaml);
   return cases;
@@ -60,6 +64,56 @@ TEST_P(BadKiteModel, Exit1Located) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kites, BadKiteModel, ::testing::ValuesIn(bad_kites()), label_name);
+
+// A free body `plane` with wing points a, b, c around its centre and a bridle whose lines and
+// knot follow; a tether from the ground to the knot unless `tethered` is false.
+std::string bridle_model(const std::string& bridle, bool tethered = true) {
+  return "gravity: [0, 0, -9.81]\n"
+         "bodies:\n  plane: {mass: 36.8, inertia: [25, 32, 56], frame: free,\n"
+         "          initial: {position: [0, 0, 50.5]},\n"
+         "          points: {a: [1.2, 0, 0], b: [-0.6, 1, 0], c: [-0.6, -1, 0], d: [0, 0, 1]}}\n"
+         "bridles:\n  bridle:\n" +
+         bridle +
+         (tethered ? "tethers:\n  main: {between: [[0, 0, 0], bridle.knot], segments: 2, length: "
+                     "50, mass_per_length: 0.0046}\n"
+                   : "");
+}
+
+std::vector<BadModel> bad_bridles() {
+  const std::string lines = "    lines: [plane.a, plane.b, plane.c]\n";
+  return {
+      {"four lines",
+       bridle_model("    lines: [plane.a, plane.b, plane.c, plane.d]\n    length: 1.3\n"
+                    "    at: [0, 0, 50]\n"),
+       "expected one to three lines in bridle 'bridle' (more would over-determine the knot), "
+       "got 4"},
+      {"knot off its lines", bridle_model(lines + "    length: 2\n    at: [0, 0, 50]\n"),
+       "expected the knot of bridle 'bridle' at its line lengths from the points at t = 0: line "
+       "1 to 'plane.a' has length 2"},
+      {"lines in one plane",
+       bridle_model("    lines: [plane.a, plane.b, plane.c]\n    length: [1.2, 1.1661903789690602, "
+                    "1.1661903789690602]\n    at: [0, 0, 50.5]\n"),
+       "expected lines of bridle 'bridle' in independent directions from the knot at t = 0 (two "
+       "not parallel, three not in one plane), got three in one plane"},
+      {"massless knot without a tether",
+       bridle_model("    lines: [plane.a]\n    length: 1.3\n    at: [0, 0, 50]\n", false),
+       "expected a tether ending at the knot 'bridle.knot' or a positive 'mass' in bridle "
+       "'bridle'"},
+      {"unknown line point",
+       bridle_model("    lines: [plane.z]\n    length: 1\n    at: [0, 0, 50]\n"),
+       "expected a point name for a line of bridle 'bridle', got 'plane.z'"},
+      {"no length", bridle_model(lines + "    at: [0, 0, 50]\n"),
+       "expected 'length' (of the lines) in bridle 'bridle', got none"},
+  };
+}
+
+class BadBridleModel : public ::testing::TestWithParam<BadModel> {};
+
+TEST_P(BadBridleModel, Exit1Located) {
+  expect_model_error(GetParam(), "bridle");
+}
+
+INSTANTIATE_TEST_SUITE_P(Bridles, BadBridleModel, ::testing::ValuesIn(bad_bridles()), label_name);
 
 // `derive` names the kite, its data source and the coefficients in use.
 TEST(KiteDerive, ShowsTheAerodynamicModel) {
