@@ -18,15 +18,16 @@ export async function launch() {
 // (also on an empty three.js scene). That one message is the browser's, not the report's.
 const SOFTWARE_GL_NOTICE = /^\[\.WebGL-0x[0-9a-f]+\]GL Driver Message \(OpenGL, Performance, GL_CLOSE_PATH_NV, High\): GPU stall due to ReadPixels( \(this message will no longer repeat\))?$/;
 
-/** Opens a report and waits for its first frame; console errors and warnings go to `messages`. */
+/** Opens a report and waits for its first frame (`seconds` after navigation began); console errors and warnings go to `messages`. */
 export async function openReport(browser, html, messages = []) {
   const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
   page.on('console', (m) => {
     if ((m.type() === 'error' || m.type() === 'warning') && !SOFTWARE_GL_NOTICE.test(m.text())) messages.push(`console ${m.type()}: ${m.text()}`);
   });
   page.on('pageerror', (e) => messages.push(`page error: ${e.message}`));
-  const start = Date.now();
-  await page.goto(pathToFileURL(html).href);
+  await page.goto(pathToFileURL(html).href, { waitUntil: 'commit' });
   await page.waitForFunction(() => window.lagrangeReport && window.lagrangeReport.frames.count >= 1, null, { timeout: 30000 });
-  return { page, seconds: (Date.now() - start) / 1000 };
+  // Seconds from the start of navigation to the first frame drawn, by the page's own clock.
+  const seconds = (await page.evaluate(() => window.lagrangeReport.timings.firstFrame)) / 1000;
+  return { page, seconds };
 }

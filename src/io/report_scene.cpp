@@ -103,10 +103,24 @@ struct BodyShape {
 };
 
 // A body's shape from its inertia: the box (or the declared cylinder or sphere) with the same
-// principal moments, along the principal axes.
+// principal moments, along the principal axes. An inertia no solid has (a planar link's
+// [0, 0, I_zz]) is drawn as a capsule from the body origin (its joint) through the centre of
+// mass to twice as far.
 BodyShape shape_from_inertia(const std::string& declared, double mass, const Eigen::Matrix3d& I,
-                             double fallback) {
+                             const Eigen::Vector3d& com, double fallback) {
   BodyShape s;
+  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+  const bool solid = moments[2] <= moments[0] + moments[1] + 1e-9 * moments[2];
+  if (!solid && declared.empty() && com.norm() > 0) {
+    const Eigen::Vector3d w = com.normalized();
+    Eigen::Vector3d u = std::abs(w.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    u = (u - u.dot(w) * w).normalized();
+    s.kind = "capsule";
+    s.axes << u, w.cross(u), w;
+    const double length = 2 * com.norm();
+    s.size = {0.06 * length, 0.06 * length, length};
+    return s;
+  }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
   Eigen::Vector3d m = eig.eigenvalues();
   s.axes = eig.eigenvectors();
@@ -336,7 +350,7 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     const auto declared_shape = visual.shapes.find(bodies[j]->name);
     BodyShape shape =
         shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
-                           s[0], I, 0.08 * extent);
+                           s[0], I, Eigen::Vector3d(s[10], s[11], s[12]), 0.08 * extent);
     // A body small against the scene (a kite on a long tether) is enlarged to be seen.
     const double largest = std::max({shape.size[0], shape.size[1], shape.size[2]});
     if (largest < 0.06 * extent)

@@ -82,11 +82,11 @@ function main() {
   timings.plots = performance.now();
   // The equations after the first frame: the motion shows first.
   const equations = { ready: false };
-  const typesetEquations = () => {
-    renderEquations(eqBox, data.latex);
-    timings.equations = performance.now();
-    equations.ready = true;
-  };
+  const typesetEquations = () =>
+    renderEquations(eqBox, data.latex, () => {
+      timings.equations = performance.now();
+      equations.ready = true;
+    });
 
   let t = t0;
   let playing = true;

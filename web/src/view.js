@@ -82,7 +82,10 @@ export class View {
       group.matrixAutoUpdate = false;
       let geometry;
       if (b.shape === 'sphere') geometry = new THREE.SphereGeometry(b.size[0], 32, 20);
-      else if (b.shape === 'cylinder') {
+      else if (b.shape === 'capsule') {
+        geometry = new THREE.CapsuleGeometry(b.size[0], Math.max(b.size[2] - 2 * b.size[0], 0), 8, 24);
+        geometry.rotateX(Math.PI / 2); // along the body's link direction (the shape's z)
+      } else if (b.shape === 'cylinder') {
         geometry = new THREE.CylinderGeometry(b.size[0], b.size[0], b.size[2], 32);
         geometry.rotateX(Math.PI / 2); // three's cylinders run along y, the body's along z
       } else geometry = new THREE.BoxGeometry(b.size[0], b.size[1], b.size[2]);
