@@ -276,7 +276,7 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   // A moving mass attached to nothing (a spring written as a potential) gets a guide line to
   // where its position expression is anchored. Without particles (energies written by hand) the
   // moving points stand for the masses.
-  const bool hand_written = particle_mass.empty();
+  const bool hand_written = particle_mass.empty() && model.bodies.empty();
   for (size_t i = 0; i < np; ++i)
     if (!used[i] && ground_of[i] >= 0 && (hand_written || particle_mass.count(points[i]->name))) {
       segments.push_back({{"a", ground_of[i]}, {"b", i}, {"kind", "guide"}});
@@ -322,8 +322,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     jpoints.push_back(
         {{"name", "ground"}, {"kind", used[np + a] ? "anchor" : "unused"}, {"radius", 0.5 * base}});
 
-  // Trails: as the visual section says, or the moving particle that travels furthest when the
-  // moving particles belong to at most four groups.
+  // Trails: as the visual section says, or the moving particle (or point) that travels furthest
+  // when the moving ones belong to at most four groups.
   nlohmann::json trail = nlohmann::json::array();
   if (visual.trail_given) {
     for (size_t i = 0; i < np; ++i)
@@ -331,8 +331,14 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   } else {
     long best = -1;
     std::set<std::string> moving_groups;
+    // Among the particles, or the moving points when there are none (a robot's tool point).
+    bool any_particle = false;
     for (size_t i = 0; i < np; ++i)
-      if (jpoints[i]["kind"] == "particle" && travelled[i] > 1e-3 * extent) {
+      any_particle =
+          any_particle || (jpoints[i]["kind"] == "particle" && travelled[i] > 1e-3 * extent);
+    const char* candidate = any_particle ? "particle" : "point";
+    for (size_t i = 0; i < np; ++i)
+      if (jpoints[i]["kind"] == candidate && travelled[i] > 1e-3 * extent) {
         moving_groups.insert(group_of(points[i]->name));
         if (best < 0 || travelled[i] > travelled[static_cast<size_t>(best)])
           best = static_cast<long>(i);

@@ -150,6 +150,20 @@ TEST(ReportScene, BodyRotationsAreOrthonormalAndTheShapeIsTheBox) {
   EXPECT_TRUE(s["normal"].is_null()) << "a tumbling brick is not planar";
 }
 
+TEST(ReportScene, PlanarLinksAreCapsulesFromTheJointThroughTheCentreOfMass) {
+  // inertia [0, 0, I]: no solid has it; the upper arm's centre of mass is at Lc1 = 0.5 along x.
+  const SceneRun r = run_example("elbow_manipulator.yaml", 0.5);
+  const auto& bodies = r.scene["bodies"];
+  ASSERT_EQ(bodies.size(), 2u);
+  EXPECT_EQ(bodies[0]["name"], "upper");
+  EXPECT_EQ(bodies[0]["shape"], "capsule");
+  EXPECT_NEAR(bodies[0]["size"][2].get<double>(), 1.0, 1e-12);  // 2 Lc1 = L1: joint to joint
+  EXPECT_EQ(bodies[0]["center"], nlohmann::json({0.5, 0.0, 0.0}));
+  // The capsule's axis (third column of `axes`) runs along body x.
+  EXPECT_NEAR(bodies[0]["axes"][2].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(bodies[1]["size"][2].get<double>(), 0.8, 1e-12);  // 2 Lc2
+}
+
 TEST(ReportScene, DecimationKeepsTheFirstAndLastSampleWithinTheLimits) {
   ReportLimits limits;
   limits.max_frames = 50;
