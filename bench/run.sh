@@ -42,6 +42,13 @@ echo
 echo "== lagrange: long run, memory (10^7 right-hand-side evaluations) =="
 "$build/bench/long_run" 1e7
 echo
+if [[ -x $build/bench/forward_speed ]]; then
+  echo "== forward dynamics per call: interpreter, machine code, MuJoCo mj_forward (same run) =="
+  "$build/bench/forward_speed" "$here/../examples/robots/"*.urdf | tee "$out/forward_speed.md"
+else
+  echo "(forward_speed not built: MuJoCo, libmujoco-dev, is not installed)"
+fi
+echo
 echo "== lagrange: accelerations at the benchmark state (cross-check with SymPy) =="
 : >"$out/accelerations.txt"
 for n in 2 5 8 10; do

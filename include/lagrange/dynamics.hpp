@@ -7,12 +7,23 @@
 #include <vector>
 
 #include "lagrange/compiled_model.hpp"
+#include "lagrange/machine_code.hpp"
 
 namespace lagrange {
 
 namespace dynamics {
 class SparseRangeSpace;
-}
+struct NativeTapes;
+}  // namespace dynamics
+
+/// What evaluates a Dynamics' tapes (docs/theory.md §8, machine code). Both give the same
+/// numbers bit for bit; machine code is faster per call but costs a compiler run when not cached.
+enum class Evaluation {
+  Interpreter,  ///< the tape interpreter
+  MachineCode,  ///< machine code, compiled at once when not cached; the interpreter if that fails
+  Background,   ///< machine code from the cache, else the interpreter until a compiler run in the
+                ///< background finishes (tapes under kBackgroundMinInstructions are not compiled)
+};
 
 /// Result of projecting a state onto the constraint manifold.
 struct ProjectionResult {
@@ -45,6 +56,21 @@ class Dynamics {
   const std::vector<double>& parameters() const { return params_; }
   /// Change parameter values: re-specialises the tapes (no new derivation).
   void set_parameters(const std::vector<double>& values);
+  /// Choose what evaluates the tapes (Interpreter by default); applies to the current and later
+  /// parameter values. Never throws: when machine code cannot be had, evaluation_note() says why.
+  void set_evaluation(Evaluation mode, const MachineCodeOptions& options = {});
+  /// True when calls run on machine code now (in Background mode it may become true later).
+  bool uses_machine_code() const;
+  /// One line on what evaluates the tapes: "machine code (compiled in 0.41 s)", "interpreter", or
+  /// "interpreter (machine code failed: …)".
+  std::string evaluation_note() const;
+  /// Why machine code that was asked for could not be had (empty when it could, or when it is
+  /// still compiling, or was not tried).
+  std::string machine_code_error() const;
+  /// Smallest dynamics tape that Background mode compiles: smaller tapes interpret in well under a
+  /// microsecond, less than a compiler run could ever win back in a typical simulation.
+  static constexpr size_t kBackgroundMinInstructions = 400;
+
   /// Baumgarte rate α (docs/theory.md §4.3): constraint errors decay like exp(−α t).
   void set_baumgarte(double alpha) { alpha_ = alpha; }
   double baumgarte() const { return alpha_; }
@@ -81,6 +107,8 @@ class Dynamics {
 
  private:
   void load_inputs(double t, const double* q, const double* v);
+  /// Evaluate tape `slot` (dynamics::TapeSlot) of the current inputs into `out`.
+  void run(size_t slot, const Tape& tape, double* out);
   void eval_dynamics(double t, const double* q, const double* v);
   void assemble_M();
   void assemble_G();
@@ -100,6 +128,9 @@ class Dynamics {
   Eigen::VectorXd kkt_rhs_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_K_;
   std::unique_ptr<dynamics::SparseRangeSpace> sparse_;  // diagonal M with many constraints
+  std::unique_ptr<dynamics::NativeTapes> native_;       // machine code, when chosen
+  /// Build or start building machine code for the current tapes (after set_parameters).
+  void refresh_machine_code();
   std::vector<double> m_diag_;
 };
 

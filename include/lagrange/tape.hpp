@@ -42,6 +42,9 @@ class Tape {
   /// With `file_local`, the preamble (comment, #include) is left out and the function is
   /// `static`, for embedding in a larger generated file.
   std::string to_c(const std::string& function_name, bool file_local = false) const;
+  /// C99 of `void NAME(const double* in, double* out, double* work)` for machine code
+  /// (MachineCode): exported, no preamble; `work` has work_size() doubles.
+  std::string to_native_c(const std::string& function_name) const;
 
   /// The tape as text through named common subexpressions (how `derive` prints large models):
   /// `definitions` holds (name, expression) for every value read more than once, in evaluation
@@ -77,6 +80,9 @@ class Tape {
  private:
   /// Adopt the arrays a TapeBuilder finished (shared by compile and specialize).
   static Tape from_code(tape_detail::TapeCode&& code);
+  /// The C text behind to_c and to_native_c.
+  std::string emit_c(const std::string& function_name, bool preamble, bool exported,
+                     bool scratch) const;
   size_t num_inputs_ = 0;
   size_t num_registers_ = 0;
   std::vector<Instr> code_;

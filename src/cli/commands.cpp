@@ -128,6 +128,20 @@ int run_check(const Options& opt) {
   return 0;
 }
 
+namespace {
+
+// docs/theory.md §8, machine code: `on` compiles before the run (and says at once when it cannot),
+// `auto` runs the interpreter while a large model compiles in the background.
+void choose_evaluation(Dynamics& dynamics, const std::string& mode) {
+  if (mode == "off") return;
+  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background);
+  if (mode == "on" && !dynamics.uses_machine_code())
+    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
+               dynamics.machine_code_error());
+}
+
+}  // namespace
+
 int run_simulate(const Options& opt) {
   Prepared p = prepare(opt.model, opt.sets, opt.initial);
   const Model& model = *p.model;
@@ -138,11 +152,15 @@ int run_simulate(const Options& opt) {
   if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
+  choose_evaluation(*p.dynamics, opt.compile);
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);
   if (so.progress) fmt::print(stderr, "\r{:60}\r", "");
   for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
+  if (opt.compile == "auto" && !p.dynamics->machine_code_error().empty())
+    fmt::print(stderr, "note: machine code: {}; the tape interpreter ran instead\n",
+               p.dynamics->machine_code_error());
 
   if (!opt.csv.empty()) write_trajectory_csv(traj, opt.csv);
   if (!opt.plot.empty() && traj.rows() > 1)
@@ -158,6 +176,7 @@ int run_simulate(const Options& opt) {
         "{})\n",
         p.derive_seconds, p.compile_seconds, t_sim, traj.stats.steps, traj.stats.rhs_evals,
         so.integrator.method);
+    fmt::print("  evaluation: {}\n", p.dynamics->evaluation_note());
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
       fmt::print(

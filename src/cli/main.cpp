@@ -64,6 +64,10 @@ int main(int argc, char** argv) {
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");
   sim->add_option("--step", opt.step, "fixed step of rk4");
+  sim->add_option("--compile", opt.compile,
+                  "auto (default): machine code from the cache, or compiled in the background "
+                  "for large models | on: compile before the run | off: interpreter only")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   sim->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");

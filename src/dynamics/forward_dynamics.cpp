@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dynamics/native_tapes.hpp"
 #include "dynamics/sparse_range_space.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
@@ -89,6 +90,18 @@ void Dynamics::set_parameters(const std::vector<double>& values) {
   obs_ = cm.observables.specialize(cm.p_offset(), params_);
   sig_ = cm.inputs.specialize(cm.p_offset(), params_);
   work_.assign(std::max({dyn_.work_size(), obs_.work_size(), sig_.work_size(), size_t{1}}), 0.0);
+  refresh_machine_code();
+}
+
+// Machine code when it is ready, else the interpreter: the same bits either way (§8).
+void Dynamics::run(size_t slot, const Tape& tape, double* out) {
+  if (native_) {
+    if (const auto f = native_->function(static_cast<dynamics::TapeSlot>(slot))) {
+      f(in_.data(), out, work_.data());
+      return;
+    }
+  }
+  tape.eval(in_.data(), out, work_.data());
 }
 
 void Dynamics::load_inputs(double t, const double* q, const double* v) {
@@ -97,14 +110,14 @@ void Dynamics::load_inputs(double t, const double* q, const double* v) {
   std::copy(q, q + cm.nq, in_.begin() + static_cast<long>(cm.q_offset()));
   std::copy(v, v + cm.nv, in_.begin() + static_cast<long>(cm.v_offset()));
   if (cm.k > 0) {
-    sig_.eval(in_.data(), sig_out_.data(), work_.data());
+    run(dynamics::kInputsTape, sig_, sig_out_.data());
     std::copy(sig_out_.begin(), sig_out_.end(), in_.begin() + static_cast<long>(cm.u_offset()));
   }
 }
 
 void Dynamics::eval_dynamics(double t, const double* q, const double* v) {
   load_inputs(t, q, v);
-  dyn_.eval(in_.data(), out_.data(), work_.data());
+  run(dynamics::kDynamicsTape, dyn_, out_.data());
 }
 
 void Dynamics::assemble_G() {
@@ -252,7 +265,7 @@ void Dynamics::dae_residual(double t, const double* q, const double* v, const do
 
 void Dynamics::observe(double t, const double* q, const double* v, double* out) {
   load_inputs(t, q, v);
-  obs_.eval(in_.data(), out, work_.data());
+  run(dynamics::kObservablesTape, obs_, out);
 }
 
 void Dynamics::constraints(double t, const double* q, const double* v, double* C, double* Cdot) {

@@ -1,5 +1,7 @@
 #include "io/equation_text.hpp"
 
+#include <fmt/format.h>
+
 #include <sstream>
 
 namespace lagrange::io {
@@ -47,6 +49,25 @@ std::string latex_escape(const std::string& name) {
 std::string multiplier_str(const std::string& constraint, Style style) {
   return style == Style::Latex ? "\\lambda_{\\mathrm{" + latex_escape(constraint) + "}}"
                                : "lambda_" + constraint;
+}
+
+void EquationWriter::heading(const std::string& h) {
+  if (!tex_) {
+    out_ += fmt::format("\n{}\n", h);
+    return;
+  }
+  out_ += fmt::format("{}% {}\n\\begin{{align*}}\n", open_ ? "\\end{align*}\n" : "", h);
+  open_ = true;
+}
+
+void EquationWriter::line(const std::string& lhs, const std::string& rhs) {
+  out_ += tex_ ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
+}
+
+std::string EquationWriter::finish() {
+  if (tex_ && open_) out_ += "\\end{align*}\n";
+  open_ = false;
+  return out_;
 }
 
 }  // namespace lagrange::io

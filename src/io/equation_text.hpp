@@ -35,6 +35,30 @@ using HeadingSink = std::function<void(const std::string&)>;
 /// Writes one equation lhs = rhs.
 using LineSink = std::function<void(const std::string&, const std::string&)>;
 
+/// Equations accumulated as text (`  lhs = rhs` under headings) or LaTeX (`lhs &= rhs \\`, one
+/// align* block per heading), shared by `derive`'s printers.
+class EquationWriter {
+ public:
+  explicit EquationWriter(Style style) : tex_(style == Style::Latex) {}
+  void heading(const std::string& h);
+  void line(const std::string& lhs, const std::string& rhs);
+  /// Text as is (comments, notes).
+  void raw(const std::string& text) { out_ += text; }
+  HeadingSink heading_sink() {
+    return [this](const std::string& h) { heading(h); };
+  }
+  LineSink line_sink() {
+    return [this](const std::string& l, const std::string& r) { line(l, r); };
+  }
+  /// Everything written, with the last align* block closed.
+  std::string finish();
+
+ private:
+  bool tex_;
+  bool open_ = false;
+  std::string out_;
+};
+
 /// Each rigid body's equations in the seed's form (docs/theory.md §4.4): for a free body
 /// m r̈ + ∂V/∂r = F_r − (∂C/∂r)ᵀλ, J ω̇ + ω × Jω + 2P(∂V/∂R) = F_rot − 2P(∂C/∂R)ᵀλ and
 /// Ṙ = R(Ω + Ξ); for a posed body its pose, ω = unskew(RᵀṘ) and its kinetic energy.

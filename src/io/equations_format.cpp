@@ -19,19 +19,9 @@ using io::symbol_str;
 std::string format_text(const Equations& eq, Style style) {
   const Model& model = *eq.model;
   const bool tex = style == Style::Latex;
-  std::string out;
-  auto line = [&](const std::string& lhs, const std::string& rhs) {
-    out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
-  };
-  bool open = false;  // LaTeX: one align* block per heading
-  auto heading = [&](const std::string& h) {
-    if (!tex) {
-      out += fmt::format("\n{}\n", h);
-      return;
-    }
-    out += fmt::format("{}% {}\n\\begin{{align*}}\n", open ? "\\end{align*}\n" : "", h);
-    open = true;
-  };
+  io::EquationWriter out(style);
+  const io::LineSink line = out.line_sink();
+  const io::HeadingSink heading = out.heading_sink();
   auto multiplier = [&](size_t r) { return io::multiplier_str(model.constraints[r].name, style); };
   // Constraint rates are shown on SO(3), where the drift correction Ξ vanishes (γ → 0); the
   // tape keeps the full expressions (docs/theory.md §4.4).
@@ -43,9 +33,9 @@ std::string format_text(const Equations& eq, Style style) {
                : model.constraints[r].name;
   };
   if (tex)
-    out += fmt::format("% {}: {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
+    out.raw(fmt::format("% {}: {} coordinates, {} constraints\n", model.name, eq.nq, eq.m));
   else
-    out += fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.nq, eq.m);
+    out.raw(fmt::format("{} — {} coordinates, {} constraints\n", model.name, eq.nq, eq.m));
   // Plain coordinates are named by q, body velocities by their own names (`brick.wx`).
   auto vname = [&](size_t i) {
     return symbol_str(i < eq.kin.plain ? eq.kin.q[i] : eq.kin.v[i], style);
@@ -57,7 +47,7 @@ std::string format_text(const Equations& eq, Style style) {
        eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
   for (const ElementSummary& s : model.element_summaries) {
     heading(s.title);
-    for (const auto& note : s.notes) out += tex ? "% " + note + "\n" : "  " + note + "\n";
+    for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
     for (const auto& [lhs, rhs] : s.equations) line(lhs, str(rhs, style));
   }
   if (eq.kin.plain > 0)
@@ -108,8 +98,7 @@ std::string format_text(const Equations& eq, Style style) {
     const auto acc = solve_accelerations(eq);
     for (size_t i = 0; i < eq.nv; ++i) line(symbol_str(eq.kin.a[i], style), str(acc[i], style));
   }
-  if (tex) out += "\\end{align*}\n";
-  return out;
+  return out.finish();
 }
 
 std::string format_json(const Equations& eq) {

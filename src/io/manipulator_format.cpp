@@ -27,25 +27,15 @@ std::string format_text(const ManipulatorForm& f, Style style) {
   const Equations& eq = *f.eq;
   const size_t n = eq.nv;
   const bool tex = style == Style::Latex;
-  std::string out;
-  bool open = false;
-  auto heading = [&](const std::string& h) {
-    if (!tex) {
-      out += fmt::format("\n{}\n", h);
-      return;
-    }
-    out += fmt::format("{}% {}\n\\begin{{align*}}\n", open ? "\\end{align*}\n" : "", h);
-    open = true;
-  };
-  auto line = [&](const std::string& lhs, const std::string& rhs) {
-    out += tex ? fmt::format("  {} &= {} \\\\\n", lhs, rhs) : fmt::format("  {} = {}\n", lhs, rhs);
-  };
+  io::EquationWriter out(style);
+  const io::LineSink line = out.line_sink();
+  const io::HeadingSink heading = out.heading_sink();
   std::string coords;
   for (size_t i = 0; i < n; ++i) coords += (i ? ", " : "") + eq.kin.q_names[i];
-  out += fmt::format(
-      "{}{} — manipulator form D(q) q_ddot + C(q, q_dot) q_dot + g(q) = tau, q = "
-      "({})\n",
-      tex ? "% " : "", eq.model->name, coords);
+  out.raw(
+      fmt::format("{}{} — manipulator form D(q) q_ddot + C(q, q_dot) q_dot + g(q) = tau, q = "
+                  "({})\n",
+                  tex ? "% " : "", eq.model->name, coords));
   heading("Inertia matrix D(q)");
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i; j < n; ++j)
@@ -53,7 +43,7 @@ std::string format_text(const ManipulatorForm& f, Style style) {
   heading(tex ? "Christoffel symbols (non-zero)"
               : "Christoffel symbols c_ijk = 1/2 (d d_kj/d q_i + d d_ki/d q_j - d d_ij/d q_k), "
                 "non-zero");
-  if (f.christoffel.empty()) out += tex ? "  % none\n" : "  (none)\n";
+  if (f.christoffel.empty()) out.raw(tex ? "  % none\n" : "  (none)\n");
   for (const Christoffel& c : f.christoffel)
     line(fmt::format("c_{{{}}}", indices(n, {c.i, c.j, c.k})), str(c.value, style));
   heading(tex ? "C(q, \\dot q)" : "C(q, q_dot), C_kj = sum_i c_ijk q_dot_i");
@@ -65,8 +55,7 @@ std::string format_text(const ManipulatorForm& f, Style style) {
   for (size_t k = 0; k < n; ++k) line(fmt::format("g_{{{}}}", k + 1), str(f.g[k], style));
   heading(tex ? "\\tau" : "Joint forces tau (generalised forces)");
   for (size_t k = 0; k < n; ++k) line(fmt::format("tau_{{{}}}", k + 1), str(f.tau[k], style));
-  if (tex) out += "\\end{align*}\n";
-  return out;
+  return out.finish();
 }
 
 std::string format_json(const ManipulatorForm& f) {

@@ -13,13 +13,26 @@ namespace lagrange {
 
 namespace {
 
+/// A product with a negative numeric factor (−q1, −2 q).
+bool negative_multiple(const GiNaC::ex& e) {
+  if (!GiNaC::is_a<GiNaC::mul>(e)) return false;
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (GiNaC::is_a<GiNaC::numeric>(e.op(i)) && GiNaC::ex_to<GiNaC::numeric>(e.op(i)).is_negative())
+      return true;
+  return false;
+}
+
 // cos(a + b) = cos a cos b − sin a sin b, sin(a + b) = sin a cos b + cos a sin b, recursively.
+// A negative multiple comes out of the argument: cos(−x) = cos x, sin(−x) = −sin x.
 struct ExpandTrig : GiNaC::map_function {
   GiNaC::ex operator()(const GiNaC::ex& e) override {
     const GiNaC::ex m = e.map(*this);
-    if (!GiNaC::is_a<GiNaC::function>(m) || !GiNaC::is_a<GiNaC::add>(m.op(0))) return m;
+    if (!GiNaC::is_a<GiNaC::function>(m)) return m;
     const std::string name = GiNaC::ex_to<GiNaC::function>(m).get_name();
     if (name != "sin" && name != "cos") return m;
+    if (negative_multiple(m.op(0)))
+      return name == "cos" ? GiNaC::cos(-m.op(0)) : -GiNaC::sin(-m.op(0));
+    if (!GiNaC::is_a<GiNaC::add>(m.op(0))) return m;
     const GiNaC::ex a = m.op(0).op(0), b = m.op(0) - a;
     const GiNaC::ex sa = (*this)(GiNaC::sin(a)), ca = (*this)(GiNaC::cos(a));
     const GiNaC::ex sb = (*this)(GiNaC::sin(b)), cb = (*this)(GiNaC::cos(b));

@@ -24,9 +24,16 @@ extern "C" void* malloc(size_t size) {
 namespace lagrange {
 namespace {
 
-long allocations_in_forward(const std::string& yaml_or_example, bool is_file) {
+long allocations_in_forward(const std::string& yaml_or_example, bool is_file,
+                            bool machine_code = false) {
   auto sys =
       is_file ? testing::load_example(yaml_or_example) : testing::load_string(yaml_or_example);
+  if (machine_code) {
+    MachineCodeOptions o;
+    o.cache_dir = LAGRANGE_TEST_CACHE;
+    sys.dynamics->set_evaluation(Evaluation::MachineCode, o);
+    EXPECT_TRUE(sys.dynamics->uses_machine_code()) << sys.dynamics->evaluation_note();
+  }
   const CompiledModel& cm = *sys.compiled;
   std::vector<double> q = cm.q0, v(cm.nv, 0.1), qd(cm.nq), a(cm.nv), lambda(cm.m);
   sys.dynamics->forward(0.0, q.data(), v.data(), qd.data(), a.data(), lambda.data());  // warm-up
@@ -55,6 +62,11 @@ TEST(NoAllocation, DenseConstrainedWithInputs) {
 }
 TEST(NoAllocation, FiveBar) {
   EXPECT_EQ(allocations_in_forward("five_bar.yaml", true), 0);
+}
+
+TEST(NoAllocation, MachineCode) {
+  EXPECT_EQ(allocations_in_forward("five_bar.yaml", true, true), 0);
+  EXPECT_EQ(allocations_in_forward(bench::n_link_pendulum_yaml(20), false, true), 0);
 }
 
 TEST(NoAllocation, SparseChain) {

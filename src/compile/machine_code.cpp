@@ -1,0 +1,256 @@
+// MachineCode: tapes → C → shared library through the system C compiler, cached on disk
+// (docs/theory.md §8, machine code). The library's name is the hash of everything that decides
+// its contents — the C source, the compiler's path, size and modification time, and the flags —
+// so a cached file is never stale, and two processes compiling the same tapes race harmlessly
+// (each renames a finished file into place).
+
+#include "lagrange/machine_code.hpp"
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+extern char** environ;
+
+namespace lagrange {
+
+namespace {
+
+// -ffp-contract=off keeps a·b + c from becoming a fused multiply-add, so that the library and
+// Tape::eval agree bit for bit; -fno-math-errno lets sqrt compile to one instruction (same
+// value). Changing the flags changes every cache key.
+constexpr const char* kFlags[] = {"-std=c99",        "-O1", "-fPIC", "-shared", "-ffp-contract=off",
+                                  "-fno-math-errno", "-w"};
+constexpr const char* kFormat = "lagrange machine code 1";
+
+using Clock = std::chrono::steady_clock;
+
+std::string env(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr ? std::string(v) : std::string();
+}
+
+std::string cache_directory(const MachineCodeOptions& options) {
+  if (!options.cache_dir.empty()) return options.cache_dir;
+  if (std::string d = env("LAGRANGE_CACHE_DIR"); !d.empty()) return d;
+  if (std::string d = env("XDG_CACHE_HOME"); !d.empty()) return d + "/lagrange";
+  if (std::string d = env("HOME"); !d.empty()) return d + "/.cache/lagrange";
+  throw MachineCodeError("no cache directory: set LAGRANGE_CACHE_DIR (HOME is not set)");
+}
+
+/// The compiler's full path: as given when it names a path, else the first match on PATH.
+std::string resolve_compiler(const MachineCodeOptions& options) {
+  std::string name = options.compiler;
+  if (name.empty()) name = env("LAGRANGE_CC");
+  if (name.empty()) name = env("CC");
+  if (name.empty()) name = "cc";
+  if (name.find('/') != std::string::npos) {
+    if (::access(name.c_str(), X_OK) == 0) return name;
+    throw MachineCodeError(fmt::format("the C compiler '{}' is not an executable file", name));
+  }
+  std::stringstream path(env("PATH"));
+  for (std::string dir; std::getline(path, dir, ':');) {
+    const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  throw MachineCodeError(
+      fmt::format("no C compiler: '{}' is not on PATH (install one, or set LAGRANGE_CC)", name));
+}
+
+/// 64-bit FNV-1a, folded over several strings.
+struct Fnv {
+  std::uint64_t h = 14695981039346656037ull;
+  void add(const std::string& s) {
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+    h = (h ^ 0xff) * 1099511628211ull;  // separator, so ("ab","c") ≠ ("a","bc")
+  }
+};
+
+std::string function_name(size_t i) {
+  return fmt::format("lagrange_tape_{}", i);
+}
+
+struct Plan {
+  std::string source, compiler, dir, path;
+};
+
+Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& options) {
+  Plan p;
+  p.source = "#include <math.h>\n";
+  for (size_t i = 0; i < tapes.size(); ++i) p.source += tapes[i]->to_native_c(function_name(i));
+  p.compiler = resolve_compiler(options);
+  p.dir = cache_directory(options);
+  struct stat st {};
+  if (::stat(p.compiler.c_str(), &st) != 0)
+    throw MachineCodeError(
+        fmt::format("cannot read the C compiler '{}': {}", p.compiler, std::strerror(errno)));
+  Fnv h;
+  h.add(kFormat);
+  h.add(p.source);
+  h.add(p.compiler);
+  h.add(fmt::format("{} {} {}", st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec));
+  for (const char* f : kFlags) h.add(f);
+  p.path = fmt::format("{}/tapes-{:016x}.so", p.dir, h.h);
+  return p;
+}
+
+/// mkdir -p, owner-only for the directories it creates (the cache holds code that is loaded).
+void make_directories(const std::string& dir) {
+  for (size_t pos = 1; pos <= dir.size(); ++pos) {
+    if (pos != dir.size() && dir[pos] != '/') continue;
+    const std::string prefix = dir.substr(0, pos);
+    if (::mkdir(prefix.c_str(), 0700) != 0 && errno != EEXIST)
+      throw MachineCodeError(fmt::format("cannot create the machine-code cache directory '{}': {}",
+                                         prefix, std::strerror(errno)));
+  }
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.flush();
+  if (!out) {
+    const int err = errno;
+    std::remove(path.c_str());
+    throw MachineCodeError(
+        fmt::format("cannot write '{}' into the machine-code cache: {}", path, std::strerror(err)));
+  }
+}
+
+/// The first lines of a compiler log, for the error message.
+std::string log_head(const std::string& path) {
+  std::ifstream in(path);
+  std::string text, line;
+  for (int n = 0; n < 6 && std::getline(in, line); ++n) text += "\n  " + line;
+  return text;
+}
+
+/// Runs the compiler on `c_file` into `so_file`, its output going to `log_file`. Polls the
+/// cancel flag every 10 ms and kills the compiler when it is set.
+void run_compiler(const Plan& p, const std::string& c_file, const std::string& so_file,
+                  const std::string& log_file, const std::atomic<bool>* cancel) {
+  std::vector<std::string> args{p.compiler};
+  for (const char* f : kFlags) args.emplace_back(f);
+  args.insert(args.end(), {"-o", so_file, c_file, "-lm"});
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0600);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, p.compiler.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0)
+    throw MachineCodeError(
+        fmt::format("cannot start the C compiler '{}': {}", p.compiler, std::strerror(rc)));
+  int status = 0;
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (w < 0 && errno != EINTR)
+      throw MachineCodeError(fmt::format("lost the C compiler: {}", std::strerror(errno)));
+    if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) {
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      throw MachineCodeError("compilation cancelled");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw MachineCodeError(fmt::format("the C compiler '{}' failed ({}):{}", p.compiler,
+                                       WIFEXITED(status)
+                                           ? fmt::format("exit {}", WEXITSTATUS(status))
+                                           : fmt::format("signal {}", WTERMSIG(status)),
+                                       log_head(log_file)));
+}
+
+}  // namespace
+
+MachineCode::~MachineCode() {
+  if (handle_ != nullptr) ::dlclose(handle_);
+}
+
+std::shared_ptr<MachineCode> MachineCode::load(const std::string& path, size_t count) {
+  if (::access(path.c_str(), R_OK) != 0) return nullptr;
+  std::shared_ptr<MachineCode> code(new MachineCode());
+  code->handle_ = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (code->handle_ == nullptr) {
+    const char* why = ::dlerror();
+    throw MachineCodeError(
+        fmt::format("cannot load '{}': {}", path, why != nullptr ? why : "unknown error"));
+  }
+  for (size_t i = 0; i < count; ++i) {
+    void* f = ::dlsym(code->handle_, function_name(i).c_str());
+    if (f == nullptr) throw MachineCodeError(fmt::format("'{}' lacks {}", path, function_name(i)));
+    code->functions_.push_back(reinterpret_cast<Function>(f));
+  }
+  code->path_ = path;
+  return code;
+}
+
+std::shared_ptr<const MachineCode> MachineCode::cached(const std::vector<const Tape*>& tapes,
+                                                       const MachineCodeOptions& options) {
+  const auto start = Clock::now();
+  auto code = load(plan(tapes, options).path, tapes.size());
+  if (code) {
+    code->from_cache_ = true;
+    code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  return code;
+}
+
+std::shared_ptr<const MachineCode> MachineCode::build(const std::vector<const Tape*>& tapes,
+                                                      const MachineCodeOptions& options) {
+  const auto start = Clock::now();
+  const Plan p = plan(tapes, options);
+  if (auto code = load(p.path, tapes.size())) {
+    code->from_cache_ = true;
+    code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+    return code;
+  }
+  make_directories(p.dir);
+  // Private names for the files in flight; only the finished library is renamed into place.
+  static std::atomic<unsigned> counter{0};
+  const std::string stem =
+      fmt::format("{}.{}.{}", p.path.substr(0, p.path.size() - 3), ::getpid(), counter++);
+  const std::string c_file = stem + ".c", so_file = stem + ".so.part", log_file = stem + ".log";
+  try {
+    write_file(c_file, p.source);
+    run_compiler(p, c_file, so_file, log_file, options.cancel);
+    if (std::rename(so_file.c_str(), p.path.c_str()) != 0)
+      throw MachineCodeError(
+          fmt::format("cannot move '{}' into place: {}", so_file, std::strerror(errno)));
+  } catch (...) {
+    std::remove(c_file.c_str());
+    std::remove(so_file.c_str());
+    std::remove(log_file.c_str());
+    throw;
+  }
+  std::remove(c_file.c_str());
+  std::remove(log_file.c_str());
+  auto code = load(p.path, tapes.size());
+  if (!code) throw MachineCodeError(fmt::format("'{}' vanished from the cache", p.path));
+  code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  return code;
+}
+
+}  // namespace lagrange

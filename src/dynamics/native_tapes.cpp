@@ -1,0 +1,123 @@
+// Dynamics on machine code (docs/theory.md §8): NativeTapes and the Dynamics methods that choose
+// it. The interpreter and the library compute the same bits, so switching from one to the other
+// in the middle of a run (Background mode) changes no result.
+
+#include "dynamics/native_tapes.hpp"
+
+#include <fmt/format.h>
+
+namespace lagrange {
+
+namespace dynamics {
+
+void NativeTapes::reset() {
+  cancel.store(true);
+  if (worker.joinable()) worker.join();
+  cancel.store(false);
+  ready.store(false, std::memory_order_release);
+  const std::lock_guard<std::mutex> lock(mutex);
+  library.reset();
+  why.clear();
+  skipped.clear();
+}
+
+void NativeTapes::publish(std::shared_ptr<const MachineCode> lib) {
+  for (size_t i = 0; i < 3; ++i) functions[i] = lib->function(i);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    library = std::move(lib);
+  }
+  ready.store(true, std::memory_order_release);
+}
+
+void NativeTapes::fail(const std::string& reason) {
+  const std::lock_guard<std::mutex> lock(mutex);
+  why = reason;
+}
+
+void NativeTapes::skip(const std::string& reason) {
+  const std::lock_guard<std::mutex> lock(mutex);
+  skipped = reason;
+}
+
+std::string NativeTapes::error() const {
+  const std::lock_guard<std::mutex> lock(mutex);
+  return why;
+}
+
+void NativeTapes::start(const std::vector<const Tape*>& tapes) {
+  reset();
+  if (mode == Evaluation::Interpreter) return;
+  MachineCodeOptions opts = options;
+  opts.cancel = &cancel;
+  try {
+    if (mode == Evaluation::MachineCode) {
+      publish(MachineCode::build(tapes, opts));
+      return;
+    }
+    if (auto lib = MachineCode::cached(tapes, opts)) {
+      publish(std::move(lib));
+      return;
+    }
+  } catch (const MachineCodeError& e) {
+    fail(e.what());
+    return;
+  }
+  if (tapes[kDynamicsTape]->num_instructions() < Dynamics::kBackgroundMinInstructions) {
+    skip(fmt::format("a {}-instruction tape interprets faster than it compiles",
+                     tapes[kDynamicsTape]->num_instructions()));
+    return;
+  }
+  // The worker owns copies of the tapes: the Dynamics may re-specialise its own meanwhile
+  // (set_parameters joins the worker first, but a copy keeps the thread independent of it).
+  std::vector<Tape> copies;
+  for (const Tape* t : tapes) copies.push_back(*t);
+  worker = std::thread([this, copies = std::move(copies), opts]() {
+    std::vector<const Tape*> ptrs;
+    for (const Tape& t : copies) ptrs.push_back(&t);
+    try {
+      publish(MachineCode::build(ptrs, opts));
+    } catch (const MachineCodeError& e) {
+      fail(e.what());
+    }
+  });
+}
+
+std::string NativeTapes::note() const {
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (ready.load(std::memory_order_acquire) && library)
+    return library->from_cache()
+               ? "machine code (from the cache)"
+               : fmt::format("machine code (compiled in {:.2f} s)", library->seconds());
+  if (!why.empty()) return fmt::format("interpreter (machine code: {})", why);
+  if (!skipped.empty()) return fmt::format("interpreter ({})", skipped);
+  if (worker.joinable()) return "interpreter (machine code still compiling)";
+  return "interpreter";
+}
+
+}  // namespace dynamics
+
+void Dynamics::set_evaluation(Evaluation mode, const MachineCodeOptions& options) {
+  if (!native_) native_ = std::make_unique<dynamics::NativeTapes>();
+  native_->mode = mode;
+  native_->options = options;
+  refresh_machine_code();
+}
+
+void Dynamics::refresh_machine_code() {
+  if (native_) native_->start({&dyn_, &obs_, &sig_});
+}
+
+bool Dynamics::uses_machine_code() const {
+  return native_ && native_->function(dynamics::kDynamicsTape) != nullptr;
+}
+
+std::string Dynamics::machine_code_error() const {
+  return native_ ? native_->error() : std::string();
+}
+
+std::string Dynamics::evaluation_note() const {
+  return native_ ? native_->note() : "interpreter";
+}
+
+}  // namespace lagrange

@@ -1,0 +1,54 @@
+#pragma once
+// The machine code behind a Dynamics (docs/theory.md §8): the library of its three specialised
+// tapes, compiled at once or by a background thread, and published to the evaluating thread
+// through one atomic flag.
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lagrange/dynamics.hpp"
+#include "lagrange/machine_code.hpp"
+
+namespace lagrange::dynamics {
+
+/// Tape order in the library.
+enum TapeSlot : size_t { kDynamicsTape = 0, kObservablesTape = 1, kInputsTape = 2 };
+
+struct NativeTapes {
+  Evaluation mode = Evaluation::Interpreter;
+  MachineCodeOptions options;  ///< as given; `cancel` is replaced by ours
+
+  /// The function of a tape when machine code is ready, else nullptr (the interpreter runs).
+  MachineCode::Function function(TapeSlot slot) const {
+    return ready.load(std::memory_order_acquire) ? functions[slot] : nullptr;
+  }
+
+  /// Stop and join a background compiler run; forget the current library.
+  void reset();
+  /// Machine code for `tapes` per `mode` (joins any earlier run first).
+  void start(const std::vector<const Tape*>& tapes);
+  std::string note() const;
+  std::string error() const;
+
+  ~NativeTapes() { reset(); }
+
+ private:
+  void publish(std::shared_ptr<const MachineCode> library);
+  void fail(const std::string& why);
+  void skip(const std::string& why);
+
+  std::atomic<bool> ready{false};
+  std::atomic<bool> cancel{false};
+  MachineCode::Function functions[3] = {nullptr, nullptr, nullptr};
+  std::shared_ptr<const MachineCode> library;
+  std::thread worker;
+  mutable std::mutex mutex;  // guards `why` and `library` between the worker and note()
+  std::string why;           // why machine code failed
+  std::string skipped;       // why machine code was not tried
+};
+
+}  // namespace lagrange::dynamics

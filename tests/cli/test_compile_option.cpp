@@ -1,0 +1,78 @@
+// `simulate --compile on|off|auto` as a user meets it (docs/theory.md §8, machine code): the same
+// CSV, byte for byte, whatever evaluates the tapes; a missing compiler is said once and the run
+// goes on; a bad value is a usage error.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+
+#include "hardening/cli_runner.hpp"
+
+namespace lagrange::hardening {
+namespace {
+
+std::string example(const std::string& name) {
+  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
+}
+
+/// Runs lagrange with LAGRANGE_CACHE_DIR (and optionally LAGRANGE_CC) set for the child only.
+RunResult run_with(const ScratchDir& dir, const std::vector<std::string>& args,
+                   const char* compiler = nullptr) {
+  ::setenv("LAGRANGE_CACHE_DIR", (dir.path() / "cache").c_str(), 1);
+  if (compiler != nullptr) ::setenv("LAGRANGE_CC", compiler, 1);
+  RunResult r = run_lagrange(dir.path(), args);
+  ::unsetenv("LAGRANGE_CACHE_DIR");
+  ::unsetenv("LAGRANGE_CC");
+  return r;
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
+TEST(CompileOption, MachineCodeWritesTheSameCsvAsTheInterpreter) {
+  const ScratchDir dir("compile-same-csv");
+  const std::string model = example("five_bar.yaml");
+  const RunResult off = run_with(dir, {"simulate", model, "--t-end", "2", "--compile", "off", "-o",
+                                       (dir.path() / "off.csv").string()});
+  const RunResult on = run_with(dir, {"simulate", model, "--t-end", "2", "--compile", "on", "-o",
+                                      (dir.path() / "on.csv").string()});
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  EXPECT_NE(off.out.find("evaluation: interpreter"), std::string::npos) << off.out;
+  EXPECT_NE(on.out.find("evaluation: machine code (compiled in"), std::string::npos) << on.out;
+  const std::string csv = slurp(dir.path() / "off.csv");
+  EXPECT_GT(csv.size(), 1000u);
+  EXPECT_EQ(slurp(dir.path() / "on.csv"), csv);
+  const RunResult again = run_with(dir, {"simulate", model, "--t-end", "2", "--compile", "on", "-o",
+                                         (dir.path() / "again.csv").string()});
+  EXPECT_NE(again.out.find("evaluation: machine code (from the cache)"), std::string::npos)
+      << again.out;
+}
+
+TEST(CompileOption, MissingCompilerIsSaidOnceAndTheRunGoesOn) {
+  const ScratchDir dir("compile-no-cc");
+  const RunResult r = run_with(dir,
+                               {"simulate", example("double_pendulum.yaml"), "--t-end", "1",
+                                "--compile", "on", "-o", (dir.path() / "dp.csv").string()},
+                               "no-such-compiler-for-lagrange");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "no C compiler: 'no-such-compiler-for-lagrange' is not on PATH"), 1u)
+      << r.err;
+  EXPECT_NE(r.err.find("the tape interpreter runs instead"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir.path() / "dp.csv"));
+}
+
+TEST(CompileOption, UnknownValueIsAUsageError) {
+  const ScratchDir dir("compile-bad-value");
+  const RunResult r =
+      run_with(dir, {"simulate", example("pendulum.yaml"), "--compile", "sometimes"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--compile"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace lagrange::hardening

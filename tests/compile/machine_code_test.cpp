@@ -1,0 +1,181 @@
+// MachineCode: tapes compiled by the system C compiler compute what eval computes, bit for bit;
+// the on-disk cache is hit on the second build; and every way it cannot be had is an error that
+// says why (the caller falls back to the interpreter).
+
+#include "lagrange/machine_code.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "compile/pendulum_expressions.hpp"
+
+namespace lagrange {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A fresh, empty cache directory per test, removed afterwards.
+class MachineCodeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("lagrange-mc-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    options_.cache_dir = dir_.string();
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  fs::path dir_;
+  MachineCodeOptions options_;
+};
+
+/// Max over outputs and points of "not bit-identical" (NaN = NaN counts as identical).
+size_t differing_outputs(const Tape& t, MachineCode::Function f,
+                         const std::vector<std::vector<double>>& points) {
+  std::vector<double> want(t.num_outputs()), got(t.num_outputs()), work(t.work_size() + 1);
+  size_t differing = 0;
+  for (const auto& x : points) {
+    t.eval(x.data(), want.data(), work.data());
+    f(x.data(), got.data(), work.data());
+    for (size_t i = 0; i < want.size(); ++i)
+      differing += !(got[i] == want[i] || (std::isnan(got[i]) && std::isnan(want[i])));
+  }
+  return differing;
+}
+
+TEST_F(MachineCodeTest, EveryOpIsBitIdenticalToEval) {
+  GiNaC::symbol x("x"), y("y");
+  const Tape t = Tape::compile(
+      {-3 * x + 2 * y - 7, -x * y * 5, 1 / x, x / y, pow(x, 3) - pow(y, -2),
+       pow(x * x, GiNaC::numeric(1, 3)), sqrt(y * y + 1),
+       sin(x) - cos(y) * tan(x) + sin(y) * cos(x), asin(x / 2) + acos(y / 3) + atan(x), atan2(x, y),
+       sinh(x) + cosh(y) + tanh(x * y), exp(x) * log(y * y) + abs(x)},
+      {x, y});
+  const auto code = MachineCode::build({&t}, options_);
+  EXPECT_FALSE(code->from_cache());
+  EXPECT_EQ(differing_outputs(t, code->function(0), {{0.3, -1.7}, {-1.1, 2.5}, {1.9, 0.01}}), 0u);
+}
+
+TEST_F(MachineCodeTest, LargeTapeKeepsItsRegistersInTheScratchArray) {
+  const int n = 20;  // several 256-statement parts
+  const test::Pendulum p = test::make_pendulum(n);
+  const Tape t = Tape::compile(p.outputs, p.inputs);
+  ASSERT_GT(t.num_instructions(), 3 * 256u);
+  const auto code = MachineCode::build({&t}, options_);
+  std::vector<std::vector<double>> points;
+  for (unsigned seed = 0; seed < 5; ++seed) points.push_back(test::pendulum_point(n, seed));
+  EXPECT_EQ(differing_outputs(t, code->function(0), points), 0u);
+}
+
+TEST_F(MachineCodeTest, SecondBuildComesFromTheCache) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({sin(x) * 2}, {x});
+  const auto first = MachineCode::build({&t}, options_);
+  const auto second = MachineCode::build({&t}, options_);
+  EXPECT_FALSE(first->from_cache());
+  EXPECT_TRUE(second->from_cache());
+  EXPECT_EQ(first->path(), second->path());
+  EXPECT_NE(MachineCode::cached({&t}, options_), nullptr);
+  // Only the finished library is left in the cache: no sources, logs or partial files.
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    EXPECT_EQ(e.path().extension(), ".so") << e.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 1u);
+}
+
+TEST_F(MachineCodeTest, TwoLibrariesInOneProcessKeepTheirOwnFunctions) {
+  GiNaC::symbol x("x");
+  const Tape a = Tape::compile({x + 1}, {x}), b = Tape::compile({x * 10}, {x});
+  const auto ca = MachineCode::build({&a}, options_);
+  const auto cb = MachineCode::build({&a, &b}, options_);
+  double in = 2.0, out = 0.0, work[4];
+  ca->function(0)(&in, &out, work);
+  EXPECT_EQ(out, 3.0);
+  cb->function(1)(&in, &out, work);
+  EXPECT_EQ(out, 20.0);
+  EXPECT_EQ(MachineCode::cached({&b}, options_), nullptr);  // a different library
+}
+
+TEST_F(MachineCodeTest, MissingCompilerSaysSo) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x}, {x});
+  options_.compiler = "no-such-compiler-for-lagrange";
+  try {
+    (void)MachineCode::build({&t}, options_);
+    FAIL() << "expected MachineCodeError";
+  } catch (const MachineCodeError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("no C compiler: 'no-such-compiler-for-lagrange' is not on PATH"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
+TEST_F(MachineCodeTest, UnwritableCacheSaysSo) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x}, {x});
+  options_.cache_dir = "/proc/self/lagrange-cache";  // not creatable, even by root
+  try {
+    (void)MachineCode::build({&t}, options_);
+    FAIL() << "expected MachineCodeError";
+  } catch (const MachineCodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot create the machine-code cache directory"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+/// An executable shell script standing in for the compiler.
+std::string fake_compiler(const fs::path& dir, const std::string& body) {
+  fs::create_directories(dir);
+  const fs::path path = dir / "fake-cc";
+  std::ofstream(path) << "#!/bin/sh\n" << body << "\n";
+  fs::permissions(path, fs::perms::owner_all);
+  return path.string();
+}
+
+TEST_F(MachineCodeTest, FailingCompilerReportsItsOutput) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x}, {x});
+  options_.compiler = fake_compiler(dir_ / "bin", "echo 'disk quota exceeded' >&2; exit 1");
+  try {
+    (void)MachineCode::build({&t}, options_);
+    FAIL() << "expected MachineCodeError";
+  } catch (const MachineCodeError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("failed (exit 1)"), std::string::npos) << what;
+    EXPECT_NE(what.find("disk quota exceeded"), std::string::npos) << what;
+  }
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_TRUE(e.is_directory()) << "left behind: " << e.path();
+}
+
+TEST_F(MachineCodeTest, CancelStopsARunningCompiler) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x}, {x});
+  options_.compiler = fake_compiler(dir_ / "bin", "sleep 30");
+  std::atomic<bool> cancel{false};
+  options_.cancel = &cancel;
+  std::thread stopper([&cancel] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    cancel = true;
+  });
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW((void)MachineCode::build({&t}, options_), MachineCodeError);
+  stopper.join();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+}
+
+}  // namespace
+}  // namespace lagrange
