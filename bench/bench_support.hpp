@@ -69,6 +69,23 @@ inline BuiltModel build_model(const std::string& yaml, const std::string& label)
   return b;
 }
 
+/// CPU seconds per Dynamics::forward call (KKT solve included) at the model's initial state,
+/// after one warm-up call, averaged over at least 0.3 s of calls.
+inline double forward_call_seconds(const BuiltModel& b) {
+  const CompiledModel& cm = *b.compiled;
+  std::vector<double> q = cm.q0, v = cm.v0, qdot(cm.nq), a(cm.nv), lambda(cm.m);
+  b.dynamics->forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+  const Stopwatch clock;
+  long calls = 0;
+  const auto c0 = clock.now();
+  do {
+    for (int i = 0; i < 100; ++i)
+      b.dynamics->forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+    calls += 100;
+  } while (clock.now().cpu - c0.cpu < 0.3);
+  return (clock.now().cpu - c0.cpu) / static_cast<double>(calls);
+}
+
 /// Instruction count of the dynamics tape after specialisation to the default parameters
 /// (Dynamics keeps its specialised tape private; this repeats the same specialisation).
 inline size_t specialised_instructions(const CompiledModel& cm) {

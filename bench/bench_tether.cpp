@@ -65,19 +65,9 @@ int main(int argc, char** argv) {
     bench::BuiltModel b = bench::build_model(balloon_yaml(n), fmt::format("<balloon N={}>", n));
     const double build = clock.now().cpu - b0.cpu;
     const CompiledModel& cm = *b.compiled;
-    std::vector<double> q = cm.q0, v = cm.v0, qdot(cm.nq), a(cm.nv), lambda(cm.m);
+    call[n] = bench::forward_call_seconds(b);
     SimulationOptions so;
-    so.t_end = 0;
     so.output_step = 0.01;
-    simulate(*b.dynamics, so, q, v);  // warm-up
-    long calls = 0;
-    const auto c0 = clock.now();
-    do {
-      for (int i = 0; i < 100; ++i)
-        b.dynamics->forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
-      calls += 100;
-    } while (clock.now().cpu - c0.cpu < 0.3);
-    call[n] = (clock.now().cpu - c0.cpu) / static_cast<double>(calls);
     so.t_end = t_end;
     so.integrator.rtol = 1e-6;
     so.integrator.atol = 1e-8;

@@ -5,10 +5,12 @@
 #include "lagrange/machine_code.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -134,6 +136,30 @@ TEST_F(MachineCodeTest, UnwritableCacheSaysSo) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST_F(MachineCodeTest, FullDiskSaysSoAndLeavesNothingBehind) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({sin(x) + cos(x)}, {x});
+  // A file-size limit of 16 bytes makes every write fail as on a full disk (EFBIG, with
+  // SIGXFSZ ignored), in this process and in the compiler it starts.
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = old;
+  small.rlim_cur = 16;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string what;
+  try {
+    (void)MachineCode::build({&t}, options_);
+  } catch (const MachineCodeError& e) {
+    what = e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_NE(what.find("cannot write"), std::string::npos) << what;
+  EXPECT_NE(what.find("machine-code cache"), std::string::npos) << what;
+  for (const auto& e : fs::directory_iterator(dir_)) ADD_FAILURE() << "left behind: " << e.path();
 }
 
 /// An executable shell script standing in for the compiler.

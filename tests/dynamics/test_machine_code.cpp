@@ -72,23 +72,8 @@ TEST_P(MachineCodeExample, SameBitsAsTheInterpreter) {
   }
 }
 
-/// Every example model and every robot description beside them (examples/robots/*.urdf).
-std::vector<std::string> models() {
-  std::vector<std::string> names = testing::example_files();
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots"))
-    if (e.path().extension() == ".urdf") names.push_back("robots/" + e.path().filename().string());
-  std::sort(names.begin() + static_cast<long>(testing::example_files().size()), names.end());
-  return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(Examples, MachineCodeExample, ::testing::ValuesIn(models()),
-                         [](const auto& info) {
-                           std::string n = info.param.substr(0, info.param.rfind('.'));
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Examples, MachineCodeExample, ::testing::ValuesIn(testing::model_files()),
+                         [](const auto& info) { return testing::model_label(info.param); });
 
 /// Column-wise identical trajectories (same rows, same bits).
 void expect_same_trajectory(const Trajectory& a, const Trajectory& b) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -105,6 +106,25 @@ inline std::vector<std::string> example_files() {
     if (e.path().extension() == ".yaml") names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
+}
+
+/// example_files() and then the robot descriptions beside them (`robots/<name>.urdf`), sorted.
+inline std::vector<std::string> model_files() {
+  std::vector<std::string> names = example_files(), robots;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots"))
+    if (e.path().extension() == ".urdf") robots.push_back("robots/" + e.path().filename().string());
+  std::sort(robots.begin(), robots.end());
+  names.insert(names.end(), robots.begin(), robots.end());
+  return names;
+}
+
+/// A test-name-safe label of a model file name ("robots/ur5.urdf" → "robots_ur5").
+inline std::string model_label(const std::string& file) {
+  std::string n = file.substr(0, file.rfind('.'));
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
 }
 
 inline Loaded load_example(const std::string& name) {
