@@ -17,6 +17,13 @@ struct Christoffel {
   GiNaC::ex value;
 };
 
+/// A link's Jacobians (a posed body's): its centre of mass moves with v_c = J_v q̇ and it turns
+/// with ω = J_ω q̇ in world axes (docs/theory.md §4.8), D = Σ m J_vᵀJ_v + J_ωᵀ R I Rᵀ J_ω.
+struct LinkJacobian {
+  std::string link;
+  GiNaC::matrix Jv, Jw;  ///< 3 × n each
+};
+
 /// D = M, the non-zero Christoffel symbols (both orders of i, j), C_kj = Σᵢ c_ijk q̇ᵢ, g = ∂U/∂q
 /// and τ = Q (joint torques, damping, any generalised force), all symbolic in the parameters.
 struct ManipulatorForm {
@@ -24,6 +31,7 @@ struct ManipulatorForm {
   GiNaC::matrix D, C;
   std::vector<Christoffel> christoffel;
   std::vector<GiNaC::ex> g, tau;
+  std::vector<LinkJacobian> jacobians;  ///< one per posed body (link with mass), model order
 };
 
 /// The manipulator form of `eq`. Throws std::invalid_argument, saying why, when the model has

@@ -62,10 +62,10 @@ int along(const Vec3& k, size_t axis) {
 }
 
 Frame child_frame(const Frame& p, const JointSpec& j, const Vec3& k, const GiNaC::ex& q) {
-  const bool plain = j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
+  const bool plain = !j.rotation && j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
   Frame f;
   f.r = add(p.r, p.identity ? j.xyz : mat_vec(p.R, j.xyz));
-  f.R = plain ? p.R : mat_mul(p.R, rpy_rotation(j.rpy));
+  f.R = plain ? p.R : mat_mul(p.R, j.rotation ? *j.rotation : rpy_rotation(j.rpy));
   if (plain) {
     f.identity = p.identity;
     f.spin_axis = p.spin_axis;

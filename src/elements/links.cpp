@@ -68,10 +68,41 @@ JointSpec read_joint(const ModelReader& r, const std::string& link, const YAML::
   return j;
 }
 
+// `dh: {convention: standard | modified, a, alpha, d, theta}`: the joint's place instead of its
+// `origin` and `axis`.
+DhSpec read_dh(const ModelReader& r, const std::string& link, const YAML::Node& node,
+               const YAML::Node& joint) {
+  const std::string what = fmt::format("dh of link '{}'", link);
+  r.expect_map(node, what + " ({convention, a, alpha, d, theta})");
+  r.check_keys(node, {"convention", "a", "alpha", "d", "theta"}, what);
+  if (!node["convention"])
+    r.fail(node, fmt::format("expected 'convention: standard' or 'convention: modified' in {}, "
+                             "got none",
+                             what));
+  const std::string convention = r.scalar(node["convention"], "convention of " + what);
+  if (convention != "standard" && convention != "modified")
+    r.fail(node["convention"], fmt::format("expected standard or modified for the convention of "
+                                           "{}, got '{}'",
+                                           what, model::clip(convention)));
+  for (const char* k : {"origin", "axis"})
+    if (joint && joint[k])
+      r.fail(joint[k], fmt::format("expected no '{}' in the joint of link '{}': its 'dh' places "
+                                   "the joint (axis z)",
+                                   k, link));
+  DhSpec dh;
+  dh.modified = convention == "modified";
+  for (auto [key, value] : {std::pair{"a", &dh.a}, std::pair{"alpha", &dh.alpha},
+                            std::pair{"d", &dh.d}, std::pair{"theta", &dh.theta}})
+    if (node[key])
+      *value = r.scalar_expr(node[key], model::kParams, fmt::format("{} in {}", key, what));
+  return dh;
+}
+
 }  // namespace
 
 void declare_links(ModelReader& r, const YAML::Node& node, LinkChain& chain) {
-  r.expect_map(node, "links (a map name: {parent, joint, mass, com, inertia or shape, points})");
+  r.expect_map(node,
+               "links (a map name: {parent, joint, dh, mass, com, inertia or shape, points})");
   r.check_keys(node, {}, "links");
   chain.title = "Links (joint chain)";
   for (const auto& kv : node) {
@@ -83,7 +114,8 @@ void declare_links(ModelReader& r, const YAML::Node& node, LinkChain& chain) {
     const std::string what = fmt::format("link '{}'", link.name);
     const YAML::Node& spec = kv.second;
     r.expect_map(spec, what + " (a map {parent, joint, mass, com, inertia or shape, points})");
-    r.check_keys(spec, {"parent", "joint", "mass", "com", "inertia", "shape", "points"}, what);
+    r.check_keys(spec, {"parent", "joint", "dh", "mass", "com", "inertia", "shape", "points"},
+                 what);
     if (spec["parent"]) {
       const std::string parent = r.scalar(spec["parent"], "parent of " + what);
       if (parent != "world") {
@@ -100,6 +132,7 @@ void declare_links(ModelReader& r, const YAML::Node& node, LinkChain& chain) {
       }
     }
     link.joint = read_joint(r, link.name, kv.first, spec["joint"]);
+    if (spec["dh"]) link.dh = read_dh(r, link.name, spec["dh"], spec["joint"]);
     if (!spec["mass"]) r.fail(kv.first, fmt::format("expected 'mass' in {}, got none", what));
     link.mass = r.scalar_expr(spec["mass"], model::kParams, "mass of " + what);
     r.check_sign(link.mass, spec["mass"], true, "mass for " + what);
@@ -120,6 +153,7 @@ void declare_links(ModelReader& r, const YAML::Node& node, LinkChain& chain) {
     }
     chain.links.push_back(std::move(link));
   }
+  apply_dh(chain);
   declare_chain(r, chain);
 }
 

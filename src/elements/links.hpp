@@ -20,14 +20,24 @@ namespace lagrange::elements {
 /// The joint that attaches a link to its parent, in the parent's frame (URDF conventions).
 struct JointSpec {
   enum class Type { Revolute, Prismatic, Fixed } type = Type::Fixed;
-  std::string name;    ///< the coordinate's name (movable joints)
-  Vec3 axis{0, 0, 1};  ///< joint axis in the joint frame (normalised when lowered)
-  Vec3 xyz{0, 0, 0};   ///< origin of the joint frame in the parent frame
-  Vec3 rpy{0, 0, 0};   ///< its orientation: R = R_z(yaw) R_y(pitch) R_x(roll)
+  std::string name;              ///< the coordinate's name (movable joints)
+  Vec3 axis{0, 0, 1};            ///< joint axis in the joint frame (normalised when lowered)
+  Vec3 xyz{0, 0, 0};             ///< origin of the joint frame in the parent frame
+  Vec3 rpy{0, 0, 0};             ///< its orientation: R = R_z(yaw) R_y(pitch) R_x(roll)
+  std::optional<Mat3> rotation;  ///< the orientation as a matrix, replacing rpy (from `dh:`)
   double initial = 0, rate = 0;
   std::optional<GiNaC::ex> torque;  ///< joint torque (force for prismatic), read when lowered
   GiNaC::ex damping = 0;            ///< viscous joint damping: adds −b q̇
   SourceLoc loc;
+};
+
+/// Denavit–Hartenberg parameters of a link (`dh:`), θ and d the constant parts (the joint adds q
+/// to θ, or to d for a prismatic joint). Standard (Spong): A = R_z(θ) T_z(d) T_x(a) R_x(α), the
+/// joint about the parent's z and the link frame at the far end; modified (Craig): A = R_x(α)
+/// T_x(a) R_z(θ) T_z(d) with α, a of the parent's row, the link frame on the joint axis.
+struct DhSpec {
+  bool modified = false;
+  GiNaC::ex a = 0, alpha = 0, d = 0, theta = 0;
 };
 
 /// A link: its joint, mass properties (inertia about the centre of mass, link axes) and points.
@@ -39,6 +49,7 @@ struct LinkSpec {
   Vec3 com{0, 0, 0};
   Mat3 inertia{Vec3{0, 0, 0}, Vec3{0, 0, 0}, Vec3{0, 0, 0}};
   std::vector<std::pair<std::string, Vec3>> points;  ///< link-frame points `<link>.<name>`
+  std::optional<DhSpec> dh;                          ///< joint placed by DH parameters
   YAML::Node key, spec;                              ///< YAML source (null for URDF links)
   SourceLoc loc;
 };
@@ -64,6 +75,11 @@ Vec3 mat_vec(const Mat3& a, const Vec3& v);
 void declare_chain(model::ModelReader& reader, LinkChain& chain);
 /// Phase 2: joint torques and damping as generalised forces, the summary `derive` prints.
 void lower_chain(model::ModelReader& reader, const LinkChain& chain);
+
+/// Places the joints of links with `dh:` (axis z, origin from the parameters and the parent's DH
+/// frame) and moves standard-DH links' centre of mass, inertia and points from the DH frame into
+/// the joint frame. Links parents first.
+void apply_dh(LinkChain& chain);
 
 /// `links:` in a model file.
 void declare_links(model::ModelReader& reader, const YAML::Node& node, LinkChain& chain);

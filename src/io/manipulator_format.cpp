@@ -23,6 +23,19 @@ std::string indices(size_t n, std::initializer_list<size_t> ix) {
   return s;
 }
 
+/// A 3 × n matrix on one line: [[a, b], …] or a LaTeX pmatrix.
+std::string matrix_str(const GiNaC::matrix& J, Style style) {
+  const bool tex = style == Style::Latex;
+  std::string out = tex ? "\\begin{pmatrix} " : "[";
+  for (unsigned r = 0; r < J.rows(); ++r) {
+    out += r ? (tex ? " \\\\ " : ", [") : (tex ? "" : "[");
+    for (unsigned c = 0; c < J.cols(); ++c)
+      out += (c ? (tex ? " & " : ", ") : "") + str(J(r, c), style);
+    out += tex ? "" : "]";
+  }
+  return out + (tex ? " \\end{pmatrix}" : "]");
+}
+
 std::string format_text(const ManipulatorForm& f, Style style) {
   const Equations& eq = *f.eq;
   const size_t n = eq.nv;
@@ -53,6 +66,15 @@ std::string format_text(const ManipulatorForm& f, Style style) {
         line(fmt::format("C_{{{}}}", indices(n, {k, j})), str(f.C(k, j), style));
   heading(tex ? "g(q)" : "Gravity g(q) = dP/dq");
   for (size_t k = 0; k < n; ++k) line(fmt::format("g_{{{}}}", k + 1), str(f.g[k], style));
+  if (!f.jacobians.empty())
+    heading(tex ? "Link Jacobians: v_c = J_v \\dot q, \\omega = J_\\omega \\dot q (world axes)"
+                : "Link Jacobians: centre-of-mass velocity v_c = J_v q_dot, angular velocity "
+                  "omega = J_w q_dot (world axes)");
+  for (const LinkJacobian& J : f.jacobians) {
+    const std::string link = tex ? "\\mathrm{" + io::latex_escape(J.link) + "}" : J.link;
+    line(tex ? "J_{v," + link + "}" : "J_v(" + link + ")", matrix_str(J.Jv, style));
+    line(tex ? "J_{\\omega," + link + "}" : "J_w(" + link + ")", matrix_str(J.Jw, style));
+  }
   heading(tex ? "\\tau" : "Joint forces tau (generalised forces)");
   for (size_t k = 0; k < n; ++k) line(fmt::format("tau_{{{}}}", k + 1), str(f.tau[k], style));
   return out.finish();
@@ -85,6 +107,20 @@ std::string format_json(const ManipulatorForm& f) {
                                 {"k", c.k + 1},
                                 {"value", s(c.value)},
                                 {"latex", str(c.value, Style::Latex)}});
+  j["jacobians"] = nlohmann::json::array();
+  for (const LinkJacobian& J : f.jacobians) {
+    nlohmann::json jv, jw;
+    for (unsigned r = 0; r < 3; ++r) {
+      nlohmann::json rv = nlohmann::json::array(), rw = nlohmann::json::array();
+      for (unsigned c = 0; c < J.Jv.cols(); ++c) {
+        rv.push_back(s(J.Jv(r, c)));
+        rw.push_back(s(J.Jw(r, c)));
+      }
+      jv.push_back(rv);
+      jw.push_back(rw);
+    }
+    j["jacobians"].push_back({{"link", J.link}, {"Jv", jv}, {"Jw", jw}});
+  }
   return j.dump(2) + "\n";
 }
 

@@ -98,6 +98,30 @@ class Probe {
   std::vector<GiNaC::exmap> points_;
 };
 
+/// J_v = ∂r_c/∂q of the centre of mass r_c = r + R c, and J_ω with column j = unskew(∂R/∂q_j Rᵀ)
+/// (Ṙ Rᵀ = [ω]× in world axes).
+LinkJacobian link_jacobian(const Body& b, const Kinematics& kin) {
+  const size_t n = kin.plain;
+  LinkJacobian J{b.name, GiNaC::matrix(3, n), GiNaC::matrix(3, n)};
+  const Vec3 rc = b.world_point(b.com);
+  for (size_t j = 0; j < n; ++j) {
+    const GiNaC::symbol& q = kin.q[j];
+    GiNaC::matrix S(3, 3);
+    for (size_t a = 0; a < 3; ++a)
+      for (size_t c = 0; c < 3; ++c) {
+        GiNaC::ex e = 0;
+        for (size_t k = 0; k < 3; ++k) e += b.rotation[a][k].diff(q) * b.rotation[c][k];
+        S(a, c) = e;
+      }
+    const GiNaC::ex w[3] = {S(2, 1), S(0, 2), S(1, 0)};
+    for (size_t a = 0; a < 3; ++a) {
+      J.Jv(a, j) = tidy(rc[a].diff(q));
+      J.Jw(a, j) = tidy(w[a]);
+    }
+  }
+  return J;
+}
+
 }  // namespace
 
 GiNaC::ex trig_simplify(const GiNaC::ex& e) {
@@ -166,6 +190,8 @@ ManipulatorForm manipulator_form(const Equations& eq) {
           "outside the potential)",
           eq.kin.q_names[k]));
   }
+  for (const Body& b : m.bodies)
+    if (!b.free) f.jacobians.push_back(link_jacobian(b, eq.kin));
   return f;
 }
 

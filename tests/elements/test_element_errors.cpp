@@ -99,6 +99,24 @@ std::vector<BadModel> bad_links() {
       {"torque of an unknown name",
        arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute, torque: -k*q2}\n" + body),
        "unknown name 'k' (in torque of joint 'q2')"},
+      {"dh without convention",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute}\n    dh: {a: 1}\n" + body),
+       "expected 'convention: standard' or 'convention: modified' in dh of link 'b'"},
+      {"dh of an unknown convention",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute}\n"
+           "    dh: {convention: craig, a: 1}\n" +
+           body),
+       "expected standard or modified for the convention of dh of link 'b', got 'craig'"},
+      {"dh beside an origin",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute, origin: {xyz: [1, 0, 0]}}\n"
+           "    dh: {convention: standard, a: 1}\n" +
+           body),
+       "expected no 'origin' in the joint of link 'b': its 'dh' places the joint (axis z)"},
+      {"dh with an unknown key",
+       arm("  b:\n    parent: a\n    joint: {name: q2, type: revolute}\n"
+           "    dh: {convention: standard, r: 1}\n" +
+           body),
+       "'r'"},
   };
 }
 

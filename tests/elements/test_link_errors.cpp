@@ -25,10 +25,14 @@ TEST(LinksCli, DeriveManipulatorForm) {
   for (const char* factor : {"Lc2", "m2", "L1", "sin(q2)"})
     EXPECT_NE(line.find(factor), std::string::npos) << line;
   EXPECT_EQ(r.out.find("c_{111}"), std::string::npos) << r.out;
+  // The link Jacobians: the forearm turns with q1 + q2 about z.
+  EXPECT_NE(r.out.find("  J_w(fore) = [[0, 0], [0, 0], [1, 1]]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  J_v(upper) = [["), std::string::npos) << r.out;
   r = run_lagrange(dir.path(), {"derive", examples + "elbow_manipulator.yaml", "--form",
                                 "manipulator", "--format", "json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"christoffel\""), std::string::npos);
+  EXPECT_NE(r.out.find("\"jacobians\""), std::string::npos);
   r = run_lagrange(dir.path(), {"derive", examples + "five_bar.yaml", "--form", "manipulator"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("the manipulator form needs an unconstrained model, got 2 constraints"),
