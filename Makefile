@@ -34,6 +34,7 @@ test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
+	@LAGRANGE_BENCH=1 ./scripts/install-deps.sh
 	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@./bench/run.sh $(BUILD)
 

@@ -5,8 +5,7 @@
 // atol 1e-8 (as bench_tether), in CPU and wall seconds of this process, with the real-time
 // factor; N = 5 (the example's tether) for reference; then t_call(200)/t_call(50). Target:
 // N = 50 at ≥ 50× real time on one core.
-//   bench_kite [--quick] [--all]   (--quick: 5 s of flight; --all: also fly N = 200, which takes
-//   hours while a free body keeps the KKT solve dense, docs/benchmarks.md)
+//   bench_kite [--quick] [--all]   (--quick: 5 s of flight; --all: also fly N = 200)
 
 #include <fmt/format.h>
 

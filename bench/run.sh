@@ -15,7 +15,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 python=/usr/bin/python3  # Debian's python3 has sympy and numpy (docs/benchmarks.md, Peers)
 out=${LAGRANGE_BENCH_OUT:-$build/bench-results}
 
-for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite long_run; do
+for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite long_run work_precision; do
   if [[ ! -x $build/bench/$exe ]]; then
     echo "$0: $build/bench/$exe not found; build it first: cmake --build $build --target benchmarks" >&2
     exit 1
@@ -63,3 +63,13 @@ echo "== SymPy peer (sympy.physics.mechanics LagrangesMethod) =="
 "$python" "$here/sympy_lagrange.py" "${sympy_args[@]}" | tee "$out/sympy.jsonl"
 echo
 "$python" "$here/report.py" "$out" | tee "$out/report.md"
+echo
+echo "== work-precision: lagrange's integrators and the SciPy peers (docs/benchmarks.md) =="
+"$build/bench/work_precision" "$out" | tee "$out/work_precision.jsonl"
+if "$python" -c 'import scipy' 2>/dev/null; then
+  "$python" "$here/work_precision.py" "$out" | tee -a "$out/work_precision.jsonl"
+else
+  echo "$0: $python lacks scipy (apt-get install python3-scipy): SciPy peers skipped" >&2
+fi
+"$python" "$here/work_precision_report.py" "$out/work_precision.jsonl" "$out/work_precision.svg" \
+  | tee "$out/work_precision.md"

@@ -1,6 +1,7 @@
 #pragma once
-// Integrator front-end: SUNDIALS ARKODE (explicit adaptive RK), CVODE (BDF), IDA (DAE) and
-// fixed-step RK4, all reporting on a uniform output grid.
+// Integrator front-end: SUNDIALS ARKODE (explicit adaptive RK, named Butcher tables), CVODE (BDF),
+// IDA (DAE), fixed-step RK4 and the fixed-step implicit midpoint rule, all reporting on a uniform
+// output grid (ARKODE and CVODE through their dense output, without stopping at samples).
 
 #include <functional>
 #include <string>
@@ -21,18 +22,33 @@ struct DaeProblem {
   std::vector<bool> differential;
 };
 
+/// Called after every accepted internal step with the state y at t; may change y in place (e.g. a
+/// projection onto constraints) and returns true when it did, so the method continues from there.
+using StepHook = std::function<bool(double t, double* y)>;
+
 struct IntegratorOptions {
-  std::string method = "arkode";  ///< arkode | cvode | rk4 (ODE); ida (DAE)
+  std::string method = "arkode";  ///< one of integrator_methods() (ODE); ida (DAE)
   double rtol = 1e-8;
   double atol = 1e-10;
-  double step = 0.0;         ///< rk4 step; 0 means output step / 10
+  double step = 0.0;  ///< rk4 / midpoint step (0: output step / 10); arkode: > 0 fixes the step
+                      ///< (no error control)
   long max_steps = 1000000;  ///< per output interval (adaptive methods)
+  StepHook after_step;       ///< optional; ODE methods only (IDA restarts at samples instead)
 };
+
+/// Every method name integrate() and integrate_dae() accept, in the order help texts list them:
+/// arkode (its default table), arkode:<table> for each named ARKODE explicit table, cvode, rk4,
+/// midpoint, ida.
+const std::vector<std::string>& integrator_methods();
+
+/// integrator_methods() joined by ", " (for messages that list the valid names).
+std::string integrator_method_list();
 
 struct IntegratorStats {
   long steps = 0;
   long rhs_evals = 0;
   long failed_steps = 0;
+  std::string method;  ///< what ran: plain `arkode` names its table, e.g. arkode:dormand-prince
 };
 
 /// What the observer wants after seeing an output sample.
@@ -40,17 +56,21 @@ enum class ObserverAction { Continue, StateChanged, Stop };
 
 /// Called at t0, t0 + dt, …, t_end with the state; it may modify y (return StateChanged so the
 /// integrator restarts from it) or stop the run (Stop). For DAEs `yp` is the derivative, else null.
+/// ARKODE and CVODE step freely and hand the observer their dense-output interpolant at each
+/// sample; changes to y there only take effect with StateChanged (the step past the sample is
+/// discarded).
 using Observer = std::function<ObserverAction(double t, double* y, double* yp)>;
 
 /// Integrate an ODE on the uniform grid t0 + k·dt (last sample exactly t_end).
 /// Throws SimulationError (with t) when the integrator fails, naming the SUNDIALS call and flag.
 IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& options, double t0,
-                          std::vector<double> y0, double t_end, double dt, const Observer& observer);
+                          std::vector<double> y0, double t_end, double dt,
+                          const Observer& observer);
 
 /// Integrate a DAE with IDA; y0/yp0 must be consistent (or nearly: IDACalcIC corrects y' of
 /// the algebraic part). Same grid and observer contract as `integrate`.
-IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options, double t0,
-                              std::vector<double> y0, std::vector<double> yp0, double t_end,
-                              double dt, const Observer& observer);
+IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
+                              double t0, std::vector<double> y0, std::vector<double> yp0,
+                              double t_end, double dt, const Observer& observer);
 
 }  // namespace lagrange

@@ -20,8 +20,9 @@ struct Trajectory {
   std::string message;  ///< failure reason (empty when complete)
   double failure_time = 0.0;
   std::vector<std::string> notes;  ///< e.g. what the initial-state projection changed
-  /// Largest ‖RᵀR − 1‖_F of any free body at an output sample before it was re-orthonormalised
-  /// (the drift the integrator leaves over one output step; 0 without free bodies).
+  /// Largest ‖RᵀR − 1‖_F of any free body before it was re-orthonormalised, after an internal
+  /// step or at an output sample (the drift the integrator leaves over one step; 0 without free
+  /// bodies).
   double rotation_drift = 0.0;
   IntegratorStats stats;
 
@@ -37,8 +38,9 @@ struct SimulationOptions {
   double t_end = 10.0;
   double output_step = 0.01;
   IntegratorOptions integrator;
-  /// At output samples, project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds projection_tol,
-  /// and replace a free body's R by the nearest rotation when ‖RᵀR − 1‖_F exceeds it.
+  /// After each internal step (ODE methods; IDA: at output samples) and at output samples,
+  /// project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds projection_tol, and replace a free
+  /// body's R by the nearest rotation when ‖RᵀR − 1‖_F exceeds it.
   bool project = true;
   double projection_tol = 1e-11;
   bool project_initial = true;  ///< false: fail when the initial state is inconsistent

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "cli/prepare.hpp"
+#include "cli/report_command.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
@@ -147,6 +148,7 @@ int run_simulate(const Options& opt) {
   const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);
   const std::vector<std::string> plot_columns = checked_plot_columns(opt, *cm);
+  if (!opt.report.empty()) check_report(opt.report, model);
   if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
@@ -163,6 +165,8 @@ int run_simulate(const Options& opt) {
   if (!opt.csv.empty()) write_trajectory_csv(traj, opt.csv);
   if (!opt.plot.empty() && traj.rows() > 1)
     plot_trajectory(traj, plot_columns, opt.plot, model.name);
+  if (!opt.report.empty() && traj.rows() > 0)
+    write_run_report(p, traj, so.integrator.method, t_sim, opt.report);
   if (!opt.quiet) {
     const size_t rows = traj.rows();
     fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->nq,
@@ -171,7 +175,7 @@ int run_simulate(const Options& opt) {
         "  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, "
         "{})\n",
         p.derive_seconds, p.compile_seconds, t_sim, traj.stats.steps, traj.stats.rhs_evals,
-        so.integrator.method);
+        traj.stats.method.empty() ? so.integrator.method : traj.stats.method);
     fmt::print("  evaluation: {}\n", p.dynamics->evaluation_note());
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
@@ -196,6 +200,7 @@ int run_simulate(const Options& opt) {
     }
     if (!opt.csv.empty()) fmt::print("  wrote {} (+ .json status)\n", opt.csv);
     if (!opt.plot.empty()) fmt::print("  wrote {}\n", opt.plot);
+    if (!opt.report.empty() && traj.rows() > 0) fmt::print("  wrote {}\n", opt.report);
   }
   if (traj.status == Trajectory::Status::Failed) {
     fmt::print(stderr, "lagrange: {}\n", traj.message);

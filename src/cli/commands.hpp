@@ -23,6 +23,8 @@ struct Options {
   std::optional<std::string> integrator;
   std::string compile = "auto";  ///< simulate --compile: auto | on | off
   std::string csv, plot, c_dir;
+  std::string report;      ///< simulate --report, report -o: the HTML report to write
+  std::string trajectory;  ///< report: the saved trajectory CSV
   std::vector<std::string> plot_columns, sets;
   std::vector<std::string> initial;  ///< --initial NAME=VALUE (coordinates, NAME_dot rates)
   std::vector<std::string> tau;      ///< eval --tau NAME=VALUE (joint forces)
@@ -36,6 +38,8 @@ int run_derive(const Options& opt);
 int run_simulate(const Options& opt);
 int run_export(const Options& opt);
 int run_check(const Options& opt);
+/// The HTML report of a saved trajectory (src/cli/report_command.cpp).
+int run_report(const Options& opt);
 /// M, bias forces, accelerations and inverse dynamics at the state of --state (src/cli/eval.cpp).
 int run_eval(const Options& opt);
 

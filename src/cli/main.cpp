@@ -1,4 +1,5 @@
-// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval.
+// The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval,
+// report.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/version.hpp"
 #include "lagrange/error.hpp"
+#include "lagrange/integrator.hpp"
 
 namespace {
 std::atomic<bool> g_interrupt{false};
@@ -51,16 +53,19 @@ int main(int argc, char** argv) {
   sim->add_option("--plot", opt.plot, "plot of the coordinates, .svg or .png (through gnuplot)");
   sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
       ->delimiter(',');
+  sim->add_option("--report", opt.report,
+                  "self-contained HTML report: 3-D animation, plots, equations (.html)");
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
   sim->add_option("--initial", opt.initial,
                   "initial value of a coordinate or a rate NAME_dot, NAME=VALUE (repeatable, or "
                   "comma-separated)")
       ->delimiter(',');
-  sim->add_option("--integrator", opt.integrator, "arkode | cvode | rk4 | ida")
-      ->check(CLI::IsMember({"arkode", "cvode", "rk4", "ida"}));
+  sim->add_option("--integrator", opt.integrator,
+                  "arkode (default table per tolerance), arkode:<table>, cvode, rk4, midpoint, ida")
+      ->check(CLI::IsMember(lagrange::integrator_methods()));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");
-  sim->add_option("--step", opt.step, "fixed step of rk4");
+  sim->add_option("--step", opt.step, "fixed step of rk4 and midpoint");
   sim->add_option("--compile", opt.compile,
                   "auto (default): machine code from the cache, or compiled in the background "
                   "for large models | on: compile before the run | off: interpreter only")
@@ -95,6 +100,15 @@ int main(int argc, char** argv) {
   eval->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
   eval->add_option("--format", opt.format, "text | json")->check(CLI::IsMember({"text", "json"}));
 
+  auto* report = app.add_subcommand(
+      "report", "write the HTML report (3-D animation, plots, equations) of a saved trajectory");
+  report->add_option("model", opt.model, "model file (YAML)")->required();
+  report->add_option("trajectory", opt.trajectory, "trajectory CSV written by simulate -o")
+      ->required();
+  report->add_option("-o,--output", opt.report, "HTML file to write")->required();
+  report->add_option("--set", opt.sets, "parameter value the run used, NAME=VALUE (repeatable)");
+  report->add_flag("-q,--quiet", opt.quiet, "no summary line");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -109,6 +123,7 @@ int main(int argc, char** argv) {
     if (*sim) return run_simulate(opt);
     if (*exp) return run_export(opt);
     if (*check) return run_check(opt);
+    if (*report) return run_report(opt);
     if (*eval) return run_eval(opt);
   } catch (const lagrange::ModelError& e) {
     fmt::print(stderr, "{}\n", e.what());

@@ -64,13 +64,10 @@ Dynamics::Dynamics(std::shared_ptr<const CompiledModel> model,
   kkt_rhs_.setZero(cm.nv + cm.m);
   lu_K_.compute(
       Eigen::MatrixXd::Identity(static_cast<long>(cm.nv + cm.m), static_cast<long>(cm.nv + cm.m)));
-  // A diagonal M with many constraints (chains in Cartesian coordinates) takes the sparse
-  // range-space path; small systems stay dense, where it is faster.
-  if (cm.M_diagonal && cm.m > 0 && cm.nv >= kSparseThreshold && cm.M_pattern.size() == cm.nv &&
-      cm.nq == cm.nv) {
+  // A block-diagonal M with many constraints (chains in Cartesian coordinates, free bodies on
+  // them) takes the sparse range-space path; small systems stay dense, where it is faster.
+  if (cm.m > 0 && cm.nv >= kSparseThreshold && dynamics::SparseRangeSpace::suits(cm))
     sparse_ = std::make_unique<dynamics::SparseRangeSpace>(cm);
-    m_diag_.assign(cm.nv, 0.0);
-  }
   set_parameters(parameters);
 }
 
@@ -184,8 +181,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
                                      alpha_ * alpha_ * out[cm.C_out() + r];
   }
   if (sparse_) {
-    for (size_t e = 0; e < cm.nv; ++e) m_diag_[cm.M_pattern[e].first] = out[e];
-    if (sparse_->solve(m_diag_.data(), out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
+    if (sparse_->solve(out, out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
       for (size_t i = 0; i < cm.nv; ++i)
         if (!std::isfinite(a[i]))
           fail_singular(

@@ -1,46 +1,140 @@
 #include "dynamics/sparse_range_space.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
+#include <numeric>
 
 namespace lagrange::dynamics {
 
 namespace {
 
-// Envelope of S = G M⁻¹ Gᵀ: row r reaches back to the first constraint sharing a column.
-std::vector<size_t> envelope_of(const CompiledModel& cm) {
+// Blocks of M: the velocities joined by an off-diagonal entry (union–find), each ascending.
+std::vector<std::vector<size_t>> blocks_of(const CompiledModel& cm) {
+  std::vector<size_t> parent(cm.nv);
+  std::iota(parent.begin(), parent.end(), size_t{0});
+  auto root = [&](size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& [i, j] : cm.M_pattern) parent[root(i)] = root(j);
+  std::vector<std::vector<size_t>> blocks;
+  std::vector<size_t> index(cm.nv, cm.nv);
+  for (size_t i = 0; i < cm.nv; ++i) {
+    size_t& b = index[root(i)];
+    if (b == cm.nv) {
+      b = blocks.size();
+      blocks.emplace_back();
+    }
+    blocks[b].push_back(i);
+  }
+  return blocks;
+}
+
+// Envelope of S = G M⁻¹ Gᵀ: row r reaches back to the first constraint sharing a block.
+std::vector<size_t> envelope_of(const CompiledModel& cm, const std::vector<size_t>& block_of,
+                                size_t blocks) {
   std::vector<size_t> first(cm.m);
   for (size_t r = 0; r < cm.m; ++r) first[r] = r;
-  std::vector<size_t> first_row_of_column(cm.nv, cm.m);
+  std::vector<size_t> first_row_of_block(blocks, cm.m);
   for (const auto& [r, j] : cm.G_pattern)
-    first_row_of_column[j] = std::min(first_row_of_column[j], r);
-  for (const auto& [r, j] : cm.G_pattern) first[r] = std::min(first[r], first_row_of_column[j]);
+    first_row_of_block[block_of[j]] = std::min(first_row_of_block[block_of[j]], r);
+  for (const auto& [r, j] : cm.G_pattern)
+    first[r] = std::min(first[r], first_row_of_block[block_of[j]]);
   return first;
+}
+
+std::vector<size_t> block_index(const std::vector<std::vector<size_t>>& blocks, size_t n) {
+  std::vector<size_t> of(n);
+  for (size_t b = 0; b < blocks.size(); ++b)
+    for (size_t j : blocks[b]) of[j] = b;
+  return of;
 }
 
 }  // namespace
 
+bool SparseRangeSpace::suits(const CompiledModel& cm) {
+  for (const auto& b : blocks_of(cm))
+    if (b.size() > kMaxBlock) return false;
+  return true;
+}
+
 SparseRangeSpace::SparseRangeSpace(const CompiledModel& cm)
-    : n_(cm.nv), m_(cm.m), G_(cm.G_pattern), S_(envelope_of(cm)), a0_(cm.nv), lam_(cm.m) {
-  // S_rs = Σ_j G_rj G_sj / M_jj over the columns j the two constraints share (r ≥ s).
-  std::vector<std::vector<int>> by_column(n_);
-  for (size_t e = 0; e < G_.size(); ++e) by_column[G_[e].second].push_back(static_cast<int>(e));
-  for (size_t j = 0; j < n_; ++j)
-    for (int e1 : by_column[j])
-      for (int e2 : by_column[j]) {
-        const size_t r = G_[static_cast<size_t>(e1)].first, s = G_[static_cast<size_t>(e2)].first;
-        if (r >= s) contributions_.push_back({S_.index(r, s), e1, e2, static_cast<int>(j)});
+    : n_(cm.nv),
+      m_(cm.m),
+      M_(cm.M_pattern),
+      G_(cm.G_pattern),
+      blocks_(blocks_of(cm)),
+      block_of_(block_index(blocks_, cm.nv)),
+      local_(cm.nv),
+      S_(envelope_of(cm, block_of_, blocks_.size())),
+      a0_(cm.nv),
+      lam_(cm.m) {
+  size_t size = 0;
+  for (const auto& b : blocks_) {
+    offset_.push_back(size);
+    for (size_t k = 0; k < b.size(); ++k) local_[b[k]] = k;
+    size += b.size() * b.size();
+  }
+  inverse_.assign(size, 0.0);
+  scratch_.assign(kMaxBlock, 0.0);
+  // S_rs = Σ G_rj (M⁻¹)_jk G_sk over the columns j, k of one block (r ≥ s).
+  std::vector<std::vector<int>> by_block(blocks_.size());
+  for (size_t e = 0; e < G_.size(); ++e)
+    by_block[block_of_[G_[e].second]].push_back(static_cast<int>(e));
+  for (size_t b = 0; b < blocks_.size(); ++b)
+    for (int e1 : by_block[b])
+      for (int e2 : by_block[b]) {
+        const auto& [r, j] = G_[static_cast<size_t>(e1)];
+        const auto& [s, k] = G_[static_cast<size_t>(e2)];
+        if (r >= s)
+          contributions_.push_back(
+              {S_.index(r, s), e1, e2, offset_[b] + local_[j] * blocks_[b].size() + local_[k]});
       }
 }
 
-bool SparseRangeSpace::solve(const double* m_diag, const double* g, const double* rhs,
-                             const double* gamma, double* a, double* lambda) {
-  for (size_t j = 0; j < n_; ++j) {
-    if (!(m_diag[j] > 0.0)) return false;
-    a0_[static_cast<long>(j)] = rhs[j] / m_diag[j];
+void SparseRangeSpace::apply_inverse(double* x) {
+  for (size_t b = 0; b < blocks_.size(); ++b) {
+    const auto& cols = blocks_[b];
+    const size_t k = cols.size();
+    const double* inv = inverse_.data() + offset_[b];
+    double* y = scratch_.data();
+    for (size_t i = 0; i < k; ++i) {
+      y[i] = 0.0;
+      for (size_t l = 0; l < k; ++l) y[i] += inv[i * k + l] * x[cols[l]];
+    }
+    for (size_t i = 0; i < k; ++i) x[cols[i]] = y[i];
   }
+}
+
+bool SparseRangeSpace::solve(const double* m_values, const double* g, const double* rhs,
+                             const double* gamma, double* a, double* lambda) {
+  // M⁻¹ block by block (a block of one velocity is 1/M_jj).
+  std::fill(inverse_.begin(), inverse_.end(), 0.0);
+  for (size_t e = 0; e < M_.size(); ++e) {
+    const auto& [i, j] = M_[e];
+    const size_t b = block_of_[i], k = blocks_[b].size();
+    double* inv = inverse_.data() + offset_[b];
+    inv[local_[i] * k + local_[j]] = inv[local_[j] * k + local_[i]] = m_values[e];
+  }
+  for (size_t b = 0; b < blocks_.size(); ++b) {
+    const long k = static_cast<long>(blocks_[b].size());
+    double* inv = inverse_.data() + offset_[b];
+    if (k == 1) {
+      if (!(inv[0] > 0.0)) return false;
+      inv[0] = 1.0 / inv[0];
+      continue;
+    }
+    const Block Mb = Eigen::Map<const Eigen::MatrixXd>(inv, k, k);
+    const Eigen::LLT<Block> llt(Mb);
+    if (llt.info() != Eigen::Success) return false;
+    const Block Minv = llt.solve(Block::Identity(k, k));
+    Eigen::Map<Eigen::MatrixXd>(inv, k, k) = Minv;  // symmetric: row- or column-major alike
+  }
+  for (size_t j = 0; j < n_; ++j) a0_[static_cast<long>(j)] = rhs[j];
+  apply_inverse(a0_.data());
   double* values = S_.values();
   std::fill(values, values + S_.num_values(), 0.0);
-  for (const auto& c : contributions_) values[c.value] += g[c.g1] * g[c.g2] / m_diag[c.column];
+  for (const auto& c : contributions_) values[c.value] += g[c.g1] * inverse_[c.inverse] * g[c.g2];
   if (!S_.factorize()) return false;
   lam_.setZero();
   for (size_t e = 0; e < G_.size(); ++e)
@@ -50,7 +144,7 @@ bool SparseRangeSpace::solve(const double* m_diag, const double* g, const double
   for (size_t j = 0; j < n_; ++j) a[j] = rhs[j];
   for (size_t e = 0; e < G_.size(); ++e)
     a[G_[e].second] -= g[e] * lam_[static_cast<long>(G_[e].first)];
-  for (size_t j = 0; j < n_; ++j) a[j] /= m_diag[j];
+  apply_inverse(a);
   for (size_t r = 0; r < m_; ++r) lambda[r] = lam_[static_cast<long>(r)];
   return true;
 }

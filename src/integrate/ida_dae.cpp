@@ -25,7 +25,7 @@ IntegratorStats ida_stats(void* mem, double t, ErrorLog& log) {
   ok(IDAGetNumLinResEvals(mem, &jac_evals), "IDAGetNumLinResEvals");
   ok(IDAGetNumErrTestFails(mem, &err_fails), "IDAGetNumErrTestFails");
   ok(IDAGetNumStepSolveFails(mem, &solve_fails), "IDAGetNumStepSolveFails");
-  return {steps, evals + jac_evals, err_fails + solve_fails};
+  return {steps, evals + jac_evals, err_fails + solve_fails, {}};
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "integrate/erk_tables.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/output_grid.hpp"
 
@@ -47,19 +49,30 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
                           std::vector<double> y0, double t_end, double dt,
                           const Observer& observer) {
   const std::string& method = options.method;
-  if (method != "arkode" && method != "cvode" && method != "rk4") {
-    throw std::invalid_argument(
-        fmt::format("integrator: unknown ODE method '{}', expected one of arkode, cvode, rk4{}",
-                    method, method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
+  const std::vector<std::string>& known = integrator_methods();
+  if (method == "ida" || std::find(known.begin(), known.end(), method) == known.end()) {
+    throw std::invalid_argument(fmt::format(
+        "integrator: unknown ODE method '{}', expected one of {}{}", method,
+        integrator_method_list(), method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
   }
   validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
   const integration::OutputGrid grid(t0, t_end, dt);
-  if (method == "arkode")
-    return integration::integrate_arkode(problem, options, grid, y0, observer);
-  if (method == "cvode") return integration::integrate_cvode(problem, options, grid, y0, observer);
-  return integration::integrate_rk4(problem, options, grid, y0, observer);
+  IntegratorStats stats;
+  if (method == "cvode") {
+    stats = integration::integrate_cvode(problem, options, grid, y0, observer);
+  } else if (method == "rk4") {
+    stats = integration::integrate_rk4(problem, options, grid, y0, observer);
+  } else if (method == "midpoint") {
+    stats = integration::integrate_midpoint(problem, options, grid, y0, observer);
+  } else {
+    stats = integration::integrate_arkode(problem, options, grid, y0, observer);
+  }
+  stats.method = method == "arkode"
+                     ? std::string("arkode:") + integration::default_erk_table(options.rtol).name
+                     : method;
+  return stats;
 }
 
 IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
@@ -69,13 +82,17 @@ IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions
     throw std::invalid_argument(
         fmt::format("integrator: unknown DAE method '{}', expected ida", options.method));
   }
+  if (options.after_step)
+    throw std::invalid_argument("integrator: ida takes no step hook (it restarts at samples)");
   validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   validate_size(problem.size, yp0.size(), "yp0");
   validate_size(problem.size, problem.differential.size(), "differential");
   if (!problem.residual) throw std::invalid_argument("integrator: the DAE has no residual");
   const integration::OutputGrid grid(t0, t_end, dt);
-  return integration::integrate_ida(problem, options, grid, y0, yp0, observer);
+  IntegratorStats stats = integration::integrate_ida(problem, options, grid, y0, yp0, observer);
+  stats.method = "ida";
+  return stats;
 }
 
 }  // namespace lagrange

@@ -9,12 +9,14 @@
 
 namespace lagrange::integration {
 
-/// ARKODE ERKStep, explicit adaptive Runge–Kutta of the default order (4).
+/// ARKODE ERKStep, explicit adaptive Runge–Kutta with the table options.method names (`arkode`:
+/// the default for the tolerance, erk_tables.hpp); samples from ARKODE's interpolant.
 IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOptions& options,
                                  const OutputGrid& grid, std::vector<double>& y,
                                  const Observer& observer);
 
-/// CVODE BDF (orders 1–5) with Newton iteration and a dense direct linear solver.
+/// CVODE BDF (orders 1–5) with Newton iteration and a dense direct linear solver; samples from
+/// CVODE's interpolant.
 IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptions& options,
                                 const OutputGrid& grid, std::vector<double>& y,
                                 const Observer& observer);
@@ -23,6 +25,12 @@ IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptio
 IntegratorStats integrate_rk4(const OdeProblem& problem, const IntegratorOptions& options,
                               const OutputGrid& grid, std::vector<double>& y,
                               const Observer& observer);
+
+/// The implicit midpoint rule y₁ = y₀ + h f(t + h/2, (y₀ + y₁)/2), fixed step, an integer number
+/// of equal steps per output interval; solved by fixed-point iteration to rounding level.
+IntegratorStats integrate_midpoint(const OdeProblem& problem, const IntegratorOptions& options,
+                                   const OutputGrid& grid, std::vector<double>& y,
+                                   const Observer& observer);
 
 /// IDA (variable-order BDF for F(t, y, y') = 0) with a dense linear solver and IDACalcIC.
 IntegratorStats integrate_ida(const DaeProblem& problem, const IntegratorOptions& options,

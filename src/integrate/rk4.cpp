@@ -1,9 +1,6 @@
-#include <algorithm>
-#include <cmath>
-
+#include "integrate/fixed_steps.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
-#include "integrate/walk_grid.hpp"
 
 namespace lagrange::integration {
 
@@ -11,7 +8,6 @@ IntegratorStats integrate_rk4(const OdeProblem& problem, const IntegratorOptions
                               const OutputGrid& grid, std::vector<double>& y,
                               const Observer& observer) {
   const size_t n = y.size();
-  const double nominal = options.step > 0.0 ? options.step : grid.step() / 10.0;
   std::vector<double> k1(n), k2(n), k3(n), k4(n), stage(n);
   IntegratorStats stats;
   const auto f = [&](double t, const double* state, double* out) {
@@ -32,17 +28,7 @@ IntegratorStats integrate_rk4(const OdeProblem& problem, const IntegratorOptions
     for (size_t i = 0; i < n; ++i) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     ++stats.steps;
   };
-  double t_now = grid.time(0);
-  // Each output interval gets ceil(length / nominal) equal steps (the 1e-9 absorbs rounding).
-  const auto advance = [&](double t_next) {
-    const double length = t_next - t_now;
-    const long count = std::max(1L, static_cast<long>(std::ceil(length / nominal - 1e-9)));
-    const double h = length / static_cast<double>(count);
-    for (long i = 0; i < count; ++i) step(t_now + static_cast<double>(i) * h, h);
-    t_now = t_next;
-  };
-  const auto restart = [](double) {};  // a one-step method keeps no history
-  walk_grid(grid, observer, y.data(), nullptr, advance, restart);
+  walk_fixed_steps(grid, options, observer, y, step);
   return stats;
 }
 

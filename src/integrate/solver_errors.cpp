@@ -41,6 +41,17 @@ void check(int flag, const char* call, FlagNameFn name_of, double t, ErrorLog* l
   throw SimulationError(t, what);
 }
 
+void StepBudget::spend(double t_next, double t, const char* call, const char* flag) {
+  if (t_next != target_) {
+    target_ = t_next;
+    taken_ = 0;
+  }
+  if (++taken_ <= max_steps_) return;
+  throw SimulationError(t, fmt::format("{} failed with {}: mxstep steps taken ({}) before reaching "
+                                       "the output sample at t = {}",
+                                       call, flag, max_steps_, t_next));
+}
+
 void ensure_finite(double t, const double* v, size_t n, const char* what) {
   for (size_t i = 0; i < n; ++i) {
     if (!std::isfinite(v[i])) {

@@ -31,6 +31,22 @@ std::string flag_name(FlagNameFn name_of, int flag);
 /// and is cleared on every call so a message never outlives the call that caused it.
 void check(int flag, const char* call, FlagNameFn name_of, double t, ErrorLog* log);
 
+/// SUNDIALS' mxstep for one-step mode, which does not apply it: at most `max_steps` internal steps
+/// toward one output sample.
+class StepBudget {
+ public:
+  explicit StepBudget(long max_steps) : max_steps_(max_steps) {}
+  /// Counts one more step toward the sample at t_next (from time t); past the budget throws
+  /// SimulationError(t, "<call> failed with <flag>: mxstep steps taken (<n>) before reaching the
+  /// output sample at t = <t_next>").
+  void spend(double t_next, double t, const char* call, const char* flag);
+
+ private:
+  long max_steps_;
+  long taken_ = 0;
+  double target_ = 0.0;
+};
+
 /// Throws SimulationError(t, …) naming the first NaN/Inf among v[0..n), reported as `what[i]`.
 void ensure_finite(double t, const double* v, size_t n, const char* what);
 

@@ -1,5 +1,8 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "lagrange/integrator.hpp"
 #include "model/model_reader.hpp"
 
 namespace lagrange::model {
@@ -36,11 +39,10 @@ void ModelReader::read_simulate(const YAML::Node& node) {
   positive("step", o.step, true);
   if (node["integrator"]) {
     o.integrator = scalar(node["integrator"], "simulate integrator");
-    if (o.integrator != "arkode" && o.integrator != "cvode" && o.integrator != "rk4" &&
-        o.integrator != "ida")
-      fail(node["integrator"],
-           fmt::format("unknown integrator '{}', expected one of: arkode, cvode, rk4, ida",
-                       clip(o.integrator)));
+    const std::vector<std::string>& known = integrator_methods();
+    if (std::find(known.begin(), known.end(), o.integrator) == known.end())
+      fail(node["integrator"], fmt::format("unknown integrator '{}', expected one of: {}",
+                                           clip(o.integrator), integrator_method_list()));
   }
 }
 

@@ -24,7 +24,8 @@ const std::vector<std::string>& top_level_keys() {
       "name",        "parameters", "coordinates", "inputs",    "bodies",
       "points",      "particles",  "gravity",     "kinetic",   "potential",
       "generalized_forces",        "forces",      "torques",   "springs",
-      "dampers",     "constraints", "outputs",    "stabilization", "simulate"};
+      "dampers",     "constraints", "outputs",    "stabilization", "simulate",
+      "visual"};  // visual: read by the report (src/io/report_visual.cpp)
   // clang-format on
   static const std::vector<std::string> all = [] {
     std::vector<std::string> k = keys;

@@ -183,8 +183,29 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   last.q.resize(nq);
   last.v.resize(nv);
   last.a.resize(nv);
-  // At each output sample: check the state is finite, project drift away (docs/theory.md §4.3,
-  // §4.4), record the row, honour interruption.
+  // Drift correction (docs/theory.md §4.3, §4.4): free bodies' R back onto SO(3), then the
+  // constraints (which may involve R) onto C = 0, Ċ = 0; true when the state moved.
+  const auto correct_drift = [&](double t, double* yy) {
+    const double drift =
+        orthonormalize_rotations(cm, yy, opt.project ? opt.projection_tol : HUGE_VAL);
+    traj.rotation_drift = std::max(traj.rotation_drift, drift);
+    if (!opt.project) return false;
+    bool moved = drift > opt.projection_tol;
+    if (m > 0) {
+      dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
+      if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
+        dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
+        moved = true;
+      }
+    }
+    return moved;
+  };
+  // ODE methods correct their own state after every internal step (the step hook); IDA restarts
+  // at samples instead (StateChanged below).
+  IntegratorOptions integrator = opt.integrator;
+  if (!dae) integrator.after_step = correct_drift;
+  // At each output sample: check the state is finite, correct the drift (the sample of an ODE
+  // method is its dense output, corrected for the row only), record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;
     for (size_t i = 0; i < n; ++i)
@@ -194,27 +215,10 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
             t, fmt::format("the state is not finite ({} = {})",
                            i < nq ? cm.coordinate_names[i] : cm.velocity_names[i - nq], yy[i]));
       }
-    // Free bodies' R back onto SO(3) (docs/theory.md §4.4), then the constraints (which may
-    // involve R) onto C = 0, Ċ = 0.
-    const double drift =
-        orthonormalize_rotations(cm, yy, opt.project ? opt.projection_tol : HUGE_VAL);
-    traj.rotation_drift = std::max(traj.rotation_drift, drift);
-    if (opt.project) {
-      bool moved = drift > opt.projection_tol;
-      if (m > 0) {
-        dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
-        if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
-          dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
-          moved = true;
-        }
-      }
-      if (moved) {
-        if (dae) {  // keep (λ, y') consistent with the projected state
-          dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
-          std::fill(yp + n, yp + n + m, 0.0);
-        }
-        action = ObserverAction::StateChanged;
-      }
+    if (correct_drift(t, yy) && dae) {  // keep (λ, y') consistent with the projected state
+      dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
+      std::fill(yp + n, yp + n + m, 0.0);
+      action = ObserverAction::StateChanged;
     }
     rows.append(dyn, t, yy, yy + nq, traj);
     if (opt.progress) opt.progress(t);
@@ -245,8 +249,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         last.reported = false;
         last.record(t, yy, yy + nq, ypp + nq);
       };
-      traj.stats = integrate_dae(problem, opt.integrator, opt.t0, y, yp, opt.t_end, opt.output_step,
-                                 observer);
+      traj.stats =
+          integrate_dae(problem, integrator, opt.t0, y, yp, opt.t_end, opt.output_step, observer);
     } else {
       std::vector<double> y(n);
       std::copy(q0.begin(), q0.end(), y.begin());
@@ -259,7 +263,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         last.reported = false;
         last.record(t, yy, yy + nq, yd + nq);
       };
-      traj.stats = integrate(ode, opt.integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
+      traj.stats = integrate(ode, integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
   } catch (const SimulationError& e) {
     traj.status = Trajectory::Status::Failed;

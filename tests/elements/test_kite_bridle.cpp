@@ -63,7 +63,9 @@ double max_difference(const Trajectory& a, const Trajectory& b) {
 // and ΔC the constraint residual (≤ 1e-10 m² after projection), and each run's integration
 // error. The integration error at rtol ε is bounded by the change between ε and 10ε for the
 // single-point model, e₁₀; both runs at ε then differ by at most 2·e₁₀ (errors scale with the
-// tolerance), plus 1e-9 m for the knot offset.
+// tolerance), plus 1e-9 m for the knot offset, plus the samples' dense-output interpolation
+// error (the samples lie between steps, which differ between the two models; that error does not
+// scale with the tolerance, so e₁₀ misses it): ε relative to the distance flown, for each run.
 TEST(BridledKite, EqualLinesFlyAsTheSinglePointAttachmentAtTheKnot) {
   auto bridled = testing::load_example("bridled_kite.yaml");
   auto single = testing::load_string(single_point_model());
@@ -77,7 +79,11 @@ TEST(BridledKite, EqualLinesFlyAsTheSinglePointAttachmentAtTheKnot) {
   double sweep = 0;  // it flies across the wind
   for (size_t r = 0; r < tb.rows(); ++r) sweep = std::max(sweep, std::abs(tb.at(r, "plane.y")));
   EXPECT_GT(sweep, 50.0);
-  EXPECT_LT(gap, 2 * e10 + 1e-9) << "integration error scale " << e10;
+  double reach = 0;
+  for (size_t r = 0; r < ts.rows(); ++r)
+    for (const char* col : {"plane.x", "plane.y", "plane.z"})
+      reach = std::max(reach, std::abs(ts.at(r, col)));
+  EXPECT_LT(gap, 2 * e10 + 1e-9 + 2 * eps * reach) << "integration error scale " << e10;
   double tension = 0, offset = 0;
   for (size_t r = 0; r < tb.rows(); ++r) {
     tension = std::max(tension,

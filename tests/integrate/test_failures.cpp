@@ -96,7 +96,9 @@ TEST(OdeArguments, UnknownMethodListsTheValidOnes) {
     FAIL() << "no exception";
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(std::string(e.what()), HasSubstr("'euler'"));
-    EXPECT_THAT(std::string(e.what()), HasSubstr("arkode, cvode, rk4"));
+    EXPECT_THAT(std::string(e.what()), HasSubstr("arkode, arkode:heun-euler"));
+    EXPECT_THAT(std::string(e.what()), HasSubstr("arkode:verner65"));
+    EXPECT_THAT(std::string(e.what()), HasSubstr("cvode, rk4, midpoint"));
   }
 }
 

@@ -85,8 +85,9 @@ TEST(RotationDrift, EveryFreeBodyExampleStaysInSO3WithDefaultSettings) {
 }
 
 // At the program's default tolerances (rtol 1e-8, atol 1e-10) the integrator's error moves R
-// off SO(3) by about 1.7e-10 per 0.01 s output step; re-orthonormalising at each sample keeps the
-// trajectory at 1e-11 instead of the 1e-8 that γ = 1 alone settles at.
+// off SO(3) by a few 1e-9 over one of its internal steps (ARKODE steps freely, the samples are
+// dense output); re-orthonormalising after each step and at each sample keeps the trajectory at
+// 1e-11 instead of the 1e-8 that γ = 1 alone settles at.
 TEST(RotationDrift, BrickAtDefaultTolerancesOver1000s) {
   auto sys = load_example("tumbling_brick.yaml");
   SimulationOptions so = sys.options();
@@ -99,7 +100,7 @@ TEST(RotationDrift, BrickAtDefaultTolerancesOver1000s) {
   RecordProperty("recorded", fmt::format("{:.3e}", recorded));
   RecordProperty("before_correction", fmt::format("{:.3e}", tr.rotation_drift));
   EXPECT_LT(recorded, 1e-10);
-  EXPECT_LT(tr.rotation_drift, 5e-10);
+  EXPECT_LT(tr.rotation_drift, 1e-8);
 
   so.project = false;  // γ alone: RᵀR − 1 settles near 1e-8 within 100 s
   so.t_end = 100 * kTimeScale;

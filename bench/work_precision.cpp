@@ -1,0 +1,122 @@
+// Work–precision (docs/benchmarks.md, "Work–precision"): for each model and each method, runs
+// at rtol 1e-4 … 1e-10 (atol = rtol / 100) and prints one JSON line per run: the largest error of
+// the coordinates over the samples (every 0.1 s) against a reference run at rtol 1e-13 with
+// arkode:verner65, right-hand-side evaluations, steps, wall and CPU seconds of simulate().
+//   work_precision OUT_DIR     also writes OUT_DIR/reference_<model>.json (t and q per sample),
+//                              which bench/work_precision.py scores the SciPy peers against.
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "lagrange/simulation.hpp"
+#include "n_link_pendulum.hpp"
+
+namespace {
+
+using lagrange::bench::BuiltModel;
+using lagrange::bench::Stopwatch;
+
+struct Case {
+  std::string name;
+  std::string yaml;
+  double t_end;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::string example(const std::string& name) {
+  return read_file(std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name);
+}
+
+/// The coordinates q at every sample, row by row.
+std::vector<double> coordinates(const lagrange::Trajectory& tr, size_t nq) {
+  std::vector<double> q;
+  for (size_t r = 0; r < tr.rows(); ++r)
+    for (size_t i = 0; i < nq; ++i) q.push_back(tr.data[r * tr.columns.size() + 1 + i]);
+  return q;
+}
+
+struct Run {
+  lagrange::Trajectory trajectory;
+  double wall = 0.0, cpu = 0.0;
+};
+
+Run run(BuiltModel& b, const Case& c, const std::string& method, double rtol) {
+  lagrange::SimulationOptions so;
+  so.t_end = c.t_end;
+  so.output_step = 0.1;
+  so.integrator.method = method;
+  so.integrator.rtol = rtol;
+  so.integrator.atol = rtol / 100.0;
+  so.integrator.max_steps = 100000000;
+  const Stopwatch clock;
+  const auto start = clock.now();
+  Run r;
+  r.trajectory = lagrange::simulate(*b.dynamics, so, b.compiled->q0, b.compiled->v0);
+  const auto end = clock.now();
+  r.wall = end.wall - start.wall;
+  r.cpu = end.cpu - start.cpu;
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string out_dir = argc > 1 ? argv[1] : ".";
+  const std::vector<Case> cases{
+      {"double_pendulum", example("double_pendulum.yaml"), 10.0},
+      {"chain_10", lagrange::bench::n_link_pendulum_yaml(10), 5.0},
+      {"chain_50", lagrange::bench::n_link_pendulum_yaml(50), 1.0},
+      {"tumbling_brick", example("tumbling_brick.yaml"), 10.0},
+      {"five_bar", example("five_bar.yaml"), 5.0},
+      {"cartesian_chain_10", lagrange::bench::cartesian_chain_yaml(10), 5.0},
+  };
+  const std::vector<std::string> methods{"arkode", "arkode:dormand-prince", "arkode:verner65",
+                                         "arkode:zonneveld", "cvode"};
+  for (const Case& c : cases) {
+    BuiltModel b = lagrange::bench::build_model(c.yaml, c.name);
+    const size_t nq = b.compiled->nq;
+    const Run reference = run(b, c, "arkode:verner65", 1e-13);
+    if (reference.trajectory.status != lagrange::Trajectory::Status::Complete) {
+      fmt::print(stderr, "{}: reference run failed: {}\n", c.name, reference.trajectory.message);
+      return 1;
+    }
+    const std::vector<double> q_ref = coordinates(reference.trajectory, nq);
+    {
+      std::ofstream ref(out_dir + "/reference_" + c.name + ".json");
+      ref << fmt::format("{{\"model\": \"{}\", \"t_end\": {}, \"nq\": {}, \"q\": [{:.17g}]}}\n",
+                         c.name, c.t_end, nq, fmt::join(q_ref, ", "));
+    }
+    for (const std::string& method : methods) {
+      for (int e = 4; e <= 10; ++e) {
+        const double rtol = std::pow(10.0, -e);
+        const Run r = run(b, c, method, rtol);
+        const std::vector<double> q = coordinates(r.trajectory, nq);
+        double error = HUGE_VAL;
+        if (r.trajectory.status == lagrange::Trajectory::Status::Complete &&
+            q.size() == q_ref.size()) {
+          error = 0.0;
+          for (size_t i = 0; i < q.size(); ++i) error = std::max(error, std::abs(q[i] - q_ref[i]));
+        }
+        fmt::print(
+            "{{\"engine\": \"lagrange\", \"model\": \"{}\", \"method\": \"{}\", \"ran\": \"{}\", "
+            "\"rtol\": {:g}, \"error\": {:.3e}, \"rhs_evals\": {}, \"steps\": {}, "
+            "\"wall_s\": {:.6f}, \"cpu_s\": {:.6f}}}\n",
+            c.name, method, r.trajectory.stats.method, rtol, error, r.trajectory.stats.rhs_evals,
+            r.trajectory.stats.steps, r.wall, r.cpu);
+        std::fflush(stdout);
+      }
+    }
+  }
+  return 0;
+}

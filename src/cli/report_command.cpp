@@ -1,0 +1,56 @@
+#include "cli/report_command.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "io/report_visual.hpp"
+#include "lagrange/report.hpp"
+
+namespace lagrange::cli {
+
+void check_report(const std::string& path, const Model& model) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".html" && ext != ".htm")
+    throw UsageError(fmt::format("--report {}: expected a file name ending in .html", path));
+  io::read_visual(model);
+}
+
+void write_run_report(const Prepared& p, const Trajectory& traj, const std::string& integrator,
+                      double wall_seconds, const std::string& path) {
+  ReportRun run;
+  run.integrator = integrator;
+  run.wall_seconds = wall_seconds;
+  run.derive_seconds = p.derive_seconds;
+  run.compile_seconds = p.compile_seconds;
+  write_report(p.equations, *p.compiled, traj, p.dynamics->parameters(), run, path);
+}
+
+int run_report(const Options& opt) {
+  const Prepared p = prepare(opt.model, opt.sets);
+  check_report(opt.report, *p.model);
+  Trajectory traj;
+  try {
+    traj = read_trajectory_csv(opt.trajectory);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
+  }
+  if (traj.rows() == 0)
+    throw UsageError(fmt::format("{}: the trajectory has no samples", opt.trajectory));
+  try {
+    write_run_report(p, traj, "", -1, opt.report);
+  } catch (const std::runtime_error& e) {
+    if (std::string(e.what()).rfind("the trajectory has no column", 0) == 0)
+      throw UsageError(fmt::format("{}: {}", opt.trajectory, e.what()));
+    throw;
+  }
+  if (!opt.quiet)
+    fmt::print("wrote {} ({} samples of {})\n", opt.report, traj.rows(), p.model->name);
+  return 0;
+}
+
+}  // namespace lagrange::cli

@@ -1,0 +1,37 @@
+#include "integrate/erk_tables.hpp"
+
+#include <arkode/arkode_butcher_erk.h>
+
+#include <iterator>
+
+namespace lagrange::integration {
+
+namespace {
+
+// SUNDIALS names them NAME_stages_embedding_order. Not offered: FEHLBERG_13_7_8, whose stored
+// coefficients fail its order conditions in SUNDIALS 6.4 (ARKodeButcherTable_CheckOrder finds
+// order 6, and the fixed-step slope on the oscillator is about 6, not 8).
+const ErkTable kTables[] = {
+    {"heun-euler", ARKODE_HEUN_EULER_2_1_2, 2},
+    {"bogacki-shampine", ARKODE_BOGACKI_SHAMPINE_4_2_3, 3},
+    {"zonneveld", ARKODE_ZONNEVELD_5_3_4, 4},
+    {"sayfy-aburub", ARKODE_SAYFY_ABURUB_6_3_4, 4},
+    {"cash-karp", ARKODE_CASH_KARP_6_4_5, 5},
+    {"fehlberg", ARKODE_FEHLBERG_6_4_5, 5},
+    {"dormand-prince", ARKODE_DORMAND_PRINCE_7_4_5, 5},
+    {"verner65", ARKODE_VERNER_8_5_6, 6},
+};
+
+}  // namespace
+
+const ErkTable* find_erk_table(const std::string& name) {
+  for (const ErkTable& table : kTables)
+    if (name == table.name) return &table;
+  return nullptr;
+}
+
+const ErkTable& default_erk_table(double rtol) {
+  return rtol >= 1e-5 ? *find_erk_table("dormand-prince") : *find_erk_table("verner65");
+}
+
+}  // namespace lagrange::integration

@@ -1,0 +1,32 @@
+// The integrator names a model file and the command line accept (include/lagrange/integrator.hpp);
+// kept in the model library so that the reader can check `simulate: {integrator: …}` itself.
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "lagrange/integrator.hpp"
+
+namespace lagrange {
+
+const std::vector<std::string>& integrator_methods() {
+  static const std::vector<std::string> names{"arkode",
+                                              "arkode:heun-euler",
+                                              "arkode:bogacki-shampine",
+                                              "arkode:zonneveld",
+                                              "arkode:sayfy-aburub",
+                                              "arkode:cash-karp",
+                                              "arkode:fehlberg",
+                                              "arkode:dormand-prince",
+                                              "arkode:verner65",
+                                              "cvode",
+                                              "rk4",
+                                              "midpoint",
+                                              "ida"};
+  return names;
+}
+
+std::string integrator_method_list() {
+  return fmt::format("{}", fmt::join(integrator_methods(), ", "));
+}
+
+}  // namespace lagrange

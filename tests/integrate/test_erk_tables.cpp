@@ -1,0 +1,98 @@
+// Every named ARKODE table (`arkode:<name>`) reaches its nominal order on the harmonic oscillator:
+// at fixed steps h, 2h, 4h the error at t = 2 falls like h^p (least-squares slope of log error
+// against log h within ±0.3 of p). Plain `arkode` picks a table by tolerance.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "integrate/oscillator.hpp"
+#include "lagrange/integrator.hpp"
+
+namespace lagrange {
+namespace {
+
+using test::options_for;
+using test::Oscillator;
+
+struct Table {
+  const char* method;
+  int order;
+  double h;  ///< the finest step: errors stay well above rounding, in the asymptotic range
+};
+
+const Table kTables[] = {
+    {"arkode:heun-euler", 2, 0.005},    {"arkode:bogacki-shampine", 3, 0.005},
+    {"arkode:zonneveld", 4, 0.01},      {"arkode:sayfy-aburub", 4, 0.01},
+    {"arkode:cash-karp", 5, 0.02},      {"arkode:fehlberg", 5, 0.02},
+    {"arkode:dormand-prince", 5, 0.02}, {"arkode:verner65", 6, 0.03},
+};
+
+/// |x − x_exact| + |v − v_exact| at t = 2 for the oscillator from (1, 0) at fixed step h.
+double error_at_fixed_step(const char* method, double h) {
+  const Oscillator osc;
+  IntegratorOptions options = options_for(method);
+  options.step = h;
+  double error = 0.0;
+  integrate(osc.problem(), options, 0.0, {1.0, 0.0}, 2.0, 2.0, [&](double t, double* y, double*) {
+    error = std::abs(y[0] - osc.x(t, 0.0, 1.0, 0.0)) + std::abs(y[1] - osc.v(t, 0.0, 1.0, 0.0));
+    return ObserverAction::Continue;
+  });
+  return error;
+}
+
+class ErkTableOrder : public ::testing::TestWithParam<Table> {};
+
+TEST_P(ErkTableOrder, SlopeOfLogErrorAgainstLogStepIsTheNominalOrder) {
+  const Table table = GetParam();
+  std::vector<double> log_h, log_e;
+  for (double scale : {4.0, 2.0, 1.0}) {
+    const double h = table.h * scale;
+    const double e = error_at_fixed_step(table.method, h);
+    ASSERT_GT(e, 1e-13) << table.method << " h = " << h << ": at rounding level";
+    log_h.push_back(std::log(h));
+    log_e.push_back(std::log(e));
+  }
+  const double mean_h = (log_h[0] + log_h[1] + log_h[2]) / 3.0;
+  const double mean_e = (log_e[0] + log_e[1] + log_e[2]) / 3.0;
+  double num = 0.0, den = 0.0;
+  for (size_t i = 0; i < 3; ++i) {
+    num += (log_h[i] - mean_h) * (log_e[i] - mean_e);
+    den += (log_h[i] - mean_h) * (log_h[i] - mean_h);
+  }
+  const double slope = num / den;
+  RecordProperty("slope", std::to_string(slope));
+  EXPECT_NEAR(slope, table.order, 0.3) << table.method;
+}
+
+INSTANTIATE_TEST_SUITE_P(Tables, ErkTableOrder, ::testing::ValuesIn(kTables),
+                         [](const ::testing::TestParamInfo<Table>& info) {
+                           std::string name = std::string(info.param.method).substr(7);
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
+
+// Every accepted ODE name runs, and the adaptive tables meet their tolerance.
+TEST(IntegratorMethods, EveryListedOdeMethodIntegrates) {
+  const Oscillator osc;
+  size_t ode = 0;
+  for (const std::string& method : integrator_methods()) {
+    if (method == "ida") continue;
+    ++ode;
+    double x_end = 0.0;
+    integrate(osc.problem(), options_for(method.c_str(), 1e-9, 1e-11), 0.0, {1.0, 0.0}, 1.0, 0.25,
+              [&](double t, double* y, double*) {
+                if (t == 1.0) x_end = y[0];
+                return ObserverAction::Continue;
+              });
+    EXPECT_NEAR(x_end, osc.x(1.0, 0.0, 1.0, 0.0), method == "midpoint" ? 1e-3 : 1e-5) << method;
+  }
+  EXPECT_GE(ode, 11u);
+  EXPECT_NE(integrator_method_list().find("arkode:verner65"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lagrange

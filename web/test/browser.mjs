@@ -1,0 +1,188 @@
+// Browser test of the HTML report (ctest `report_browser`): for every example, simulate with
+// --report, open the report in headless Chromium (playwright-core driving the system's
+// /usr/bin/chromium) and check what a user sees: a first frame with a non-blank 3-D canvas,
+// play advancing the slider, bodies moving between two screenshots, plots with the expected
+// series, equations rendered by KaTeX without error nodes, and no console errors or warnings.
+// Then a large generated run (200 moving points over 60 s): its size must stay under the bound of
+// docs/model-language.md; its opening time is measured and printed, not asserted.
+//
+// Usage: node browser.mjs LAGRANGE EXAMPLES_DIR OUT_DIR [NAME_FILTER]
+// Prints "N passed, N failed" and exits non-zero when a check fails.
+import { launch, openReport } from '../chromium.mjs';
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { basename, join, resolve } from 'node:path';
+
+const [lagrange, examplesDir, outDir, filter = ''] = process.argv.slice(2);
+if (!lagrange || !examplesDir || !outDir) {
+  console.error('usage: node browser.mjs LAGRANGE EXAMPLES_DIR OUT_DIR [NAME_FILTER]');
+  process.exit(2);
+}
+export const SIZE_BOUND = 12 * 1024 * 1024; // bytes; docs/model-language.md, "The report"
+mkdirSync(outDir, { recursive: true });
+
+function examples() {
+  return readdirSync(examplesDir)
+    .filter((f) => f.endsWith('.yaml') && f.includes(filter))
+    .sort()
+    .map((f) => join(examplesDir, f));
+}
+
+// Luminance variance and pixels of a screenshot of the 3-D view, decoded in a page of its own
+// (reading the WebGL canvas back in the report itself would make Chromium warn about a stall).
+let decoder = null;
+async function viewPixels(page, path) {
+  const png = await page.locator('#view canvas').screenshot(path ? { path } : {});
+  return decoder.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = 160;
+    c.height = 100;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0, c.width, c.height);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let sum = 0;
+    let sum2 = 0;
+    const lum = [];
+    for (let i = 0; i < d.length; i += 4) {
+      const y = 0.299 * d[i] + 0.587 * d[i + 1] + 0.114 * d[i + 2];
+      lum.push(Math.round(y));
+      sum += y;
+      sum2 += y * y;
+    }
+    const n = lum.length;
+    return { variance: sum2 / n - (sum / n) ** 2, lum };
+  }, png.toString('base64'));
+}
+
+function differing(a, b) {
+  let n = 0;
+  for (let i = 0; i < a.length; ++i) if (Math.abs(a[i] - b[i]) > 24) ++n;
+  return n;
+}
+
+async function checkReport(browser, html, csvHeader) {
+  const messages = [];
+  const failures = [];
+  const expect = (ok, what) => ok || failures.push(what);
+  const { page, seconds } = await openReport(browser, html, messages);
+  const data = await page.evaluate(() => JSON.parse(document.getElementById('lagrange-data').textContent));
+  const t0 = data.scene.t[0];
+  const t1 = data.scene.t[data.scene.t.length - 1];
+
+  // The first frame, then the canvas is not blank.
+  await page.evaluate((t) => { window.lagrangeReport.pause(); window.lagrangeReport.seek(t); }, t0);
+  const shot = join(outDir, `${basename(html, '.html')}.png`);
+  const first = await viewPixels(page, shot);
+  expect(first.variance > 20, `3-D canvas looks blank (luminance variance ${first.variance.toFixed(1)})`);
+
+  // Play advances the slider and the time.
+  const before = await page.evaluate(() => [Number(document.getElementById('time').value), window.lagrangeReport.time()]);
+  await page.click('#play');
+  await page.waitForTimeout(700);
+  const after = await page.evaluate(() => [Number(document.getElementById('time').value), window.lagrangeReport.time(), window.lagrangeReport.playing()]);
+  expect(after[2] === true, 'the play button did not start playback');
+  expect(after[1] > before[1] && after[0] > before[0], `play did not advance the slider (${before} -> ${after})`);
+  await page.click('#play');
+
+  // Bodies move: two screenshots at different times differ.
+  let moved = 0;
+  for (const f of [0.5, 0.25, 0.75, 1]) {
+    await page.evaluate((t) => window.lagrangeReport.seek(t), t0 + f * (t1 - t0));
+    const later = await viewPixels(page);
+    moved = Math.max(moved, differing(first.lum, later.lum));
+    if (moved > 10) break;
+  }
+  expect(moved > 10, `nothing moved between two screenshots (${moved} pixels differ)`);
+
+  // Plots: one chart with the first coordinates; every CSV column is offered somewhere.
+  const plot = await page.evaluate(() => {
+    const chart = document.querySelector('#plots .uplot');
+    const labels = [...document.querySelectorAll('#plots .u-legend .u-series .u-label')].map((e) => e.textContent);
+    const groups = [...document.querySelectorAll('#plot-group option')].map((o) => o.value);
+    return { chart: !!chart, series: chart ? chart.dataset.series : '', labels, groups };
+  });
+  const coordinates = data.plots.series.filter((s) => s.group === 'coordinates').map((s) => s.name);
+  const expected = coordinates.slice(0, 8);
+  expect(plot.chart, 'no plot drawn');
+  expect(plot.series === expected.join(','), `plot shows [${plot.series}], expected [${expected}]`);
+  expect(expected.every((n) => plot.labels.includes(n)), `plot legend [${plot.labels}] lacks [${expected}]`);
+  const offered = new Set(data.plots.series.map((s) => s.name));
+  const missing = csvHeader.slice(1).filter((c) => !offered.has(c));
+  expect(missing.length === 0, `CSV columns not offered as plots: ${missing.join(', ')}`);
+  expect(plot.groups.includes('energy'), `no energy plot group (${plot.groups})`);
+
+  // Equations rendered by KaTeX without error nodes.
+  await page.waitForFunction(() => window.lagrangeReport.equations.ready, null, { timeout: 60000 });
+  const tex = await page.evaluate(() => ({
+    math: document.querySelectorAll('#equations .katex math').length,
+    verbatim: document.querySelectorAll('#equations pre.verbatim').length,
+    errors: [...document.querySelectorAll('#equations .katex-error')].map((e) => e.title || e.textContent).slice(0, 3),
+  }));
+  // A large model's equations are text through named common subexpressions, as `derive` prints.
+  if (data.latex.includes('\\begin{verbatim}')) expect(tex.verbatim > 0, 'no equations shown');
+  else expect(tex.math > 0, 'no equations rendered');
+  expect(tex.errors.length === 0, `KaTeX error nodes: ${tex.errors.join(' | ')}`);
+
+  expect(messages.length === 0, messages.slice(0, 5).join('\n'));
+  await page.close();
+  return { failures, seconds, shot };
+}
+
+// A large run: 20 pendulums with 10 points along each rod, 200 moving points, 60 s.
+function largeModel() {
+  const n = 20;
+  const lines = ['name: two hundred points', 'parameters: {g: 9.81, m: 1.0, l: 1.0}', 'coordinates:'];
+  for (let k = 0; k < n; ++k) lines.push(`  th${k}: {initial: ${(0.3 + 0.05 * k).toFixed(2)}, rate: 0.0}`);
+  lines.push('points:');
+  for (let k = 0; k < n; ++k)
+    for (let j = 1; j <= 10; ++j) lines.push(`  p${k}_${j}: [${k * 0.3} + ${j / 10}*l*sin(th${k}), -${j / 10}*l*cos(th${k}), ${(k * 0.2).toFixed(1)}]`);
+  lines.push('particles:');
+  for (let k = 0; k < n; ++k) lines.push(`  p${k}_10: m`);
+  lines.push('gravity: [0, -g, 0]', 'simulate: {t_end: 60, output_step: 0.01}');
+  const file = join(outDir, 'two_hundred_points.yaml');
+  writeFileSync(file, lines.join('\n') + '\n');
+  return file;
+}
+
+const browser = await launch();
+decoder = await browser.newPage();
+let passed = 0;
+let failed = 0;
+try {
+  const models = examples();
+  if (!filter || 'two_hundred_points'.includes(filter)) models.push(largeModel());
+  for (const model of models) {
+    const name = basename(model, '.yaml');
+    const html = resolve(join(outDir, `${name}.html`));
+    const csv = join(outDir, `${name}.csv`);
+    let result;
+    try {
+      const started = Date.now();
+      execFileSync(resolve(lagrange), ['simulate', model, '-q', '-o', csv, '--report', html], { stdio: ['ignore', 'ignore', 'pipe'] });
+      const simulated = (Date.now() - started) / 1000;
+      const header = readFileSync(csv, 'utf8').split('\n', 1)[0].split(',');
+      result = await checkReport(browser, html, header);
+      const size = statSync(html).size;
+      if (name === 'two_hundred_points') {
+        if (size > SIZE_BOUND) result.failures.push(`report of ${size} bytes exceeds the bound of ${SIZE_BOUND}`);
+        console.log(`large run: 200 moving points over 60 s: report ${(size / 1048576).toFixed(2)} MB (bound ${SIZE_BOUND / 1048576} MB), opened in ${result.seconds.toFixed(2)} s, simulated and written in ${simulated.toFixed(2)} s`);
+      }
+      rmSync(csv, { force: true });
+      rmSync(`${csv}.json`, { force: true });
+      console.log(`${result.failures.length ? 'FAIL' : 'ok  '} ${name}: ${(size / 1024).toFixed(0)} kB, first frame after ${result.seconds.toFixed(2)} s`);
+    } catch (e) {
+      result = { failures: [String(e.stderr ?? '') + String(e.message ?? e)] };
+      console.log(`FAIL ${name}`);
+    }
+    for (const f of result.failures) console.log(`    ${f}`);
+    if (result.failures.length) ++failed;
+    else ++passed;
+  }
+} finally {
+  await browser.close();
+}
+console.log(`${passed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);
