@@ -2,32 +2,22 @@
 // work, listing the valid names; the same name in a model file is a model error at its position.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli/shell_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using Result = lagrange::testing::ShellResult;
 
 Result run(const std::string& args) {
-  const std::string cmd = std::string(LAGRANGE_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  size_t got;
-  while ((got = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), got);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return lagrange::testing::run_shell(args);
 }
 
 const std::string kPendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/double_pendulum.yaml";
