@@ -4,23 +4,27 @@
 
 #include <sstream>
 
+#include "symbolic/printed_size.hpp"
+
 namespace lagrange::io {
 
 namespace {
 
-size_t printed_size(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str().size();
-}
-
 // Small expressions are shown in their shortest form among: as derived, expanded, and
 // simplified with sin² + cos² = 1 (lagrange::simplify).
 GiNaC::ex tidy(const GiNaC::ex& e) {
-  if (printed_size(e) > 600) return e;
+  using symbolic::printed_size;
+  size_t best_size = printed_size(e);
+  if (best_size > 600) return e;
   GiNaC::ex best = e;
-  for (const GiNaC::ex& c : {e.expand(), simplify(e), simplify(e).expand()})
-    if (printed_size(c) < printed_size(best)) best = c;
+  const GiNaC::ex simplified = simplify(e);
+  for (const GiNaC::ex& c : {e.expand(), simplified, simplified.expand()}) {
+    const size_t size = printed_size(c);
+    if (size < best_size) {
+      best = c;
+      best_size = size;
+    }
+  }
   return best;
 }
 

@@ -8,10 +8,13 @@
 #include <stdexcept>
 
 #include "lagrange/manipulator.hpp"
+#include "symbolic/printed_size.hpp"
 
 namespace lagrange {
 
 namespace {
+
+using symbolic::printed_size;
 
 /// A product with a negative numeric factor (−q1, −2 q).
 bool negative_multiple(const GiNaC::ex& e) {
@@ -40,18 +43,13 @@ struct ExpandTrig : GiNaC::map_function {
   }
 };
 
-size_t printed_size(const GiNaC::ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str().size();
-}
-
 /// Small expressions in the shorter of their derived and trig-simplified forms (big arms' entries
 /// are left as derived).
 GiNaC::ex tidy(const GiNaC::ex& e) {
-  if (printed_size(e) > 4000) return e;
+  const size_t size = printed_size(e);
+  if (size > 4000) return e;
   const GiNaC::ex s = trig_simplify(e);
-  return printed_size(s) < printed_size(e) ? s : e;
+  return printed_size(s) < size ? s : e;
 }
 
 /// Evaluates expressions at a few random points (parameters in [0.5, 1.5], coordinates,
