@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "integrate/callbacks.hpp"
 #include "integrate/erk_tables.hpp"
@@ -26,18 +27,37 @@ IntegratorStats erk_stats(void* mem, double t, ErrorLog& log) {
   return {steps, evals, failed, {}};
 }
 
-/// Hands ARKODE its table `id`. SUNDIALS 6.4's ERKStep reuses the last stage's f as the next
+using Table = std::unique_ptr<ARKodeButcherTableMem, void (*)(ARKodeButcherTable)>;
+
+/// ARKODE's table `table.id`, or one built from the published coefficients `table.own()`.
+Table load_table(const ErkTable& table) {
+  if (table.own == nullptr) {
+    Table loaded(ARKodeButcherTable_LoadERK(static_cast<ARKODE_ERKTableID>(table.id)),
+                 ARKodeButcherTable_Free);
+    if (!loaded) throw std::runtime_error("SUNDIALS: ARKodeButcherTable_LoadERK failed");
+    return loaded;
+  }
+  const ButcherCoefficients& k = table.own();
+  const int s = static_cast<int>(k.c.size());
+  std::vector<double> c = k.c, b = k.b, d = k.d, a(k.c.size() * k.c.size(), 0.0);
+  for (int i = 0; i < s; ++i)
+    for (int j = 0; j < i; ++j) a[i * s + j] = k.a[i][j];  // row-major s × s
+  Table created(
+      ARKodeButcherTable_Create(s, k.order, k.embedding, c.data(), a.data(), b.data(), d.data()),
+      ARKodeButcherTable_Free);
+  if (!created) throw std::runtime_error("SUNDIALS: ARKodeButcherTable_Create failed");
+  return created;
+}
+
+/// Hands ARKODE the table. SUNDIALS 6.4's ERKStep reuses the last stage's f as the next
 /// step's first (first same as last) whenever the last node c is 1, which is right only when the
 /// last row of A equals b (Dormand–Prince, Bogacki–Shampine); for Verner 6(5) it lowers the order
 /// to 3 and for Sayfy–Aburub to 2, and the dense output takes a wrong f at the step's end
 /// (tests/integrate/test_erk_tables.cpp). Those tables get one more stage, row b and node 1, with
 /// weight 0 in both solutions: it evaluates f(t + h, y₁), which the reuse then makes correct, so a
 /// step still costs `stages` evaluations.
-void set_table(void* mem, int id, double t0, ErrorLog& log) {
-  using Table = std::unique_ptr<ARKodeButcherTableMem, void (*)(ARKodeButcherTable)>;
-  Table table(ARKodeButcherTable_LoadERK(static_cast<ARKODE_ERKTableID>(id)),
-              ARKodeButcherTable_Free);
-  if (!table) throw std::runtime_error("SUNDIALS: ARKodeButcherTable_LoadERK failed");
+void set_table(void* mem, const ErkTable& erk, double t0, ErrorLog& log) {
+  Table table = load_table(erk);
   const int s = table->stages;
   bool first_same_as_last = true;
   for (int j = 0; j < s; ++j)
@@ -90,7 +110,7 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
   };
   ok(ERKStepSetErrHandlerFn(mem.get(), ErrorLog::handler, &log), "ERKStepSetErrHandlerFn", t0);
   ok(ERKStepSetUserData(mem.get(), &callback), "ERKStepSetUserData", t0);
-  set_table(mem.get(), table_for(options).id, t0, log);
+  set_table(mem.get(), table_for(options), t0, log);
   ok(ERKStepSStolerances(mem.get(), options.rtol, options.atol), "ERKStepSStolerances", t0);
   if (options.step > 0.0)  // fixed step, no error control (order studies, fixed-cost runs)
     ok(ERKStepSetFixedStep(mem.get(), options.step), "ERKStepSetFixedStep", t0);

@@ -20,6 +20,7 @@ const ErkTable kTables[] = {
     {"fehlberg", ARKODE_FEHLBERG_6_4_5, 5},
     {"dormand-prince", ARKODE_DORMAND_PRINCE_7_4_5, 5},
     {"verner65", ARKODE_VERNER_8_5_6, 6},
+    {"verner87", ARKODE_ERK_NONE, 8, verner_8_7},
 };
 
 }  // namespace

@@ -5,13 +5,17 @@
 
 #include <string>
 
+#include "integrate/erk_coefficients.hpp"
+
 namespace lagrange::integration {
 
-/// An embedded ERK pair: ARKODE's table id (ARKODE_ERKTableID) and its order.
+/// An embedded ERK pair: one of ARKODE's tables (ARKODE_ERKTableID) or published coefficients
+/// ARKODE does not ship (erk_coefficients.hpp).
 struct ErkTable {
-  const char* name;  ///< the part after `arkode:`
-  int id;            ///< ARKODE_ERKTableID
-  int order;         ///< order of the propagated solution
+  const char* name;                               ///< the part after `arkode:`
+  int id;                                         ///< ARKODE_ERKTableID, ARKODE_ERK_NONE for own
+  int order;                                      ///< order of the propagated solution
+  const ButcherCoefficients& (*own)() = nullptr;  ///< the coefficients when id is ARKODE_ERK_NONE
 };
 
 /// The table `arkode:<name>` names, or null for an unknown name.

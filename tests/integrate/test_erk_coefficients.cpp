@@ -1,0 +1,115 @@
+// The published coefficients handed to ARKODE (src/integrate/erk_coefficients.cpp) satisfy the
+// Runge–Kutta order conditions: every row of A sums to its node, and b Φ(t) = 1/γ(t) for every
+// rooted tree t up to the nominal order (Butcher's elementary weights Φ and densities γ), for the
+// propagated solution and for the embedding, and not for all trees one order higher. The bar
+// 1e-11 is rounding in double (coefficients up to 120 in size cancel; in 50 digits the
+// residuals are below 1e-36); the first failing order misses by more than 1e-8.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "integrate/erk_coefficients.hpp"
+
+namespace lagrange::integration {
+namespace {
+
+/// A rooted tree: its order and its subtrees (indices of earlier trees, non-increasing).
+struct Tree {
+  int order;
+  std::vector<size_t> children;
+};
+
+/// Every rooted tree up to max_order, each once, ordered by order.
+std::vector<Tree> rooted_trees(int max_order) {
+  std::vector<Tree> trees{{1, {}}};
+  for (int n = 2; n <= max_order; ++n) {
+    const size_t smaller = trees.size();
+    std::vector<size_t> children;
+    // Multisets of smaller trees whose orders sum to n − 1, as non-increasing index sequences.
+    const std::function<void(int, size_t)> grow = [&](int remaining, size_t largest) {
+      if (remaining == 0) {
+        trees.push_back({n, children});
+        return;
+      }
+      for (size_t i = largest + 1; i-- > 0;) {
+        if (trees[i].order > remaining) continue;
+        children.push_back(i);
+        grow(remaining - trees[i].order, i);
+        children.pop_back();
+      }
+    };
+    grow(n - 1, smaller - 1);
+  }
+  return trees;
+}
+
+/// max over trees of order `order` of |w · Φ(t) − 1/γ(t)|.
+double worst_residual(const ButcherCoefficients& k, const std::vector<double>& w, int order) {
+  const std::vector<Tree> trees = rooted_trees(order);
+  const size_t s = k.c.size();
+  std::vector<std::vector<double>> phi(trees.size());  // Φ(t) per stage
+  std::vector<double> gamma(trees.size());
+  double worst = 0.0;
+  for (size_t t = 0; t < trees.size(); ++t) {
+    phi[t].assign(s, 1.0);
+    gamma[t] = trees[t].order;
+    for (size_t u : trees[t].children) {
+      for (size_t i = 0; i < s; ++i) {
+        double a_phi = 0.0;
+        for (size_t j = 0; j < i; ++j) a_phi += k.a[i][j] * phi[u][j];
+        phi[t][i] *= a_phi;
+      }
+      gamma[t] *= gamma[u];
+    }
+    if (trees[t].order != order) continue;
+    double weight = 0.0;
+    for (size_t i = 0; i < s; ++i) weight += w[i] * phi[t][i];
+    worst = std::max(worst, std::abs(weight - 1.0 / gamma[t]));
+  }
+  return worst;
+}
+
+TEST(RootedTrees, CountsAreTheKnownOnes) {
+  const std::vector<Tree> trees = rooted_trees(9);
+  const int expected[] = {1, 1, 2, 4, 9, 20, 48, 115, 286};  // OEIS A000081
+  for (int n = 1; n <= 9; ++n)
+    EXPECT_EQ(
+        std::count_if(trees.begin(), trees.end(), [&](const Tree& t) { return t.order == n; }),
+        expected[n - 1])
+        << "order " << n;
+}
+
+TEST(Verner87, RowsOfASumToTheNodes) {
+  const ButcherCoefficients& k = verner_8_7();
+  ASSERT_EQ(k.c.size(), 13u);
+  ASSERT_EQ(k.a.size(), 13u);
+  for (size_t i = 0; i < k.c.size(); ++i) {
+    ASSERT_EQ(k.a[i].size(), i) << "row " << i;
+    double sum = 0.0;
+    for (double a : k.a[i]) sum += a;
+    EXPECT_NEAR(sum, k.c[i], 1e-14) << "row " << i;
+  }
+}
+
+TEST(Verner87, WeightsMeetEveryOrderConditionUpToEight) {
+  const ButcherCoefficients& k = verner_8_7();
+  ASSERT_EQ(k.order, 8);
+  for (int order = 1; order <= 8; ++order)
+    EXPECT_LT(worst_residual(k, k.b, order), 1e-11) << "order " << order;
+  EXPECT_GT(worst_residual(k, k.b, 9), 1e-8) << "order 9 holds too: not an 8th-order table";
+}
+
+TEST(Verner87, EmbeddingMeetsEveryOrderConditionUpToSeven) {
+  const ButcherCoefficients& k = verner_8_7();
+  ASSERT_EQ(k.embedding, 7);
+  for (int order = 1; order <= 7; ++order)
+    EXPECT_LT(worst_residual(k, k.d, order), 1e-11) << "order " << order;
+  EXPECT_GT(worst_residual(k, k.d, 8), 1e-7) << "the embedding is of order 8: no error estimate";
+}
+
+}  // namespace
+}  // namespace lagrange::integration
