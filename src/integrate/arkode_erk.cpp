@@ -110,12 +110,13 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
   };
   ok(ERKStepSetErrHandlerFn(mem.get(), ErrorLog::handler, &log), "ERKStepSetErrHandlerFn", t0);
   ok(ERKStepSetUserData(mem.get(), &callback), "ERKStepSetUserData", t0);
-  set_table(mem.get(), table_for(options), t0, log);
+  const ErkTable& table = table_for(options);
+  set_table(mem.get(), table, t0, log);
   ok(ERKStepSStolerances(mem.get(), options.rtol, options.atol), "ERKStepSStolerances", t0);
   if (options.step > 0.0)  // fixed step, no error control (order studies, fixed-cost runs)
     ok(ERKStepSetFixedStep(mem.get(), options.step), "ERKStepSetFixedStep", t0);
   // ARKODE's cubic Hermite interpolant gives y and f exactly at the ends of the last step; the
-  // samples come from the quintic through the last three step ends (hermite_dense.hpp).
+  // samples come from the Hermite polynomial through the last step ends (hermite_dense.hpp).
   ok(ERKStepSetInterpolantType(mem.get(), ARK_INTERP_HERMITE), "ERKStepSetInterpolantType", t0);
   ok(ERKStepSetInterpolantDegree(mem.get(), 3), "ERKStepSetInterpolantDegree", t0);
   // Samples come from the interpolant, so the steps need not stop at them; only t_end is a stop.
@@ -123,7 +124,7 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
 
   IntegratorStats before_restart;
   StepBudget budget(options.max_steps);
-  HermiteDense dense(y.size());
+  HermiteDense dense(y.size(), table.order > 6 ? 6 : 4);
   double t_reached = t0;
   const auto node = [&](double t, int derivative) {
     ok(ERKStepGetDky(mem.get(), t, derivative, sample_vec.get()), "ERKStepGetDky", t);

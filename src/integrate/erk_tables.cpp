@@ -32,7 +32,8 @@ const ErkTable* find_erk_table(const std::string& name) {
 }
 
 const ErkTable& default_erk_table(double rtol) {
-  return rtol >= 1e-5 ? *find_erk_table("dormand-prince") : *find_erk_table("verner65");
+  if (rtol >= 1e-5) return *find_erk_table("dormand-prince");
+  return rtol >= 1e-8 ? *find_erk_table("verner65") : *find_erk_table("verner87");
 }
 
 }  // namespace lagrange::integration

@@ -10,13 +10,13 @@ double HermiteDense::newest() const {
 }
 
 void HermiteDense::push(double t, const double* y, const double* f) {
-  if (count_ == kNodes) {  // drop the oldest node
-    for (size_t i = 0; i + 1 < kNodes; ++i) {
+  if (count_ == nodes_) {  // drop the oldest node
+    for (size_t i = 0; i + 1 < nodes_; ++i) {
       t_[i] = t_[i + 1];
       y_[i].swap(y_[i + 1]);
       f_[i].swap(f_[i + 1]);
     }
-    count_ = kNodes - 1;
+    count_ = nodes_ - 1;
   }
   t_[count_] = t;
   y_[count_].assign(y, y + n_);

@@ -69,7 +69,7 @@ TEST_P(DenseOutput, InterpolatedSamplesMatchRunsThatStopThere) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, DenseOutput,
                          ::testing::Values("arkode", "arkode:dormand-prince", "arkode:verner65",
-                                           "cvode"));
+                                           "arkode:verner87", "cvode"));
 
 // The step hook sees the internal steps in order (CVODE: those that reach a sample); a change it
 // makes is where the run continues: here x is set to 0 after the first step past t = 1, and the end

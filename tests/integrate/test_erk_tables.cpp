@@ -119,6 +119,22 @@ INSTANTIATE_TEST_SUITE_P(Tables, ErkTableOrder, ::testing::ValuesIn(kTables),
                            return name;
                          });
 
+// Plain `arkode` runs the table docs/benchmarks.md chose for the tolerance, and says which.
+TEST(IntegratorMethods, DefaultTableFollowsTheTolerance) {
+  const Oscillator osc;
+  const auto ran = [&](double rtol) {
+    return integrate(osc.problem(), options_for("arkode", rtol, rtol / 100), 0.0, {1.0, 0.0}, 1.0,
+                     0.5, [](double, double*, double*) { return ObserverAction::Continue; })
+        .method;
+  };
+  EXPECT_EQ(ran(1e-4), "arkode:dormand-prince");
+  EXPECT_EQ(ran(1e-5), "arkode:dormand-prince");
+  EXPECT_EQ(ran(1e-6), "arkode:verner65");
+  EXPECT_EQ(ran(1e-8), "arkode:verner65");
+  EXPECT_EQ(ran(1e-9), "arkode:verner87");
+  EXPECT_EQ(ran(1e-12), "arkode:verner87");
+}
+
 // Every accepted ODE name runs, and the adaptive tables meet their tolerance.
 TEST(IntegratorMethods, EveryListedOdeMethodIntegrates) {
   const Oscillator osc;
