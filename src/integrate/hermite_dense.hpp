@@ -5,7 +5,7 @@
 // right-hand-side evaluations beyond the steps' own; ARKODE's cubic interpolant is O(h⁴), too
 // coarse for fifth- and sixth-order tables at tight tolerances, and its quartic and quintic ones
 // evaluate f at every sample. ARKODE's tables use k = 4 (order 7) up to order 6 and k = 6
-// (order 11) for the eighth-order table, whose long steps made the order-7 interpolant the
+// (order 11) for the eighth-order table, whose long steps leave even that interpolant the
 // larger part of the sampled error (docs/benchmarks.md, work–precision).
 
 #include <cstddef>
