@@ -52,13 +52,14 @@ struct BuiltModel {
   StageTimes cpu_times;                ///< process CPU seconds
 };
 
-inline BuiltModel build_model(const std::string& yaml, const std::string& label) {
+inline BuiltModel build_model(const std::string& yaml, const std::string& label,
+                              Formulation form = Formulation::Lagrangian) {
   const Stopwatch clock;
   BuiltModel b;
   const auto t0 = clock.now();
   b.model = std::make_unique<Model>(read_model_string(yaml, label));
   const auto t1 = clock.now();
-  b.equations = derive(*b.model);
+  b.equations = derive(*b.model, form);
   const auto t2 = clock.now();
   b.compiled = compile(b.equations);
   const auto t3 = clock.now();

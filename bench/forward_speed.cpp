@@ -6,7 +6,10 @@
 // first call: derive + tape compile, and the C compiler run (uncached).
 // The MuJoCo pendulum is the same chain in relative joint angles, its point masses carrying an
 // inertia of 1e-6 kg m² (MuJoCo needs a positive one), so its per-call work is the same.
-// Usage: forward_speed [--max-n N] [ARM.urdf ...]; prints a Markdown table.
+// The `links:` chain of the same masses and lengths in relative angles runs on the recursive
+// formulation (docs/theory.md §4.9) for N = 2 … 200 (MuJoCo reads it as URDF), with its q̈
+// checked against MuJoCo's at one state; each arm runs in both formulations.
+// Usage: forward_speed [--max-n N] [ARM.urdf ...] (chains up to 2N); prints a Markdown table.
 
 #include <mujoco/mujoco.h>
 #include <unistd.h>
@@ -70,11 +73,29 @@ std::string pendulum_mjcf(size_t n) {
   return s + "</worldbody></mujoco>";
 }
 
-mjModel* load_mujoco(const std::string& xml_or_path, bool is_text) {
+/// The links chain of links_chain_yaml(n, 1e-6) as URDF, which MuJoCo reads for any N (its XML
+/// reader cannot nest 100 MJCF bodies; URDF lists links flat). Gravity is set to −y after loading.
+std::string chain_urdf(size_t n) {
+  std::string s = "<robot name='chain'><link name='base'/>";
+  for (size_t k = 1; k <= n; ++k) {
+    const double l = lagrange::bench::per_link_length(k), m = lagrange::bench::per_link_mass(k);
+    const double offset = k == 1 ? 0.0 : lagrange::bench::per_link_length(k - 1);
+    s += "<link name='l" + std::to_string(k) + "'><inertial><origin xyz='0 " + std::to_string(-l) +
+         " 0'/><mass value='" + std::to_string(m) +
+         "'/><inertia ixx='1e-6' iyy='1e-6' izz='1e-6' ixy='0' ixz='0' iyz='0'/></inertial></link>";
+    s += "<joint name='q" + std::to_string(k) + "' type='continuous'><parent link='" +
+         (k == 1 ? std::string("base") : "l" + std::to_string(k - 1)) + "'/><child link='l" +
+         std::to_string(k) + "'/><origin xyz='0 " + std::to_string(-offset) +
+         " 0'/><axis xyz='0 0 1'/></joint>";
+  }
+  return s + "</robot>";
+}
+
+mjModel* load_mujoco(const std::string& xml_or_path, bool is_text, const char* suffix = ".xml") {
   std::string path = xml_or_path;
   if (is_text) {
     path = (std::filesystem::temp_directory_path() /
-            ("lagrange-forward-speed-" + std::to_string(::getpid()) + ".xml"))
+            ("lagrange-forward-speed-" + std::to_string(::getpid()) + suffix))
                .string();
     std::ofstream(path) << xml_or_path;
   }
@@ -96,9 +117,30 @@ struct Row {
   std::string name;
   size_t dof = 0, instructions = 0;
   double build_s = 0, cc_s = 0, interp_us = 0, native_us = 0, mujoco_us = 0;
+  double agreement = std::nan("");  ///< max |q̈ − MuJoCo's| / max(1, |q̈|∞) at one state
 };
 
-Row measure(const std::string& name, BuiltModel b, mjModel* m) {
+/// Our q̈ against MuJoCo's qacc at the same state, for a model whose coordinates are MuJoCo's
+/// joints in the same order (the chains).
+double agreement(lagrange::Dynamics& dyn, mjModel* m, const std::vector<double>& q,
+                 const std::vector<double>& v) {
+  const lagrange::CompiledModel& cm = dyn.model();
+  std::vector<double> qdot(cm.nq), a(cm.nv);
+  dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), nullptr);
+  mjData* d = mj_makeData(m);
+  std::copy(q.begin(), q.end(), d->qpos);
+  std::copy(v.begin(), v.end(), d->qvel);
+  mj_forward(m, d);
+  double worst = 0, scale = 1;
+  for (size_t i = 0; i < cm.nv; ++i) {
+    worst = std::max(worst, std::abs(a[i] - d->qacc[i]));
+    scale = std::max(scale, std::abs(a[i]));
+  }
+  mj_deleteData(d);
+  return worst / scale;
+}
+
+Row measure(const std::string& name, BuiltModel b, mjModel* m, bool same_joints = false) {
   Row row;
   row.name = name;
   const lagrange::CompiledModel& cm = *b.compiled;
@@ -138,6 +180,7 @@ Row measure(const std::string& name, BuiltModel b, mjModel* m) {
     row.mujoco_us = std::nan("");
     return row;
   }
+  if (same_joints) row.agreement = agreement(dyn, m, qs[0], vs[0]);
   mjData* d = mj_makeData(m);
   std::vector<std::vector<double>> mq(kStates), mv(kStates);
   for (size_t s = 0; s < kStates; ++s)
@@ -153,6 +196,12 @@ Row measure(const std::string& name, BuiltModel b, mjModel* m) {
   mj_deleteData(d);
   mj_deleteModel(m);
   return row;
+}
+
+std::string fmt_sci(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1e", x);
+  return buf;
 }
 
 }  // namespace
@@ -177,23 +226,46 @@ int main(int argc, char** argv) {
         load_mujoco(pendulum_mjcf(n), true)));
     std::fprintf(stderr, "%s done\n", label.c_str());
   }
-  for (const auto& path : arms) {
-    BuiltModel b;
-    b.model = std::make_unique<lagrange::Model>(lagrange::read_model_file(path));
-    const auto t0 = Clock::now();
-    b.equations = lagrange::derive(*b.model);
-    b.compiled = lagrange::compile(b.equations);
-    b.dynamics = std::make_unique<lagrange::Dynamics>(b.compiled, b.compiled->parameter_defaults);
-    b.times.derive = std::chrono::duration<double>(Clock::now() - t0).count();
-    rows.push_back(measure(std::filesystem::path(path).stem().string(), std::move(b),
-                           load_mujoco(path, false)));
+  // The same chain as `links:` in relative angles, recursive (docs/theory.md §4.9); MuJoCo reads
+  // it as URDF, so every N loads.
+  for (size_t n : {2, 5, 10, 20, 50, 100, 200}) {
+    if (n > 2 * max_n) break;
+    const std::string label = "chain N=" + std::to_string(n) + " recursive";
+    mjModel* m = load_mujoco(chain_urdf(n), true, ".urdf");
+    if (m != nullptr) {
+      m->opt.gravity[0] = 0;
+      m->opt.gravity[1] = -9.81;
+      m->opt.gravity[2] = 0;
+    }
+    rows.push_back(
+        measure(label,
+                lagrange::bench::build_model(lagrange::bench::links_chain_yaml(n, 1e-6),
+                                             "<" + label + ">", lagrange::Formulation::Recursive),
+                m, true));
+    std::fprintf(stderr, "%s done\n", label.c_str());
   }
+  for (const auto& path : arms)
+    for (const auto form : {lagrange::Formulation::Lagrangian, lagrange::Formulation::Recursive}) {
+      const bool recursive = form == lagrange::Formulation::Recursive;
+      BuiltModel b;
+      b.model = std::make_unique<lagrange::Model>(lagrange::read_model_file(path));
+      const auto t0 = Clock::now();
+      b.equations = lagrange::derive(*b.model, form);
+      b.compiled = lagrange::compile(b.equations);
+      b.dynamics = std::make_unique<lagrange::Dynamics>(b.compiled, b.compiled->parameter_defaults);
+      b.times.derive = std::chrono::duration<double>(Clock::now() - t0).count();
+      rows.push_back(measure(
+          std::filesystem::path(path).stem().string() + (recursive ? " recursive" : " Lagrangian"),
+          std::move(b), load_mujoco(path, false)));
+    }
   std::printf(
       "| model | dof | tape instr. | derive+compile s | cc s | interpreter µs | machine code µs | "
-      "MuJoCo mj_forward µs | MuJoCo / machine code |\n|---|---|---|---|---|---|---|---|---|\n");
+      "MuJoCo mj_forward µs | MuJoCo / machine code | q̈ vs MuJoCo |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows)
-    std::printf("| %s | %zu | %zu | %.3f | %.2f | %.3f | %.3f | %.3f | %.2f× |\n", r.name.c_str(),
-                r.dof, r.instructions, r.build_s, r.cc_s, r.interp_us, r.native_us, r.mujoco_us,
-                r.mujoco_us / r.native_us);
+    std::printf("| %s | %zu | %zu | %.3f | %.2f | %.3f | %.3f | %.3f | %.2f× | %s |\n",
+                r.name.c_str(), r.dof, r.instructions, r.build_s, r.cc_s, r.interp_us, r.native_us,
+                r.mujoco_us, r.mujoco_us / r.native_us,
+                std::isnan(r.agreement) ? "" : fmt_sci(r.agreement).c_str());
   return 0;
 }

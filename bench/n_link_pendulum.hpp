@@ -31,6 +31,13 @@ double per_link_mass(std::size_t k);
 /// Length of link k (1-based) in the PerLink family: 0.5 + 0.05·(k mod 5).
 double per_link_length(std::size_t k);
 
+/// The same pendulum (PerLink masses and lengths) as a `links:` chain in relative joint angles
+/// q1..qN (revolute about z; link k's frame at joint k, its point mass m_k at [0, −l_k, 0] with
+/// principal inertia `inertia` about it), so that the absolute angle th_k = q1 + … + qk. Initial
+/// absolute angles initial_angle(k), rates 0: the state of n_link_pendulum_yaml. Throws
+/// std::invalid_argument when n is 0.
+std::string links_chain_yaml(std::size_t n, double inertia = 0.0);
+
 /// Planar N-link chain in Cartesian coordinates x1, y1, …, xN, yN with a particle of mass m at
 /// each joint and one rod constraint per link,
 ///   rodₖ: ((xₖ − xₖ₋₁)² + (yₖ − yₖ₋₁)² − l²)/2,   x₀ = y₀ = 0,

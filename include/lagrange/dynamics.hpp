@@ -131,7 +131,6 @@ class Dynamics {
   std::unique_ptr<dynamics::NativeTapes> native_;       // machine code, when chosen
   /// Build or start building machine code for the current tapes (after set_parameters).
   void refresh_machine_code();
-  std::vector<double> m_diag_;
 };
 
 }  // namespace lagrange

@@ -57,8 +57,13 @@ struct Equations {
   std::vector<GiNaC::ex> Cdot;  ///< Ċ = Σ ∂C/∂qⱼ q̇ⱼ + ∂C/∂t
   std::vector<GiNaC::ex> c;     ///< C̈ − G a: dĊ/dt at a = 0
 
-  std::vector<GiNaC::ex> outputs;         ///< named outputs: the model's, then per free body
-  std::vector<std::string> output_names;  ///< its orthonormality error ‖RᵀR − 1‖_F
+  /// Recursive formulation (docs/theory.md §4.9): M = 1 and h = the accelerations, written in
+  /// the symbols of `definitions` (each defined by the inputs and earlier ones, in order).
+  bool recursive = false;
+  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> definitions;
+
+  std::vector<GiNaC::ex> outputs;          ///< named outputs: the model's, then per free body
+  std::vector<std::string> output_names;   ///< its orthonormality error ‖RᵀR − 1‖_F
   std::vector<GiNaC::ex> reaction_scales;  ///< Model::reactions' scales, in order
 
   /// Left side of velocity i's equation of motion (Euler–Lagrange for plain coordinates,
@@ -68,10 +73,21 @@ struct Equations {
   std::vector<GiNaC::symbol> tape_inputs() const;
 };
 
+/// How derive() writes the equations of motion.
+enum class Formulation {
+  Lagrangian,  ///< M and h from the energies (docs/theory.md §4.1–§4.4): any model
+  Recursive,   ///< a from the articulated-body algorithm on Model::tree (§4.9): O(N) in size
+};
+
+/// Why `model` cannot take Formulation::Recursive, or "" when it can: it needs a joint tree that
+/// carries every body and coordinate, and no constraints, particles, kinetic energy or torques.
+std::string recursive_unsuitable(const Model& model);
+
 /// Derive the equations of motion of `model`: particles and point masses through point
 /// Jacobians (M = Σ m JᵀJ, docs/theory.md §8), user energies through ∂²L/∂v∂vᵀ (§4.1), forces and
-/// dampers by virtual work (§4.2), constraints twice differentiated (§4.3).
-Equations derive(const Model& model);
+/// dampers by virtual work (§4.2), constraints twice differentiated (§4.3). Recursive: see
+/// Formulation; std::invalid_argument with recursive_unsuitable()'s reason when it does not apply.
+Equations derive(const Model& model, Formulation form = Formulation::Lagrangian);
 
 /// Symbolic accelerations a = M⁻¹(h + Q) for unconstrained systems with nv ≤ 4 (for display
 /// and tests); normalised. Throws std::invalid_argument when constrained or nv > 4.

@@ -52,7 +52,8 @@ struct Point {
 };
 
 /// A point mass m at a named point: adds ½ m |vel|² (and m g·x when gravity is set).
-/// `gravity = false` makes it a pure inertia term (e.g. a rod's rotary inertia, docs/theory.md §4.5).
+/// `gravity = false` makes it a pure inertia term (e.g. a rod's rotary inertia, docs/theory.md
+/// §4.5).
 struct Particle {
   std::string point;
   GiNaC::ex mass;
@@ -110,6 +111,20 @@ struct Body {
   Mat3 rot() const;
   /// World position of the body-fixed point p_b: r + R p_b.
   Vec3 world_point(const Vec3& p_body) const;
+};
+
+/// A joint of a kinematic tree (docs/theory.md §4.9): it places a link frame in its parent's
+/// frame and moves it about (revolute) or along (prismatic) a unit axis. Elements that build
+/// joint chains describe them so; the recursive formulation needs nothing else.
+struct TreeJoint {
+  enum class Kind { Revolute, Prismatic, Fixed } kind = Kind::Fixed;
+  int parent = -1;       ///< index in Model::tree of the parent link's joint, −1 for the world
+  int coordinate = -1;   ///< index in Model::coordinates of the joint's q, −1 when fixed
+  int body = -1;         ///< index in Model::bodies of the link's body, −1 for a massless link
+  Vec3 axis{0, 0, 1};    ///< unit joint axis in the link frame (motion subspace)
+  Vec3 origin{0, 0, 0};  ///< link frame origin in the parent frame (q in it when prismatic)
+  Mat3 rotation{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};  ///< link axes in the parent
+                                                               ///< frame (q in it when revolute)
 };
 
 /// A torque on a body, in the world frame or the body frame; enters by virtual power
@@ -183,6 +198,9 @@ struct Model {
   std::vector<Damper> dampers;
   std::vector<Body> bodies;
   std::vector<BodyTorque> torques;
+  /// Joints of kinematic trees whose links are bodies above (parents before children); the
+  /// bodies keep their own poses, this is the same motion told joint by joint.
+  std::vector<TreeJoint> tree;
   std::vector<NamedExpr> constraints;
   std::vector<NamedExpr> outputs;
   std::vector<Reaction> reactions;

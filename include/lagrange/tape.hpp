@@ -19,10 +19,16 @@ struct TapeCode;
 /// An immutable straight-line program mapping a flat input array to a flat output array.
 class Tape {
  public:
-  /// Compile `outputs` (expressions in `inputs` only) into a tape with shared subexpressions
-  /// evaluated once. Throws std::invalid_argument naming any symbol that is not an input.
+  /// A named intermediate value: the symbol stands for the expression in later definitions and
+  /// in the outputs (how recursive algorithms stay linear in size, docs/theory.md §4.9).
+  using Definition = std::pair<GiNaC::symbol, GiNaC::ex>;
+
+  /// Compile `outputs` (expressions in `inputs` and the `definitions`' symbols, each definition
+  /// in the inputs and earlier definitions) into a tape with shared subexpressions evaluated
+  /// once. Throws std::invalid_argument naming any symbol that is neither.
   static Tape compile(const std::vector<GiNaC::ex>& outputs,
-                      const std::vector<GiNaC::symbol>& inputs);
+                      const std::vector<GiNaC::symbol>& inputs,
+                      const std::vector<Definition>& definitions = {});
 
   size_t num_inputs() const { return num_inputs_; }
   size_t num_outputs() const { return outputs_.size(); }

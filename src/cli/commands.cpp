@@ -143,7 +143,7 @@ void choose_evaluation(Dynamics& dynamics, const std::string& mode) {
 }  // namespace
 
 int run_simulate(const Options& opt) {
-  Prepared p = prepare(opt.model, opt.sets, opt.initial);
+  Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const Model& model = *p.model;
   const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);
@@ -176,7 +176,8 @@ int run_simulate(const Options& opt) {
         "{})\n",
         p.derive_seconds, p.compile_seconds, t_sim, traj.stats.steps, traj.stats.rhs_evals,
         traj.stats.method.empty() ? so.integrator.method : traj.stats.method);
-    fmt::print("  evaluation: {}\n", p.dynamics->evaluation_note());
+    fmt::print("  evaluation: {}{}\n", p.dynamics->evaluation_note(),
+               p.equations.recursive ? ", recursive (articulated-body algorithm)" : "");
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
       fmt::print(

@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
                   "auto (default): machine code from the cache, or compiled in the background "
                   "for large models | on: compile before the run | off: interpreter only")
       ->check(CLI::IsMember({"auto", "on", "off"}));
+  sim->add_option("--dynamics", opt.dynamics,
+                  "auto (default): recursive for joint trees of 8 or more joints | lagrangian: "
+                  "M and h from the energies | recursive: articulated-body algorithm, O(N)")
+      ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
   sim->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");

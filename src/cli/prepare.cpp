@@ -62,12 +62,28 @@ struct GivenState {
   std::string option;
 };
 
+/// The formulation `--dynamics` asks for (docs/theory.md §4.9).
+Formulation formulation(const Model& model, const std::string& dynamics) {
+  if (dynamics == "lagrangian") return Formulation::Lagrangian;
+  const std::string why = recursive_unsuitable(model);
+  if (dynamics == "recursive") {
+    if (!why.empty())
+      throw UsageError(
+          fmt::format("--dynamics recursive: the articulated-body algorithm does "
+                      "not apply to {}: {}; use --dynamics lagrangian",
+                      model.file, why));
+    return Formulation::Recursive;
+  }
+  return why.empty() && model.coordinates.size() >= kRecursiveFromJoints ? Formulation::Recursive
+                                                                         : Formulation::Lagrangian;
+}
+
 Prepared prepare_with(const std::string& path, const ParameterOverrides& overrides,
-                      const GivenState& initial) {
+                      const GivenState& initial, const std::string& dynamics) {
   Prepared p;
   const auto t0 = Clock::now();
   p.model = std::make_unique<const Model>(read_model_file(path, overrides));
-  p.equations = derive(*p.model);
+  p.equations = derive(*p.model, formulation(*p.model, dynamics));
   p.derive_seconds = seconds_since(t0);
   const auto t1 = Clock::now();
   p.compiled = compile(p.equations);
@@ -84,7 +100,7 @@ Prepared prepare_with(const std::string& path, const ParameterOverrides& overrid
 
 bool prepares_as_written(const std::string& path) {
   try {
-    (void)prepare_with(path, {}, {});
+    (void)prepare_with(path, {}, {}, "lagrangian");
     return true;
   } catch (const ModelError&) {
     return false;
@@ -120,11 +136,12 @@ ParameterOverrides parse_sets(const std::vector<std::string>& sets) {
 }
 
 Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
-                 const std::vector<std::string>& initial, const std::string& initial_option) {
+                 const std::vector<std::string>& initial, const std::string& initial_option,
+                 const std::string& dynamics) {
   const ParameterOverrides overrides = parse_sets(sets);
   const GivenState initial_values{parse_assignments(initial, initial_option), initial_option};
   try {
-    return prepare_with(path, overrides, initial_values);
+    return prepare_with(path, overrides, initial_values, dynamics);
   } catch (const ParameterOverrideError& e) {
     throw UsageError(fmt::format("--set: {}", e.what()));
   } catch (const ModelError& e) {

@@ -69,6 +69,13 @@ class ExprCompiler {
     }
   }
 
+  /// From now on the symbol `name` reads SSA value v (a definition, Tape::Definition).
+  void define(const GiNaC::symbol& name, std::uint32_t v) {
+    if (input_index_.count(name) > 0 || !defined_.emplace(name, v).second)
+      throw std::invalid_argument(
+          fmt::format("symbol '{}' is defined twice or is also an input", name.get_name()));
+  }
+
   /// Counts how many parents reference each distinct canonical subexpression of e (first visit
   /// recurses).
   void count_uses(const ex& e) {
@@ -118,12 +125,11 @@ class ExprCompiler {
     if (GiNaC::is_a<GiNaC::constant>(e)) return b_.constant(to_double(e.evalf()));
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
       auto it = input_index_.find(e);
-      if (it == input_index_.end()) {
-        throw std::invalid_argument(
-            fmt::format("unknown symbol '{}': it is not one of the tape's inputs",
-                        GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
-      }
-      return b_.input(it->second);
+      if (it != input_index_.end()) return b_.input(it->second);
+      if (auto d = defined_.find(e); d != defined_.end()) return d->second;
+      throw std::invalid_argument(
+          fmt::format("unknown symbol '{}': it is not one of the tape's inputs",
+                      GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
     }
     if (GiNaC::is_a<GiNaC::add>(e)) return build_sum(e, 1);
     if (GiNaC::is_a<GiNaC::mul>(e)) return build_product(e, 1);
@@ -224,6 +230,7 @@ class ExprCompiler {
   TapeBuilder& b_;
   tape_detail::CanonicalOrder& order_;
   ExMap<std::uint32_t> input_index_;
+  ExMap<std::uint32_t> defined_;  ///< definition symbols → their SSA values
   /// v[id], growing v with `fill` as needed (the reference lasts until v grows again).
   template <class T>
   static T& slot(std::vector<T>& v, std::uint32_t id, T fill) {
@@ -240,16 +247,28 @@ class ExprCompiler {
 
 }  // namespace
 
-Tape Tape::compile(const std::vector<GiNaC::ex>& outputs,
-                   const std::vector<GiNaC::symbol>& inputs) {
+Tape Tape::compile(const std::vector<GiNaC::ex>& outputs, const std::vector<GiNaC::symbol>& inputs,
+                   const std::vector<Definition>& definitions) {
   tape_detail::TapeBuilder builder(inputs.size());
-  tape_detail::CanonicalOrder order(inputs);
+  // Definition symbols are identified by position too, after the inputs: names may repeat.
+  std::vector<GiNaC::symbol> named = inputs;
+  std::vector<GiNaC::ex> all;
+  all.reserve(definitions.size() + outputs.size());
+  for (const auto& [name, value] : definitions) {
+    named.push_back(name);
+    all.push_back(value);
+  }
+  all.insert(all.end(), outputs.begin(), outputs.end());
+  tape_detail::CanonicalOrder order(named);
   ExprCompiler compiler(builder, inputs, order);
-  const std::vector<GiNaC::ex> rewritten = lagrange::collect_common_factors(outputs, order);
+  const std::vector<GiNaC::ex> rewritten = lagrange::collect_common_factors(all, order);
   for (const GiNaC::ex& e : rewritten) compiler.count_uses(e);
+  for (size_t i = 0; i < definitions.size(); ++i)
+    compiler.define(definitions[i].first, compiler.value(rewritten[i]));
   std::vector<std::uint32_t> out;
-  out.reserve(rewritten.size());
-  for (const GiNaC::ex& e : rewritten) out.push_back(compiler.value(e));
+  out.reserve(outputs.size());
+  for (size_t i = definitions.size(); i < rewritten.size(); ++i)
+    out.push_back(compiler.value(rewritten[i]));
   return from_code(builder.finish(out));
 }
 

@@ -72,12 +72,12 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
       }
 
   const std::vector<GiNaC::symbol> in = eq.tape_inputs();
-  cm->dynamics = Tape::compile(dyn, in);
+  cm->dynamics = Tape::compile(dyn, in, eq.definitions);
 
   std::vector<GiNaC::ex> obs{eq.T, eq.U};
   for (const auto& e : eq.outputs) obs.push_back(e);
   for (const auto& e : eq.reaction_scales) obs.push_back(e);
-  cm->observables = Tape::compile(obs, in);
+  cm->observables = Tape::compile(obs, in, eq.definitions);
 
   std::vector<GiNaC::ex> sig;
   for (const auto& u : model.inputs) sig.push_back(u.expr);

@@ -189,6 +189,20 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
+  if (cm.m == 0 && cm.M_diagonal && cm.nv > 0) {
+    // A diagonal M (among them the recursive formulation's M = 1, docs/theory.md §4.9):
+    // a = (h + Q)/Mᵢᵢ, under the Cholesky path's conditioning test (pivot² = Mᵢᵢ).
+    const double scale = M_.diagonal().cwiseAbs().maxCoeff();
+    for (size_t i = 0; i < cm.nv; ++i) {
+      const double d = M_(static_cast<long>(i), static_cast<long>(i));
+      if (!(d > 1e-13 * scale)) fail_singular(t, "the mass matrix is singular or indefinite");
+      a[i] = rhs_[static_cast<long>(i)] / d;
+      if (!std::isfinite(a[i]))
+        fail_singular(
+            t, fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
+    }
+    return;
+  }
   llt_M_.compute(M_);
   if (ill_conditioned(llt_M_, M_)) {
     if (cm.m == 0) fail_singular(t, "the mass matrix is singular or indefinite");

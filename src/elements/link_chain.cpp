@@ -122,11 +122,40 @@ const char* type_word(JointSpec::Type t) {
   return "fixed";
 }
 
+/// The link's frame in its parent's frame (docs/theory.md §4.9): R = R_fixed Rot(k, q) for a
+/// revolute joint, origin xyz + R_fixed k q for a prismatic one.
+TreeJoint tree_joint(const JointSpec& j, const Vec3& k, const GiNaC::ex& q, int parent,
+                     int coordinate) {
+  TreeJoint t;
+  t.parent = parent;
+  t.coordinate = coordinate;
+  t.axis = k;
+  t.origin = j.xyz;
+  const bool plain = !j.rotation && j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
+  const Mat3 fixed = plain ? kIdentity : (j.rotation ? *j.rotation : rpy_rotation(j.rpy));
+  t.rotation = fixed;
+  switch (j.type) {
+    case JointSpec::Type::Revolute:
+      t.kind = TreeJoint::Kind::Revolute;
+      t.rotation = plain ? axis_angle_rotation(k, q) : mat_mul(fixed, axis_angle_rotation(k, q));
+      break;
+    case JointSpec::Type::Prismatic:
+      t.kind = TreeJoint::Kind::Prismatic;
+      t.origin = add(j.xyz, mat_vec(fixed, {k[0] * q, k[1] * q, k[2] * q}));
+      break;
+    case JointSpec::Type::Fixed:
+      t.kind = TreeJoint::Kind::Fixed;
+      break;
+  }
+  return t;
+}
+
 }  // namespace
 
 void declare_chain(ModelReader& r, LinkChain& chain) {
   std::vector<Frame> frames;
   chain.coordinate.assign(chain.links.size(), -1);
+  const int first = static_cast<int>(r.model().tree.size());
   for (size_t i = 0; i < chain.links.size(); ++i) {
     const LinkSpec& link = chain.links[i];
     const JointSpec& j = link.joint;
@@ -155,6 +184,10 @@ void declare_chain(ModelReader& r, LinkChain& chain) {
       check_body_inertia(r.model(), b, f.spin_axis);
       r.add_body(b);
     }
+    TreeJoint t =
+        tree_joint(j, k, q, link.parent < 0 ? -1 : first + link.parent, chain.coordinate[i]);
+    if (!link.mass.is_zero()) t.body = static_cast<int>(r.model().bodies.size() - 1);
+    r.model().tree.push_back(std::move(t));
     for (const auto& [name, p] : link.points)
       r.add_point(link.name + "." + name, add(f.r, mat_vec(f.R, p)), link.loc);
   }

@@ -101,6 +101,37 @@ std::string format_text(const Equations& eq, Style style) {
   return out.finish();
 }
 
+// The recursive formulation has no M or h worth printing: its accelerations are a chain of named
+// intermediates (docs/theory.md §4.9). Say so, with what the elements lowered.
+std::string format_recursive(const Equations& eq, const std::string& format) {
+  const Model& model = *eq.model;
+  const std::string what = fmt::format(
+      "accelerations from the articulated-body algorithm over {} joints ({} named "
+      "intermediates); lagrange derive prints the Lagrangian form",
+      model.tree.size(), eq.definitions.size());
+  if (format == "json") {
+    nlohmann::json j;
+    j["name"] = model.name;
+    j["coordinates"] = eq.kin.q_names;
+    j["recursive"] = what;
+    return j.dump(2) + "\n";
+  }
+  const bool tex = format == "latex";
+  io::EquationWriter out(tex ? Style::Latex : Style::Text);
+  const io::HeadingSink heading = out.heading_sink();
+  const io::LineSink line = out.line_sink();
+  out.raw(fmt::format(tex ? "% {}: {} coordinates\n" : "{} — {} coordinates\n", model.name, eq.nq));
+  for (const ElementSummary& s : model.element_summaries) {
+    heading(s.title);
+    for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
+    for (const auto& [lhs, rhs] : s.equations)
+      line(lhs, str(rhs, tex ? Style::Latex : Style::Text));
+  }
+  heading("Equations of motion");
+  out.raw(tex ? "% " + what + "\n" : "  " + what + "\n");
+  return out.finish();
+}
+
 std::string format_json(const Equations& eq) {
   const Model& model = *eq.model;
   auto s = [](const GiNaC::ex& e) { return str(e, Style::Text); };
@@ -140,6 +171,7 @@ std::string format_json(const Equations& eq) {
 std::string format_equations(const Equations& eq, const std::string& format, bool expand) {
   if (format != "text" && format != "latex" && format != "json")
     throw std::invalid_argument("unknown format '" + format + "'; expected text, latex or json");
+  if (eq.recursive) return format_recursive(eq, format);
   if (!expand) {
     if (io::expanded_size(eq, kFullExpansionLimit + 1) > kFullExpansionLimit)
       return io::format_equations_cse(eq, format);

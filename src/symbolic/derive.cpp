@@ -1,28 +1,39 @@
+#include <stdexcept>
+
 #include "lagrange/equations.hpp"
 #include "symbolic/mechanical_terms.hpp"
 
 namespace lagrange {
 
-Equations derive(const Model& model) {
+Equations derive(const Model& model, Formulation form) {
   Equations eq;
   eq.kin = kinematics(model);
   const Kinematics& kin = eq.kin;
-  symbolic::MechanicalTerms terms(kin.v.size());
-  symbolic::add_particle_terms(kin, terms);
-  symbolic::add_body_terms(kin, terms);
-  symbolic::add_energy_terms(kin, terms);
-  symbolic::add_generalized_forces(kin, terms);
-
   eq.model = &model;
   eq.nq = kin.q.size();
   eq.nv = kin.v.size();
-  eq.T = terms.T;
-  eq.U = terms.U;
-  eq.L = terms.T - terms.U;
-  eq.M = terms.M;
-  eq.h = std::move(terms.h);
-  eq.Q = std::move(terms.Q);
   eq.qdot = kin.qdot;
+  if (form == Formulation::Recursive) {
+    if (const std::string why = recursive_unsuitable(model); !why.empty())
+      throw std::invalid_argument("the recursive formulation does not apply: " + why);
+    eq.recursive = true;
+    symbolic::add_recursive_terms(kin, eq);  // M = 1, h = a, Q = 0
+    eq.M = GiNaC::ex_to<GiNaC::matrix>(GiNaC::unit_matrix(static_cast<unsigned>(eq.nv)));
+    eq.Q.assign(eq.nv, 0);
+    eq.L = eq.T - eq.U;
+  } else {
+    symbolic::MechanicalTerms terms(kin.v.size());
+    symbolic::add_particle_terms(kin, terms);
+    symbolic::add_body_terms(kin, terms);
+    symbolic::add_energy_terms(kin, terms);
+    symbolic::add_generalized_forces(kin, terms);
+    eq.T = terms.T;
+    eq.U = terms.U;
+    eq.L = terms.T - terms.U;
+    eq.M = terms.M;
+    eq.h = std::move(terms.h);
+    eq.Q = std::move(terms.Q);
+  }
   symbolic::add_constraint_terms(kin, eq);
   for (const auto& out : model.outputs) {
     eq.outputs.push_back(out.expr);

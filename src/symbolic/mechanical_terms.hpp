@@ -43,6 +43,11 @@ void add_generalized_forces(const Kinematics& kin, MechanicalTerms& terms);
 /// with the ω-rows 2P(∂C/∂R) for free bodies (§4.4) coming from G = ∂Ċ/∂v.
 void add_constraint_terms(const Kinematics& kin, Equations& eq);
 
+/// The recursive formulation (docs/theory.md §4.9): eq.h = accelerations from the
+/// articulated-body algorithm on Model::tree with its intermediates in eq.definitions, the
+/// model's other forces and potentials as joint forces; eq.T, eq.U for the observables.
+void add_recursive_terms(const Kinematics& kin, Equations& eq);
+
 /// Body-frame angular velocity ω of a body: its symbols when free, else unskew(RᵀṘ) (§4.4).
 Vec3 body_angular_velocity(const Kinematics& kin, const Body& body);
 
