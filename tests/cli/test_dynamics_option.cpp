@@ -1,6 +1,6 @@
 // `simulate --dynamics auto|lagrangian|recursive` as a user meets it (docs/theory.md §4.9): both
-// formulations give the same trajectory; auto takes the recursive one for trees of eight joints
-// or more; asking for it where it does not apply is a usage error that says why.
+// formulations give the same trajectory; auto takes the recursive one wherever it applies;
+// asking for it where it does not apply is a usage error that says why.
 
 #include <gtest/gtest.h>
 
@@ -56,7 +56,8 @@ TEST(DynamicsOption, BothFormulationsGiveTheSameTrajectory) {
   EXPECT_NE(recursive.out.find("recursive (articulated-body algorithm)"), std::string::npos)
       << recursive.out;
   EXPECT_EQ(lagrangian.out.find("recursive"), std::string::npos) << lagrangian.out;
-  EXPECT_EQ(automatic.out.find("recursive"), std::string::npos) << automatic.out;  // 2 joints
+  EXPECT_NE(automatic.out.find("recursive (articulated-body algorithm)"), std::string::npos)
+      << automatic.out;
   const auto a = last_row(slurp(dir.path() / "lagrangian.csv"));
   const auto b = last_row(slurp(dir.path() / "recursive.csv"));
   ASSERT_EQ(a.size(), b.size());
@@ -64,22 +65,29 @@ TEST(DynamicsOption, BothFormulationsGiveTheSameTrajectory) {
   for (size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-8 * (1 + std::abs(a[i]))) << i;
 }
 
-TEST(DynamicsOption, AutoTakesTheRecursiveFormForLongChainsAndReportsIt) {
+TEST(DynamicsOption, AutoTakesTheRecursiveFormAndTheReportSaysSo) {
   const ScratchDir dir("dynamics-auto");
-  spit(dir.path() / "chain.yaml", chain(8));
-  const auto at = [&](const char* name) { return (dir.path() / name).string(); };
+  const auto at = [&](const std::string& name) { return (dir.path() / name).string(); };
+  // 13 joints: beyond the trees whose report shows the Lagrangian form instead.
+  spit(dir.path() / "chain.yaml", chain(13));
   const RunResult r =
       run_lagrange(dir.path(), {"simulate", at("chain.yaml"), "--t-end", "0.5", "-o",
                                 at("chain.csv"), "--report", at("chain.html")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("recursive (articulated-body algorithm)"), std::string::npos) << r.out;
-  EXPECT_NE(slurp(dir.path() / "chain.html").find("articulated-body algorithm over 8 joints"),
+  EXPECT_NE(slurp(dir.path() / "chain.html").find("articulated-body algorithm over 13 joints"),
             std::string::npos);
-  spit(dir.path() / "short.yaml", chain(7));
-  const RunResult s = run_lagrange(
-      dir.path(), {"simulate", at("short.yaml"), "--t-end", "0.1", "-o", at("short.csv")});
-  ASSERT_EQ(s.exit_code, 0) << s.err;
-  EXPECT_EQ(s.out.find("recursive"), std::string::npos) << s.out;
+  // A small arm's report shows its mass matrix; a model without a tree stays Lagrangian.
+  const RunResult arm =
+      run_lagrange(dir.path(), {"simulate", example("elbow_manipulator.yaml"), "--t-end", "0.2",
+                                "-o", at("arm.csv"), "--report", at("arm.html")});
+  ASSERT_EQ(arm.exit_code, 0) << arm.err;
+  EXPECT_NE(arm.out.find("recursive"), std::string::npos) << arm.out;
+  EXPECT_NE(slurp(dir.path() / "arm.html").find("Mass matrix"), std::string::npos);
+  const RunResult p = run_lagrange(
+      dir.path(), {"simulate", example("pendulum.yaml"), "--t-end", "0.1", "-o", at("p.csv")});
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  EXPECT_EQ(p.out.find("recursive"), std::string::npos) << p.out;
 }
 
 TEST(DynamicsOption, RecursiveWhereItDoesNotApplyIsAUsageErrorSayingWhy) {
