@@ -228,21 +228,28 @@ int main(int argc, char** argv) {
   }
   // The same chain as `links:` in relative angles, recursive (docs/theory.md §4.9); MuJoCo reads
   // it as URDF, so every N loads.
+  // Up to N = 20 the Lagrangian formulation of the same chain too: where `--dynamics auto`
+  // should switch.
   for (size_t n : {2, 5, 10, 20, 50, 100, 200}) {
     if (n > 2 * max_n) break;
-    const std::string label = "chain N=" + std::to_string(n) + " recursive";
-    mjModel* m = load_mujoco(chain_urdf(n), true, ".urdf");
-    if (m != nullptr) {
-      m->opt.gravity[0] = 0;
-      m->opt.gravity[1] = -9.81;
-      m->opt.gravity[2] = 0;
+    for (const auto form : {lagrange::Formulation::Lagrangian, lagrange::Formulation::Recursive}) {
+      const bool recursive = form == lagrange::Formulation::Recursive;
+      if (!recursive && n > 20) continue;
+      const std::string label =
+          "chain N=" + std::to_string(n) + (recursive ? " recursive" : " Lagrangian");
+      mjModel* m = load_mujoco(chain_urdf(n), true, ".urdf");
+      if (m != nullptr) {
+        m->opt.gravity[0] = 0;
+        m->opt.gravity[1] = -9.81;
+        m->opt.gravity[2] = 0;
+      }
+      rows.push_back(
+          measure(label,
+                  lagrange::bench::build_model(lagrange::bench::links_chain_yaml(n, 1e-6),
+                                               "<" + label + ">", form),
+                  m, true));
+      std::fprintf(stderr, "%s done\n", label.c_str());
     }
-    rows.push_back(
-        measure(label,
-                lagrange::bench::build_model(lagrange::bench::links_chain_yaml(n, 1e-6),
-                                             "<" + label + ">", lagrange::Formulation::Recursive),
-                m, true));
-    std::fprintf(stderr, "%s done\n", label.c_str());
   }
   for (const auto& path : arms)
     for (const auto form : {lagrange::Formulation::Lagrangian, lagrange::Formulation::Recursive}) {

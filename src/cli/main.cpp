@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
                   "for large models | on: compile before the run | off: interpreter only")
       ->check(CLI::IsMember({"auto", "on", "off"}));
   sim->add_option("--dynamics", opt.dynamics,
-                  "auto (default): recursive for joint trees of 8 or more joints | lagrangian: "
+                  "auto (default): recursive where it applies (joint trees) | lagrangian: "
                   "M and h from the energies | recursive: articulated-body algorithm, O(N)")
       ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
   sim->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");

@@ -74,8 +74,7 @@ Formulation formulation(const Model& model, const std::string& dynamics) {
                       model.file, why));
     return Formulation::Recursive;
   }
-  return why.empty() && model.coordinates.size() >= kRecursiveFromJoints ? Formulation::Recursive
-                                                                         : Formulation::Lagrangian;
+  return why.empty() ? Formulation::Recursive : Formulation::Lagrangian;
 }
 
 Prepared prepare_with(const std::string& path, const ParameterOverrides& overrides,

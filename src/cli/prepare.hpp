@@ -43,15 +43,12 @@ std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<
 /// (NAME=VALUE of the option `initial_option`) replaces the file's initial value of a coordinate
 /// or of a velocity `NAME_dot` before the state is made consistent; an unknown name is a
 /// UsageError naming it. `dynamics` chooses the Formulation: "lagrangian", "recursive" (a
-/// UsageError saying why when the model cannot take it) or "auto" (recursive for joint trees of
-/// kRecursiveFromJoints or more joints).
+/// UsageError saying why when the model cannot take it) or "auto" (recursive where it applies:
+/// faster to derive and per call at every size measured, docs/benchmarks.md).
 Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::vector<std::string>& initial = {},
                  const std::string& initial_option = "--initial",
                  const std::string& dynamics = "lagrangian");
 
-/// Smallest joint tree that `--dynamics auto` derives recursively (docs/benchmarks.md: below it
-/// the Lagrangian tape is as fast per call and derives in well under a second).
-constexpr size_t kRecursiveFromJoints = 8;
 
 }  // namespace lagrange::cli

@@ -11,6 +11,12 @@
 
 namespace lagrange::cli {
 
+namespace {
+/// Largest recursive model whose report derives the Lagrangian form for display (the Panda's
+/// seven joints take 0.7 s; twelve joints of a chain about 2 s).
+constexpr size_t kReportLagrangianJoints = 12;
+}  // namespace
+
 void check_report(const std::string& path, const Model& model) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -27,6 +33,12 @@ void write_run_report(const Prepared& p, const Trajectory& traj, const std::stri
   run.wall_seconds = wall_seconds;
   run.derive_seconds = p.derive_seconds;
   run.compile_seconds = p.compile_seconds;
+  // The recursive formulation has no M or h to show (docs/theory.md §4.9): for trees small
+  // enough to derive at once, the report shows the Lagrangian form of the same model.
+  if (p.equations.recursive && p.compiled->nv <= kReportLagrangianJoints) {
+    write_report(derive(*p.model), *p.compiled, traj, p.dynamics->parameters(), run, path);
+    return;
+  }
   write_report(p.equations, *p.compiled, traj, p.dynamics->parameters(), run, path);
 }
 

@@ -25,9 +25,13 @@ namespace lagrange {
 namespace {
 
 long allocations_in_forward(const std::string& yaml_or_example, bool is_file,
-                            bool machine_code = false) {
+                            bool machine_code = false, Formulation form = Formulation::Lagrangian) {
   auto sys =
       is_file ? testing::load_example(yaml_or_example) : testing::load_string(yaml_or_example);
+  if (form == Formulation::Recursive) {  // docs/theory.md §4.9
+    sys.compiled = compile(derive(*sys.model, form));
+    sys.dynamics = std::make_unique<Dynamics>(sys.compiled, sys.compiled->parameter_defaults);
+  }
   if (machine_code) {
     MachineCodeOptions o;
     o.cache_dir = LAGRANGE_TEST_CACHE;
@@ -67,6 +71,16 @@ TEST(NoAllocation, FiveBar) {
 TEST(NoAllocation, MachineCode) {
   EXPECT_EQ(allocations_in_forward("five_bar.yaml", true, true), 0);
   EXPECT_EQ(allocations_in_forward(bench::n_link_pendulum_yaml(20), false, true), 0);
+}
+
+TEST(NoAllocation, RecursiveChainAndArm) {
+  for (const bool native : {false, true}) {
+    EXPECT_EQ(
+        allocations_in_forward(bench::links_chain_yaml(12), false, native, Formulation::Recursive),
+        0);
+    EXPECT_EQ(
+        allocations_in_forward("elbow_manipulator.yaml", true, native, Formulation::Recursive), 0);
+  }
 }
 
 TEST(NoAllocation, SparseChain) {
