@@ -4,26 +4,11 @@
 #include "lagrange/rigid_body.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
+#include "symbolic/vec3_algebra.hpp"
 
 namespace lagrange::symbolic {
 
 namespace {
-
-Vec3 mat_vec(const Mat3& A, const Vec3& x) {
-  Vec3 y;
-  for (size_t i = 0; i < 3; ++i) y[i] = A[i][0] * x[0] + A[i][1] * x[1] + A[i][2] * x[2];
-  return y;
-}
-
-Vec3 mat_t_vec(const Mat3& A, const Vec3& x) {
-  Vec3 y;
-  for (size_t i = 0; i < 3; ++i) y[i] = A[0][i] * x[0] + A[1][i] * x[1] + A[2][i] * x[2];
-  return y;
-}
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 bool is_zero(const Vec3& v) {
   return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();

@@ -12,6 +12,7 @@
 #include "lagrange/equations.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
+#include "symbolic/vec3_algebra.hpp"
 
 namespace lagrange {
 
@@ -19,7 +20,10 @@ namespace {
 
 using GiNaC::ex;
 using Kind = TreeJoint::Kind;
+using symbolic::cross;
 using symbolic::dot;
+using symbolic::mat_t_vec;
+using symbolic::mat_vec;
 
 /// A spatial motion vector: angular part, and linear velocity (or acceleration) of the point at
 /// the frame origin.
@@ -37,25 +41,11 @@ struct Inertia {
 
 const Mat3 kZero{Vec3{0, 0, 0}, Vec3{0, 0, 0}, Vec3{0, 0, 0}};
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 Vec3 plus(const Vec3& a, const Vec3& b) {
   return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
 }
 Vec3 scaled(const Vec3& a, const ex& s) {
   return {a[0] * s, a[1] * s, a[2] * s};
-}
-/// M x and Mᵀ x.
-Vec3 times(const Mat3& M, const Vec3& x) {
-  Vec3 y;
-  for (size_t i = 0; i < 3; ++i) y[i] = M[i][0] * x[0] + M[i][1] * x[1] + M[i][2] * x[2];
-  return y;
-}
-Vec3 transpose_times(const Mat3& M, const Vec3& x) {
-  Vec3 y;
-  for (size_t i = 0; i < 3; ++i) y[i] = M[0][i] * x[0] + M[1][i] * x[1] + M[2][i] * x[2];
-  return y;
 }
 /// X Y, Xᵀ, X + Y, x yᵀ, and the cross-product matrix p̂ (p̂ x = p × x).
 Mat3 product(const Mat3& X, const Mat3& Y) {
@@ -141,7 +131,7 @@ Inertia body_inertia(const Body& b) {
 
 /// I V and the bias force V ×* (I V).
 Force momentum(const Inertia& I, const Motion& V) {
-  return {plus(times(I.A, V.w), times(I.B, V.v)), plus(transpose_times(I.B, V.w), times(I.C, V.v))};
+  return {plus(mat_vec(I.A, V.w), mat_vec(I.B, V.v)), plus(mat_t_vec(I.B, V.w), mat_vec(I.C, V.v))};
 }
 Force bias_force(const Motion& V, const Force& h) {
   return {plus(cross(V.w, h.n), cross(V.v, h.f)), cross(V.w, h.f)};
@@ -149,13 +139,12 @@ Force bias_force(const Motion& V, const Force& h) {
 
 /// A motion of the parent frame seen in the link frame: (Rᵀω, Rᵀ(v + ω × p)).
 Motion to_child(const TreeJoint& j, const Motion& m) {
-  return {transpose_times(j.rotation, m.w),
-          transpose_times(j.rotation, plus(m.v, cross(m.w, j.origin)))};
+  return {mat_t_vec(j.rotation, m.w), mat_t_vec(j.rotation, plus(m.v, cross(m.w, j.origin)))};
 }
 /// A force of the link frame seen in the parent frame: (R n + p × R f, R f).
 Force to_parent(const TreeJoint& j, const Force& F) {
-  const Vec3 f = times(j.rotation, F.f);
-  return {plus(times(j.rotation, F.n), cross(j.origin, f)), f};
+  const Vec3 f = mat_vec(j.rotation, F.f);
+  return {plus(mat_vec(j.rotation, F.n), cross(j.origin, f)), f};
 }
 /// Xᵀ I X for the motion transform X parent → link: with A_r = R A Rᵀ (likewise B, C),
 /// A' = A_r − B_r p̂ + p̂ B_rᵀ − p̂ C_r p̂, B' = B_r + p̂ C_r, C' = C_r.
@@ -259,8 +248,8 @@ void add_recursive_terms(const Kinematics& kin, Equations& eq) {
     if (j.kind != Kind::Fixed) {
       const auto qi = static_cast<size_t>(j.coordinate);
       const Force Ui = j.kind == Kind::Revolute
-                           ? Force{times(Ia.A, j.axis), transpose_times(Ia.B, j.axis)}
-                           : Force{times(Ia.B, j.axis), times(Ia.C, j.axis)};
+                           ? Force{mat_vec(Ia.A, j.axis), mat_t_vec(Ia.B, j.axis)}
+                           : Force{mat_vec(Ia.B, j.axis), mat_vec(Ia.C, j.axis)};
       U[i] = {defs.name(Ui.n, at + "U_w"), defs.name(Ui.f, at + "U_v")};
       invD[i] = defs.name(1 / defs.name(along(j, U[i]), at + "D"), at + "invD");
       u[i] = defs.name(forces.h[qi] + forces.Q[qi] - along(j, pa), at + "u");

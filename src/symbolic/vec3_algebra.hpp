@@ -1,0 +1,28 @@
+#pragma once
+// 3-vector and 3×3-matrix products of expressions, shared by the rigid-body terms (§4.4) and the
+// recursive formulation (docs/theory.md §4.9).
+
+#include "lagrange/model.hpp"
+
+namespace lagrange::symbolic {
+
+/// a × b.
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+/// A x.
+inline Vec3 mat_vec(const Mat3& A, const Vec3& x) {
+  Vec3 y;
+  for (size_t i = 0; i < 3; ++i) y[i] = A[i][0] * x[0] + A[i][1] * x[1] + A[i][2] * x[2];
+  return y;
+}
+
+/// Aᵀ x.
+inline Vec3 mat_t_vec(const Mat3& A, const Vec3& x) {
+  Vec3 y;
+  for (size_t i = 0; i < 3; ++i) y[i] = A[0][i] * x[0] + A[1][i] * x[1] + A[2][i] * x[2];
+  return y;
+}
+
+}  // namespace lagrange::symbolic
