@@ -64,12 +64,17 @@ echo "== SymPy peer (sympy.physics.mechanics LagrangesMethod) =="
 echo
 "$python" "$here/report.py" "$out" | tee "$out/report.md"
 echo
-echo "== work-precision: lagrange's integrators and the SciPy peers (docs/benchmarks.md) =="
+echo "== work-precision: lagrange's integrators, the SciPy and MuJoCo peers (docs/benchmarks.md) =="
 "$build/bench/work_precision" "$out" | tee "$out/work_precision.jsonl"
 if "$python" -c 'import scipy' 2>/dev/null; then
   "$python" "$here/work_precision.py" "$out" | tee -a "$out/work_precision.jsonl"
 else
   echo "$0: $python lacks scipy (apt-get install python3-scipy): SciPy peers skipped" >&2
+fi
+if [[ -x $build/bench/work_precision_mujoco ]]; then  # built when libmujoco-dev is installed
+  "$build/bench/work_precision_mujoco" "$out" | tee -a "$out/work_precision.jsonl"
+else
+  echo "$0: $build/bench/work_precision_mujoco not built (libmujoco-dev): MuJoCo peer skipped" >&2
 fi
 "$python" "$here/work_precision_report.py" "$out/work_precision.jsonl" "$out/work_precision.svg" \
   | tee "$out/work_precision.md"

@@ -5,8 +5,11 @@
 
 One table per model: a row per method, a column per rtol, each cell "achieved error /
 right-hand-side evaluations / CPU ms" (process CPU time: both engines are single-threaded, and
-wall time on a shared machine measures the other jobs too). The plot is the double pendulum's:
-achieved error on x, CPU time on y, one line per method.
+wall time on a shared machine measures the other jobs too). Fixed-step peers (runs with a "step"
+instead of an rtol: MuJoCo's RK4) get a second table per model: for each run of the default
+`arkode`, the fixed step at which the peer reaches the same error, with its evaluations and CPU
+time (log-log interpolation between the two steps around that error). The plot is the double
+pendulum's: achieved error on x, CPU time on y, one line per method.
 """
 
 import json
@@ -16,12 +19,51 @@ import sys
 from collections import defaultdict
 
 
+def at_error(runs, error):
+    """(step, evaluations, CPU s) of the fixed-step runs interpolated (log-log) at `error`, or
+    None when no two consecutive steps bracket it."""
+    runs = sorted(runs, key=lambda r: -r["step"])  # coarse to fine
+    for a, b in zip(runs, runs[1:]):
+        if not (math.isfinite(a["error"]) and b["error"] > 0):
+            continue
+        if b["error"] <= error <= a["error"] and a["error"] > b["error"]:
+            w = math.log(a["error"] / error) / math.log(a["error"] / b["error"])
+
+            def mix(key):
+                return math.exp((1 - w) * math.log(a[key]) + w * math.log(b[key]))
+            return mix("step"), mix("rhs_evals"), mix("cpu_s")
+    return None
+
+
+def print_equal_error(model, method, runs, ours):
+    """The fixed-step peer at the error of each run of the default `arkode`."""
+    sweep = ", ".join(f"h {r['step']:.3g}: {r['error']:.1e}"
+                      for r in sorted(runs, key=lambda r: -r["step"]))
+    print(f"\n{method} on {model} at the error of each `arkode` run (fixed step h; {sweep}):\n")
+    print("| rtol | `arkode`: error / evals / CPU ms | " + method + ": h / evals / CPU ms "
+          "| evals ratio | CPU ratio |")
+    print("|---|---|---|---|---|")
+    for rtol, r in sorted(ours.items(), reverse=True):
+        peer = at_error(runs, r["error"])
+        ours_cell = f"{r['error']:.1e} / {r['rhs_evals']} / {1e3 * r['cpu_s']:.1f}"
+        if peer is None:
+            print(f"| {rtol:.0e} | {ours_cell} | not bracketed | — | — |")
+            continue
+        h, evals, cpu = peer
+        print(f"| {rtol:.0e} | {ours_cell} | {h:.2g} / {evals:.0f} / {1e3 * cpu:.1f} "
+              f"| {evals / r['rhs_evals']:.1f}× | {cpu / r['cpu_s']:.1f}× |")
+
+
 def main():
     rows = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
     plot = sys.argv[2] if len(sys.argv) > 2 else None
     by_model = defaultdict(lambda: defaultdict(dict))
+    fixed = defaultdict(lambda: defaultdict(list))  # model -> method -> runs, by step
     for r in rows:
-        by_model[r["model"]][r["method"]][r["rtol"]] = r
+        if r.get("step") is not None:
+            fixed[r["model"]][r["method"]].append(r)
+        else:
+            by_model[r["model"]][r["method"]][r["rtol"]] = r
     for model, methods in by_model.items():
         rtols = sorted({rt for m in methods.values() for rt in m}, reverse=True)
         print(f"\n#### {model}\n")
@@ -35,9 +77,13 @@ def main():
                 cells.append("—" if r is None else
                              f"{r['error']:.1e} / {r['rhs_evals']} / {1e3 * r['cpu_s']:.1f}")
             print(f"| {label} | " + " | ".join(cells) + " |")
+        for method, runs in fixed.get(model, {}).items():
+            print_equal_error(model, method, runs, methods.get("arkode", {}))
     if plot and "double_pendulum" in by_model:
         data, plots = [], []
-        for i, (method, runs) in enumerate(by_model["double_pendulum"].items()):
+        lines = list(by_model["double_pendulum"].items())
+        lines += [(m, dict(enumerate(runs))) for m, runs in fixed["double_pendulum"].items()]
+        for method, runs in lines:
             pts = [(r["error"], r["cpu_s"]) for r in runs.values()
                    if math.isfinite(r["error"]) and r["error"] > 0]
             data.append("\n".join(f"{e} {w}" for e, w in sorted(pts)))
