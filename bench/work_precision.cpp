@@ -81,9 +81,13 @@ int main(int argc, char** argv) {
       {"five_bar", example("five_bar.yaml"), 5.0},
       {"cartesian_chain_10", lagrange::bench::cartesian_chain_yaml(10), 5.0},
   };
-  const std::vector<std::string> methods{"arkode",           "arkode:dormand-prince",
-                                         "arkode:verner65",  "arkode:verner87",
-                                         "arkode:zonneveld", "cvode"};
+  const std::vector<std::string> methods{"arkode",
+                                         "arkode:dormand-prince",
+                                         "arkode:verner65",
+                                         "arkode:verner87",
+                                         "arkode:fehlberg78",
+                                         "arkode:zonneveld",
+                                         "cvode"};
   for (const Case& c : cases) {
     BuiltModel b = lagrange::bench::build_model(c.yaml, c.name);
     const size_t nq = b.compiled->nq;

@@ -8,9 +8,10 @@ namespace lagrange::integration {
 
 namespace {
 
-// SUNDIALS names them NAME_stages_embedding_order. Not offered: FEHLBERG_13_7_8, whose stored
-// coefficients fail its order conditions in SUNDIALS 6.4 (ARKodeButcherTable_CheckOrder finds
-// order 6, and the fixed-step slope on the oscillator is about 6, not 8).
+// SUNDIALS names them NAME_stages_embedding_order. FEHLBERG_13_7_8 meets every order condition
+// up to 8 (tests/integrate/test_erk_coefficients.cpp); ARKodeButcherTable_CheckOrder checks only
+// up to order 6 and reports 6 for any higher-order table, and it ran at order 6 only while the
+// first-same-as-last reuse (arkode_erk.cpp) took its last stage for the next step's first.
 const ErkTable kTables[] = {
     {"heun-euler", ARKODE_HEUN_EULER_2_1_2, 2},
     {"bogacki-shampine", ARKODE_BOGACKI_SHAMPINE_4_2_3, 3},
@@ -20,6 +21,7 @@ const ErkTable kTables[] = {
     {"fehlberg", ARKODE_FEHLBERG_6_4_5, 5},
     {"dormand-prince", ARKODE_DORMAND_PRINCE_7_4_5, 5},
     {"verner65", ARKODE_VERNER_8_5_6, 6},
+    {"fehlberg78", ARKODE_FEHLBERG_13_7_8, 8},
     {"verner87", ARKODE_ERK_NONE, 8, verner_8_7},
 };
 

@@ -18,6 +18,7 @@ const std::vector<std::string>& integrator_methods() {
                                               "arkode:fehlberg",
                                               "arkode:dormand-prince",
                                               "arkode:verner65",
+                                              "arkode:fehlberg78",
                                               "arkode:verner87",
                                               "cvode",
                                               "rk4",

@@ -1,10 +1,12 @@
-// The published coefficients handed to ARKODE (src/integrate/erk_coefficients.cpp) satisfy the
-// Runge–Kutta order conditions: every row of A sums to its node, and b Φ(t) = 1/γ(t) for every
-// rooted tree t up to the nominal order (Butcher's elementary weights Φ and densities γ), for the
-// propagated solution and for the embedding, and not for all trees one order higher. The bar
-// 1e-11 is rounding in double (coefficients up to 120 in size cancel; in 50 digits the
-// residuals are below 1e-36); the first failing order misses by more than 1e-8.
+// The published coefficients handed to ARKODE (src/integrate/erk_coefficients.cpp), and ARKODE's
+// own Fehlberg 7(8), satisfy the Runge–Kutta order conditions: every row of A sums to its node,
+// and b Φ(t) = 1/γ(t) for every rooted tree t up to the nominal order (Butcher's elementary
+// weights Φ and densities γ), for the propagated solution and for the embedding, and not for all
+// trees one order higher. The bar 1e-11 is rounding in double (coefficients up to 120 in size
+// cancel; in 50 digits the residuals are below 1e-36); the first failing order misses by more
+// than 1e-8.
 
+#include <arkode/arkode_erkstep.h>  // (its arkode_butcher_erk.h needs the stdio it includes)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -109,6 +111,33 @@ TEST(Verner87, EmbeddingMeetsEveryOrderConditionUpToSeven) {
   for (int order = 1; order <= 7; ++order)
     EXPECT_LT(worst_residual(k, k.d, order), 1e-11) << "order " << order;
   EXPECT_GT(worst_residual(k, k.d, 8), 1e-7) << "the embedding is of order 8: no error estimate";
+}
+
+/// ARKODE's own table `id` as coefficients (its A is stored full, s × s).
+ButcherCoefficients arkode_table(ARKODE_ERKTableID id) {
+  const ARKodeButcherTable t = ARKodeButcherTable_LoadERK(id);
+  ButcherCoefficients k{{}, {}, {}, {}, t->q, t->p};
+  for (int i = 0; i < t->stages; ++i) {
+    k.c.push_back(t->c[i]);
+    k.a.emplace_back(t->A[i], t->A[i] + i);
+    k.b.push_back(t->b[i]);
+    k.d.push_back(t->d[i]);
+  }
+  ARKodeButcherTable_Free(t);
+  return k;
+}
+
+// SUNDIALS 6.4's ARKodeButcherTable_CheckOrder reports order 6 for this table, but it checks no
+// higher order than 6: the coefficients meet every condition up to 8 (7 for the embedding).
+TEST(Fehlberg78, ArkodeCoefficientsMeetEveryOrderConditionUpToEight) {
+  const ButcherCoefficients k = arkode_table(ARKODE_FEHLBERG_13_7_8);
+  ASSERT_EQ(k.order, 8);
+  ASSERT_EQ(k.embedding, 7);
+  for (int order = 1; order <= 8; ++order)
+    EXPECT_LT(worst_residual(k, k.b, order), 1e-13) << "order " << order;
+  for (int order = 1; order <= 7; ++order)
+    EXPECT_LT(worst_residual(k, k.d, order), 1e-13) << "embedding, order " << order;
+  EXPECT_GT(worst_residual(k, k.d, 8), 1e-7);
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ const Table kTables[] = {
     {"arkode:zonneveld", 4, 0.01},      {"arkode:sayfy-aburub", 4, 0.01},
     {"arkode:cash-karp", 5, 0.02},      {"arkode:fehlberg", 5, 0.02},
     {"arkode:dormand-prince", 5, 0.02}, {"arkode:verner65", 6, 0.03},
-    {"arkode:verner87", 8, 0.125},
+    {"arkode:fehlberg78", 8, 0.125},    {"arkode:verner87", 8, 0.125},
 };
 
 /// |x − x_exact| + |v − v_exact| at t = 2 for the oscillator from (1, 0) at fixed step h.
