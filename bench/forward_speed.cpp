@@ -27,32 +27,14 @@
 
 #include "bench_support.hpp"
 #include "n_link_pendulum.hpp"
+#include "per_call_timer.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using lagrange::bench::BuiltModel;
-
-constexpr size_t kStates = 64;
-
-/// Microseconds per call of f(state index), best of three timed batches of ≥ 0.2 s each.
-template <class F>
-double microseconds_per_call(F&& f) {
-  size_t calls = 64;
-  for (;;) {  // grow the batch until it takes 0.2 s
-    const auto t0 = Clock::now();
-    for (size_t k = 0; k < calls; ++k) f(k % kStates);
-    if (std::chrono::duration<double>(Clock::now() - t0).count() > 0.2) break;
-    calls *= 2;
-  }
-  double best = 1e300;
-  for (int rep = 0; rep < 3; ++rep) {
-    const auto t0 = Clock::now();
-    for (size_t k = 0; k < calls; ++k) f(k % kStates);
-    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return 1e6 * best / static_cast<double>(calls);
-}
+using lagrange::bench::kStates;
+using lagrange::bench::microseconds_per_call;
 
 /// The N-link pendulum as MJCF: hinges about z in the x–y plane, gravity −y, a point mass of
 /// link k at its far end (k-th mass and length of the PerLink family).

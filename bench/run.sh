@@ -52,6 +52,11 @@ else
   echo "(forward_speed not built: MuJoCo, libmujoco-dev, is not installed)"
 fi
 echo
+echo "== forward dynamics per call: Pinocchio 3.7 ABA on the same chains (same run) =="
+if "$here/pinocchio.sh" "$build" | tee "$out/pinocchio.md"; then :; else
+  echo "(Pinocchio peer skipped: bench/pinocchio.sh needs git or PINOCCHIO_SRC, and libboost-dev)"
+fi
+echo
 echo "== lagrange: accelerations at the benchmark state (cross-check with SymPy) =="
 : >"$out/accelerations.txt"
 for n in 2 5 8 10; do
