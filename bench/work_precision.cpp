@@ -2,8 +2,9 @@
 // at rtol 1e-4 … 1e-10 (atol = rtol / 100) and prints one JSON line per run: the largest error of
 // the coordinates over the samples (every 0.1 s) against a reference run at rtol 1e-13 with
 // arkode:verner65, right-hand-side evaluations, steps, wall and CPU seconds of simulate().
-//   work_precision OUT_DIR     also writes OUT_DIR/reference_<model>.json (t and q per sample),
-//                              which bench/work_precision.py scores the SciPy peers against.
+//   work_precision OUT_DIR [MODEL ...]  also writes OUT_DIR/reference_<model>.json (t and q per
+//                              sample), which bench/work_precision.py scores the SciPy peers
+//                              against; with MODEL names, runs only those models.
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -27,6 +28,7 @@ struct Case {
   std::string name;
   std::string yaml;
   double t_end;
+  lagrange::Formulation form = lagrange::Formulation::Lagrangian;
 };
 
 std::string read_file(const std::string& path) {
@@ -80,7 +82,14 @@ int main(int argc, char** argv) {
       {"tumbling_brick", example("tumbling_brick.yaml"), 10.0},
       {"five_bar", example("five_bar.yaml"), 5.0},
       {"cartesian_chain_10", lagrange::bench::cartesian_chain_yaml(10), 5.0},
+      // The pendulum chain as `links:` on the recursive formulation (docs/theory.md §4.9).
+      {"links_chain_100", lagrange::bench::links_chain_yaml(100), 1.0,
+       lagrange::Formulation::Recursive},
+      {"links_chain_200", lagrange::bench::links_chain_yaml(200), 1.0,
+       lagrange::Formulation::Recursive},
   };
+  // Optional model names after the output directory run only those cases.
+  const std::vector<std::string> only(argv + std::min(argc, 2), argv + argc);
   const std::vector<std::string> methods{"arkode",
                                          "arkode:dormand-prince",
                                          "arkode:verner65",
@@ -89,7 +98,8 @@ int main(int argc, char** argv) {
                                          "arkode:zonneveld",
                                          "cvode"};
   for (const Case& c : cases) {
-    BuiltModel b = lagrange::bench::build_model(c.yaml, c.name);
+    if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
+    BuiltModel b = lagrange::bench::build_model(c.yaml, c.name, c.form);
     const size_t nq = b.compiled->nq;
     const Run reference = run(b, c, "arkode:verner65", 1e-13);
     if (reference.trajectory.status != lagrange::Trajectory::Status::Complete) {
