@@ -37,6 +37,11 @@ constexpr size_t kFullExpansionLimit = 100000;
 /// tape's named common subexpressions instead, unless `expand` is set.
 std::string format_equations(const Equations& eq, const std::string& format, bool expand = false);
 
+/// The recursive formulation (docs/theory.md §4.9) as text, LaTeX or JSON: every named
+/// intermediate in evaluation order, then q̈ (`derive --form recursive`). format_equations of
+/// such equations only says how they are computed.
+std::string format_recursive(const Equations& eq, const std::string& format);
+
 /// The manipulator form D, Christoffel symbols, C, g, τ (docs/theory.md §4.8) as text, LaTeX or
 /// JSON (`format`: text | latex | json).
 std::string format_manipulator(const ManipulatorForm& form, const std::string& format);

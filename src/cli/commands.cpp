@@ -87,6 +87,15 @@ std::function<void(double)> progress_line(const Options& opt, double t_end) {
 
 int run_derive(const Options& opt) {
   const Model model = read_model_file(opt.model);
+  if (opt.form == "recursive") {  // docs/theory.md §4.9
+    if (const std::string why = recursive_unsuitable(model); !why.empty())
+      throw UsageError(
+          fmt::format("--form recursive: the articulated-body algorithm does not "
+                      "apply to {}: {}",
+                      model.file, why));
+    fmt::print("{}", format_recursive(derive(model, Formulation::Recursive), opt.format));
+    return 0;
+  }
   const Equations eq = derive(model);
   if (opt.form == "manipulator") {
     fmt::print("{}", format_manipulator(manipulator_form(eq), opt.format));

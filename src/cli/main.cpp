@@ -42,8 +42,9 @@ int main(int argc, char** argv) {
                    "named common subexpressions)");
   derive
       ->add_option("--form", opt.form,
-                   "lagrange (default) | manipulator: D(q), Christoffel symbols, C, g, tau")
-      ->check(CLI::IsMember({"lagrange", "manipulator"}));
+                   "lagrange (default) | manipulator: D(q), Christoffel symbols, C, g, tau | "
+                   "recursive: the articulated-body algorithm of a joint tree")
+      ->check(CLI::IsMember({"lagrange", "manipulator", "recursive"}));
 
   auto* sim = app.add_subcommand("simulate", "integrate the model and write the trajectory");
   sim->add_option("model", opt.model, "model file (YAML)")->required();

@@ -102,33 +102,48 @@ std::string format_text(const Equations& eq, Style style) {
 }
 
 // The recursive formulation has no M or h worth printing: its accelerations are a chain of named
-// intermediates (docs/theory.md §4.9). Say so, with what the elements lowered.
-std::string format_recursive(const Equations& eq, const std::string& format) {
+// intermediates (docs/theory.md §4.9). Say so, with what the elements lowered, and with
+// `definitions` the chain itself.
+std::string recursive_text(const Equations& eq, const std::string& format, bool definitions) {
   const Model& model = *eq.model;
   const std::string what = fmt::format(
       "accelerations from the articulated-body algorithm over {} joints ({} named "
-      "intermediates); lagrange derive prints the Lagrangian form",
-      model.tree.size(), eq.definitions.size());
+      "intermediates){}",
+      model.tree.size(), eq.definitions.size(),
+      definitions ? "" : "; lagrange derive --form recursive prints them");
+  const bool tex = format == "latex";
+  const Style style = tex ? Style::Latex : Style::Text;
   if (format == "json") {
     nlohmann::json j;
     j["name"] = model.name;
     j["coordinates"] = eq.kin.q_names;
     j["recursive"] = what;
+    if (definitions) {
+      for (const auto& [name, value] : eq.definitions)
+        j["definitions"].push_back({name.get_name(), str(value, Style::Text)});
+      for (size_t i = 0; i < eq.nv; ++i) j["accelerations"].push_back(str(eq.h[i], Style::Text));
+    }
     return j.dump(2) + "\n";
   }
-  const bool tex = format == "latex";
-  io::EquationWriter out(tex ? Style::Latex : Style::Text);
+  io::EquationWriter out(style);
   const io::HeadingSink heading = out.heading_sink();
   const io::LineSink line = out.line_sink();
   out.raw(fmt::format(tex ? "% {}: {} coordinates\n" : "{} — {} coordinates\n", model.name, eq.nq));
   for (const ElementSummary& s : model.element_summaries) {
     heading(s.title);
     for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
-    for (const auto& [lhs, rhs] : s.equations)
-      line(lhs, str(rhs, tex ? Style::Latex : Style::Text));
+    for (const auto& [lhs, rhs] : s.equations) line(lhs, str(rhs, style));
   }
   heading("Equations of motion");
   out.raw(tex ? "% " + what + "\n" : "  " + what + "\n");
+  if (definitions) {
+    heading(tex ? "Articulated-body algorithm"
+                : "Articulated-body algorithm (in evaluation order)");
+    for (const auto& [name, value] : eq.definitions)
+      line(symbol_str(name, style), str(value, style));
+    heading("Accelerations");
+    for (size_t i = 0; i < eq.nv; ++i) line(symbol_str(eq.kin.a[i], style), str(eq.h[i], style));
+  }
   return out.finish();
 }
 
@@ -168,10 +183,17 @@ std::string format_json(const Equations& eq) {
 
 }  // namespace
 
+std::string format_recursive(const Equations& eq, const std::string& format) {
+  if (format != "text" && format != "latex" && format != "json")
+    throw std::invalid_argument("unknown format '" + format + "'; expected text, latex or json");
+  if (!eq.recursive) throw std::invalid_argument("format_recursive: the equations are Lagrangian");
+  return recursive_text(eq, format, true);
+}
+
 std::string format_equations(const Equations& eq, const std::string& format, bool expand) {
   if (format != "text" && format != "latex" && format != "json")
     throw std::invalid_argument("unknown format '" + format + "'; expected text, latex or json");
-  if (eq.recursive) return format_recursive(eq, format);
+  if (eq.recursive) return recursive_text(eq, format, false);
   if (!expand) {
     if (io::expanded_size(eq, kFullExpansionLimit + 1) > kFullExpansionLimit)
       return io::format_equations_cse(eq, format);

@@ -106,5 +106,23 @@ TEST(DynamicsOption, RecursiveWhereItDoesNotApplyIsAUsageErrorSayingWhy) {
   EXPECT_EQ(bad.exit_code, 2);
 }
 
+TEST(DynamicsOption, DeriveFormRecursivePrintsTheAlgorithm) {
+  const ScratchDir dir("derive-recursive");
+  const RunResult r = run_lagrange(
+      dir.path(), {"derive", example("elbow_manipulator.yaml"), "--form", "recursive"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Articulated-body algorithm"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("L2.invD = L2.IA33^(-1)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("q2_ddot = "), std::string::npos) << r.out;
+  const RunResult json = run_lagrange(dir.path(), {"derive", example("elbow_manipulator.yaml"),
+                                                   "--form", "recursive", "--format", "json"});
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"definitions\""), std::string::npos);
+  const RunResult refused =
+      run_lagrange(dir.path(), {"derive", example("pendulum.yaml"), "--form", "recursive"});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("it has no joint tree"), std::string::npos) << refused.err;
+}
+
 }  // namespace
 }  // namespace lagrange::hardening
