@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "lagrange/equations.hpp"
@@ -171,6 +172,48 @@ ex along(const Force& U, const Motion& a) {
   return dot(U.n, a.w) + dot(U.f, a.v);
 }
 
+/// The symbols of expressions, visiting each node of the expression DAG once (a chain's poses
+/// share their parents' entries, so the tree behind them is exponentially larger). Visited
+/// nodes are kept alive: op() of a sum or product may build temporaries, whose addresses would
+/// otherwise be reused.
+class SymbolCollector {
+ public:
+  void add(const ex& e) {
+    if (!seen_.insert(&GiNaC::ex_to<GiNaC::basic>(e)).second) return;
+    alive_.push_back(e);
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      used_.insert(e);
+      return;
+    }
+    for (size_t k = 0; k < e.nops(); ++k) add(e.op(k));
+  }
+  bool used(const GiNaC::symbol& s) const { return used_.count(s) > 0; }
+
+ private:
+  GiNaC::exset used_;
+  std::unordered_set<const GiNaC::basic*> seen_;
+  std::vector<ex> alive_;
+};
+
+/// Drops the definitions that neither q̈ nor T and U read (the root link's articulated inertia,
+/// which no parent takes), so that what `derive --form recursive` prints is what is computed.
+void keep_used_definitions(Equations& eq) {
+  SymbolCollector symbols;
+  for (const ex& a : eq.h) symbols.add(a);
+  symbols.add(eq.T);
+  symbols.add(eq.U);
+  std::vector<bool> keep(eq.definitions.size(), false);
+  for (size_t k = eq.definitions.size(); k-- > 0;) {
+    if (!symbols.used(eq.definitions[k].first)) continue;
+    keep[k] = true;
+    symbols.add(eq.definitions[k].second);
+  }
+  std::vector<std::pair<GiNaC::symbol, ex>> kept;
+  for (size_t k = 0; k < keep.size(); ++k)
+    if (keep[k]) kept.push_back(std::move(eq.definitions[k]));
+  eq.definitions = std::move(kept);
+}
+
 }  // namespace
 
 std::string recursive_unsuitable(const Model& model) {
@@ -290,6 +333,7 @@ void add_recursive_terms(const Kinematics& kin, Equations& eq) {
   for (const Body& b : model.bodies) U_gravity -= b.mass * dot(g, b.world_point(b.com));
   eq.T = T;
   eq.U = forces.U + U_gravity;
+  keep_used_definitions(eq);
 }
 
 }  // namespace symbolic
