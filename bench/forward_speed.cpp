@@ -236,16 +236,9 @@ int main(int argc, char** argv) {
   for (const auto& path : arms)
     for (const auto form : {lagrange::Formulation::Lagrangian, lagrange::Formulation::Recursive}) {
       const bool recursive = form == lagrange::Formulation::Recursive;
-      BuiltModel b;
-      b.model = std::make_unique<lagrange::Model>(lagrange::read_model_file(path));
-      const auto t0 = Clock::now();
-      b.equations = lagrange::derive(*b.model, form);
-      b.compiled = lagrange::compile(b.equations);
-      b.dynamics = std::make_unique<lagrange::Dynamics>(b.compiled, b.compiled->parameter_defaults);
-      b.times.derive = std::chrono::duration<double>(Clock::now() - t0).count();
       rows.push_back(measure(
           std::filesystem::path(path).stem().string() + (recursive ? " recursive" : " Lagrangian"),
-          std::move(b), load_mujoco(path, false)));
+          lagrange::bench::build_model_file(path, form), load_mujoco(path, false)));
     }
   std::printf(
       "| model | dof | tape instr. | derive+compile s | cc s | interpreter µs | machine code µs | "

@@ -71,10 +71,20 @@ int along(const Vec3& k, size_t axis) {
   return 0;
 }
 
+/// The rotation of a joint's origin (its rpy, or the matrix `dh:` gave); `plain` when there is
+/// none, so that chains about one axis keep a single angle.
+struct OriginRotation {
+  bool plain = true;
+  Mat3 fixed = kIdentity;
+};
+OriginRotation origin_rotation(const JointSpec& j) {
+  const bool plain = !j.rotation && j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
+  return {plain, plain ? kIdentity : (j.rotation ? *j.rotation : rpy_rotation(j.rpy))};
+}
+
 Frame child_frame(const Frame& p, const JointSpec& j, const Vec3& k, const GiNaC::ex& q,
                   const GiNaC::ex& qd) {
-  const bool plain = !j.rotation && j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
-  const Mat3 fixed = plain ? kIdentity : (j.rotation ? *j.rotation : rpy_rotation(j.rpy));
+  const auto [plain, fixed] = origin_rotation(j);
   Frame f;
   f.w = plain ? p.w : transpose_times(fixed, p.w);
   if (j.type == JointSpec::Type::Revolute) {
@@ -131,8 +141,7 @@ TreeJoint tree_joint(const JointSpec& j, const Vec3& k, const GiNaC::ex& q, int 
   t.coordinate = coordinate;
   t.axis = k;
   t.origin = j.xyz;
-  const bool plain = !j.rotation && j.rpy[0].is_zero() && j.rpy[1].is_zero() && j.rpy[2].is_zero();
-  const Mat3 fixed = plain ? kIdentity : (j.rotation ? *j.rotation : rpy_rotation(j.rpy));
+  const auto [plain, fixed] = origin_rotation(j);
   t.rotation = fixed;
   switch (j.type) {
     case JointSpec::Type::Revolute:

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lagrange/equations.hpp"
+#include "model/expression_algebra.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
 #include "symbolic/vec3_algebra.hpp"
@@ -23,6 +24,7 @@ using GiNaC::ex;
 using Kind = TreeJoint::Kind;
 using symbolic::cross;
 using symbolic::dot;
+using symbolic::mat_mul;
 using symbolic::mat_t_vec;
 using symbolic::mat_vec;
 
@@ -48,20 +50,7 @@ Vec3 plus(const Vec3& a, const Vec3& b) {
 Vec3 scaled(const Vec3& a, const ex& s) {
   return {a[0] * s, a[1] * s, a[2] * s};
 }
-/// X Y, Xᵀ, X + Y, x yᵀ, and the cross-product matrix p̂ (p̂ x = p × x).
-Mat3 product(const Mat3& X, const Mat3& Y) {
-  Mat3 Z;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      Z[i][j] = X[i][0] * Y[0][j] + X[i][1] * Y[1][j] + X[i][2] * Y[2][j];
-  return Z;
-}
-Mat3 transposed(const Mat3& X) {
-  Mat3 Z;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) Z[i][j] = X[j][i];
-  return Z;
-}
+/// X ± Y, x yᵀ s, and the cross-product matrix p̂ (p̂ x = p × x).
 Mat3 sum(const Mat3& X, const Mat3& Y, int sign = 1) {
   Mat3 Z;
   for (size_t i = 0; i < 3; ++i)
@@ -151,13 +140,14 @@ Force to_parent(const TreeJoint& j, const Force& F) {
 /// A' = A_r − B_r p̂ + p̂ B_rᵀ − p̂ C_r p̂, B' = B_r + p̂ C_r, C' = C_r.
 Inertia to_parent(const TreeJoint& j, const Inertia& I) {
   const Mat3& R = j.rotation;
-  const Mat3 Rt = transposed(R);
-  const Mat3 Ar = product(product(R, I.A), Rt), Br = product(product(R, I.B), Rt),
-             Cr = product(product(R, I.C), Rt);
+  const Mat3 Rt = model::transpose(R);
+  const Mat3 Ar = mat_mul(mat_mul(R, I.A), Rt), Br = mat_mul(mat_mul(R, I.B), Rt),
+             Cr = mat_mul(mat_mul(R, I.C), Rt);
   const Mat3 P = hat(j.origin);
-  const Mat3 PC = product(P, Cr);
-  return {sum(sum(Ar, product(Br, P), -1), sum(product(P, transposed(Br)), product(PC, P), -1)),
-          sum(Br, PC), Cr};
+  const Mat3 PC = mat_mul(P, Cr);
+  return {
+      sum(sum(Ar, mat_mul(Br, P), -1), sum(mat_mul(P, model::transpose(Br)), mat_mul(PC, P), -1)),
+      sum(Br, PC), Cr};
 }
 
 /// The joint's motion subspace S: (k, 0) revolute, (0, k) prismatic; and Sᵀ of a force.

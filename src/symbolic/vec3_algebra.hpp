@@ -25,4 +25,13 @@ inline Vec3 mat_t_vec(const Mat3& A, const Vec3& x) {
   return y;
 }
 
+/// X Y.
+inline Mat3 mat_mul(const Mat3& X, const Mat3& Y) {
+  Mat3 Z;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      Z[i][j] = X[i][0] * Y[0][j] + X[i][1] * Y[1][j] + X[i][2] * Y[2][j];
+  return Z;
+}
+
 }  // namespace lagrange::symbolic
