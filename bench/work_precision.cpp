@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
   // Optional model names after the output directory run only those cases.
   const std::vector<std::string> only(argv + std::min(argc, 2), argv + argc);
   const std::vector<std::string> methods{"arkode",
+                                         "dop853",
                                          "arkode:dormand-prince",
                                          "arkode:verner65",
                                          "arkode:verner87",
@@ -100,6 +101,9 @@ int main(int argc, char** argv) {
   for (const Case& c : cases) {
     if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
     BuiltModel b = lagrange::bench::build_model(c.yaml, c.name, c.form);
+    // Machine code, as `lagrange simulate` runs once its cache holds the model.
+    b.dynamics->set_evaluation(lagrange::Evaluation::MachineCode);
+    fmt::print(stderr, "{}: {}\n", c.name, b.dynamics->evaluation_note());
     const size_t nq = b.compiled->nq;
     const Run reference = run(b, c, "arkode:verner65", 1e-13);
     if (reference.trajectory.status != lagrange::Trajectory::Status::Complete) {

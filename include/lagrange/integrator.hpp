@@ -1,7 +1,8 @@
 #pragma once
-// Integrator front-end: SUNDIALS ARKODE (explicit adaptive RK, named Butcher tables), CVODE (BDF),
-// IDA (DAE), fixed-step RK4 and the fixed-step implicit midpoint rule, all reporting on a uniform
-// output grid (ARKODE and CVODE through their dense output, without stopping at samples).
+// Integrator front-end: DOP853 (explicit adaptive RK of order 8, the default), SUNDIALS ARKODE
+// (explicit adaptive RK, named Butcher tables), CVODE (BDF), IDA (DAE), fixed-step RK4 and the
+// fixed-step implicit midpoint rule, all reporting on a uniform output grid (DOP853, ARKODE and
+// CVODE through their dense output, without stopping at samples).
 
 #include <functional>
 #include <string>
@@ -27,18 +28,18 @@ struct DaeProblem {
 using StepHook = std::function<bool(double t, double* y)>;
 
 struct IntegratorOptions {
-  std::string method = "arkode";  ///< one of integrator_methods() (ODE); ida (DAE)
+  std::string method = "dop853";  ///< one of integrator_methods() (ODE); ida (DAE)
   double rtol = 1e-8;
   double atol = 1e-10;
-  double step = 0.0;  ///< rk4 / midpoint step (0: output step / 10); arkode: > 0 fixes the step
-                      ///< (no error control)
+  double step = 0.0;  ///< rk4 / midpoint step (0: output step / 10); dop853, arkode: > 0 fixes
+                      ///< the step (no error control)
   long max_steps = 1000000;  ///< per output interval (adaptive methods)
   StepHook after_step;       ///< optional; ODE methods only (IDA restarts at samples instead)
 };
 
 /// Every method name integrate() and integrate_dae() accept, in the order help texts list them:
-/// arkode (its default table), arkode:<table> for each named ARKODE explicit table, cvode, rk4,
-/// midpoint, ida.
+/// dop853 (the default), arkode (its default table), arkode:<table> for each named ARKODE explicit
+/// table, cvode, rk4, midpoint, ida.
 const std::vector<std::string>& integrator_methods();
 
 /// integrator_methods() joined by ", " (for messages that list the valid names).
@@ -56,8 +57,8 @@ enum class ObserverAction { Continue, StateChanged, Stop };
 
 /// Called at t0, t0 + dt, …, t_end with the state; it may modify y (return StateChanged so the
 /// integrator restarts from it) or stop the run (Stop). For DAEs `yp` is the derivative, else null.
-/// ARKODE and CVODE step freely and hand the observer their dense-output interpolant at each
-/// sample; changes to y there only take effect with StateChanged (the step past the sample is
+/// DOP853, ARKODE and CVODE step freely and hand the observer their dense-output interpolant at
+/// each sample; changes to y there only take effect with StateChanged (the step past the sample is
 /// discarded).
 using Observer = std::function<ObserverAction(double t, double* y, double* yp)>;
 

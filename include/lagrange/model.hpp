@@ -172,7 +172,7 @@ struct Stabilization {
 struct SimulateOptions {
   double t_end = 10.0;
   double output_step = 0.01;
-  std::string integrator = "arkode";  ///< arkode | cvode | rk4 | ida
+  std::string integrator = "dop853";  ///< one of integrator_methods()
   double rtol = 1e-8;
   double atol = 1e-10;
   double step = 0.0;  ///< fixed step for rk4; 0 means output_step / 10

@@ -62,6 +62,8 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
   IntegratorStats stats;
   if (method == "cvode") {
     stats = integration::integrate_cvode(problem, options, grid, y0, observer);
+  } else if (method == "dop853") {
+    stats = integration::integrate_dop853(problem, options, grid, y0, observer);
   } else if (method == "rk4") {
     stats = integration::integrate_rk4(problem, options, grid, y0, observer);
   } else if (method == "midpoint") {

@@ -15,6 +15,12 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
                                  const OutputGrid& grid, std::vector<double>& y,
                                  const Observer& observer);
 
+/// DOP853 (Dormand–Prince 8(5,3), Hairer's error estimate and step control), samples from its
+/// continuous extension of order 7; options.step > 0 fixes the step (no error control).
+IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOptions& options,
+                                 const OutputGrid& grid, std::vector<double>& y,
+                                 const Observer& observer);
+
 /// CVODE BDF (orders 1–5) with Newton iteration and a dense direct linear solver; samples from
 /// CVODE's interpolant.
 IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptions& options,

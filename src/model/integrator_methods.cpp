@@ -9,7 +9,8 @@
 namespace lagrange {
 
 const std::vector<std::string>& integrator_methods() {
-  static const std::vector<std::string> names{"arkode",
+  static const std::vector<std::string> names{"dop853",
+                                              "arkode",
                                               "arkode:heun-euler",
                                               "arkode:bogacki-shampine",
                                               "arkode:zonneveld",

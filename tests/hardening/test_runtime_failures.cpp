@@ -109,7 +109,8 @@ TEST(RuntimeFailure, NanInTheStateWithFixedStepRk4) {
 
 TEST(RuntimeFailure, InfiniteAccelerationOnACollapse) {
   // Radial fall onto a 1/r well: r reaches 0 in finite time (t = π/(2√2) ≈ 1.11) where the
-  // acceleration −1/r² is no longer finite.
+  // acceleration −1/r² grows without bound: the default method's step size collapses there (or,
+  // for a method that steps on, the acceleration stops being finite).
   ScratchDir dir("collapse");
   const Failure f =
       run_failing(dir,
@@ -120,8 +121,11 @@ TEST(RuntimeFailure, InfiniteAccelerationOnACollapse) {
   const double t = f.sidecar.at("failure_time").get<double>();
   EXPECT_NEAR(t, 3.14159265358979 / (2 * std::sqrt(2.0)), 1e-3);
   EXPECT_GT(f.rows.size(), 100u);
-  EXPECT_NE(f.result.err.find("the acceleration of 'r' is not finite"), std::string::npos)
-      << f.result.err;
+  const std::string& err = f.result.err;
+  EXPECT_TRUE(err.find("the acceleration of 'r' is not finite") != std::string::npos ||
+              err.find("dop853: the step size fell") != std::string::npos)
+      << err;
+  EXPECT_NE(err.find("r_ddot = -"), std::string::npos) << err;  // the state, where it went
 }
 
 TEST(RuntimeFailure, IntegratorGivesUpOnAStiffSpring) {

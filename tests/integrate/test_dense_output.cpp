@@ -1,6 +1,6 @@
-// Dense output: ARKODE and CVODE step freely and the samples come from their interpolants, so a
-// finer output grid costs no extra steps, and an interpolated sample agrees with a run that
-// stops exactly at that time.
+// Dense output: ARKODE, DOP853 and CVODE step freely and the samples come from their
+// interpolants, so a finer output grid costs no extra steps, and an interpolated sample agrees with
+// a run that stops exactly at that time.
 
 #include <gtest/gtest.h>
 
@@ -41,7 +41,11 @@ TEST_P(DenseOutput, AFinerOutputGridTakesNoExtraSteps) {
   samples(options, 10.0, 5.0, &coarse);
   samples(options, 10.0, 0.001, &fine);
   EXPECT_EQ(fine.steps, coarse.steps);
-  EXPECT_EQ(fine.rhs_evals, coarse.rhs_evals);
+  // DOP853's continuous extension costs three evaluations in each step that holds a sample (its
+  // stages 14–16); the other methods interpolate from what the steps computed anyway.
+  const long extra = std::string(GetParam()) == "dop853" ? 3 * fine.steps : 0;
+  EXPECT_LE(fine.rhs_evals, coarse.rhs_evals + extra);
+  EXPECT_GE(fine.rhs_evals, coarse.rhs_evals);
   EXPECT_LT(coarse.steps, 2000) << "10 s of a 2 rad/s oscillator at rtol 1e-8";
 }
 
@@ -69,14 +73,14 @@ TEST_P(DenseOutput, InterpolatedSamplesMatchRunsThatStopThere) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, DenseOutput,
                          ::testing::Values("arkode", "arkode:dormand-prince", "arkode:verner65",
-                                           "arkode:verner87", "cvode"));
+                                           "arkode:verner87", "dop853", "cvode"));
 
 // The step hook sees the internal steps in order (CVODE: those that reach a sample); a change it
 // makes is where the run continues: here x is set to 0 after the first step past t = 1, and the end
 // state must be the closed form restarted from there.
 TEST(StepHook, ChangesMadeAfterAStepAreWhereTheRunContinues) {
   const Oscillator osc;
-  for (const char* method : {"arkode", "cvode", "rk4", "midpoint"}) {
+  for (const char* method : {"arkode", "dop853", "cvode", "rk4", "midpoint"}) {
     IntegratorOptions options = options_for(method, 1e-10, 1e-12);
     options.step = 0.001;
     long calls = 0;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <vector>
 
+#include "integrate/dop853_coefficients.hpp"
 #include "integrate/erk_coefficients.hpp"
 
 namespace lagrange::integration {
@@ -85,16 +86,22 @@ TEST(RootedTrees, CountsAreTheKnownOnes) {
         << "order " << n;
 }
 
+/// Row i of `a` has first_row + i entries (the stages before it), summing to c[i].
+void expect_rows_sum_to_nodes(const std::vector<std::vector<double>>& a,
+                              const std::vector<double>& c, size_t first_row = 0) {
+  ASSERT_EQ(a.size(), c.size());
+  for (size_t i = 0; i < c.size(); ++i) {
+    ASSERT_EQ(a[i].size(), first_row + i) << "row " << i;
+    double sum = 0.0;
+    for (double x : a[i]) sum += x;
+    EXPECT_NEAR(sum, c[i], 1e-14) << "row " << i;
+  }
+}
+
 TEST(Verner87, RowsOfASumToTheNodes) {
   const ButcherCoefficients& k = verner_8_7();
   ASSERT_EQ(k.c.size(), 13u);
-  ASSERT_EQ(k.a.size(), 13u);
-  for (size_t i = 0; i < k.c.size(); ++i) {
-    ASSERT_EQ(k.a[i].size(), i) << "row " << i;
-    double sum = 0.0;
-    for (double a : k.a[i]) sum += a;
-    EXPECT_NEAR(sum, k.c[i], 1e-14) << "row " << i;
-  }
+  expect_rows_sum_to_nodes(k.a, k.c);
 }
 
 TEST(Verner87, WeightsMeetEveryOrderConditionUpToEight) {
@@ -138,6 +145,26 @@ TEST(Fehlberg78, ArkodeCoefficientsMeetEveryOrderConditionUpToEight) {
   for (int order = 1; order <= 7; ++order)
     EXPECT_LT(worst_residual(k, k.d, order), 1e-13) << "embedding, order " << order;
   EXPECT_GT(worst_residual(k, k.d, 8), 1e-7);
+}
+
+// DOP853: the propagated weights are of order 8, the embedding behind its first error estimate
+// (b − e5) of order 5, the weights behind the second of order 3; the dense-output stages 14–16
+// continue A (their rows reach back to stage 13, f at the step's end).
+TEST(Dop853, CoefficientsMeetTheirOrderConditions) {
+  const Dop853Coefficients& t = dop853();
+  const ButcherCoefficients& k = t.main;
+  ASSERT_EQ(k.c.size(), 12u);
+  expect_rows_sum_to_nodes(k.a, k.c);
+  expect_rows_sum_to_nodes(t.extra_a, t.extra_c, 13);
+  for (int order = 1; order <= 8; ++order)
+    EXPECT_LT(worst_residual(k, k.b, order), 1e-12) << "order " << order;
+  EXPECT_GT(worst_residual(k, k.b, 9), 1e-8);
+  for (int order = 1; order <= 5; ++order)
+    EXPECT_LT(worst_residual(k, k.d, order), 1e-12) << "fifth-order embedding, order " << order;
+  EXPECT_GT(worst_residual(k, k.d, 6), 1e-6);
+  for (int order = 1; order <= 3; ++order)
+    EXPECT_LT(worst_residual(k, t.b3, order), 1e-12) << "third-order weights, order " << order;
+  EXPECT_GT(worst_residual(k, t.b3, 4), 1e-6);
 }
 
 }  // namespace

@@ -69,12 +69,14 @@ TEST_P(OdeFailures, NanInTheRhsIsASimulationError) {
   EXPECT_THAT(std::string(e.what()), HasSubstr("ydot[1] = nan is not finite"));
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, OdeFailures, ::testing::Values("arkode", "cvode", "rk4"));
+INSTANTIATE_TEST_SUITE_P(Methods, OdeFailures,
+                         ::testing::Values("arkode", "dop853", "cvode", "rk4"));
 
 TEST(OdeFailures, TooFewStepsNameTheSundialsFlag) {
   const Oscillator osc;
   for (const auto& [method, flag, call] :
        {std::tuple{"arkode", "ARK_TOO_MUCH_WORK", "ERKStepEvolve"},
+        std::tuple{"dop853", "TOO_MUCH_WORK", "dop853"},
         std::tuple{"cvode", "CV_TOO_MUCH_WORK", "CVode"}}) {
     IntegratorOptions options = options_for(method);
     options.max_steps = 5;

@@ -86,7 +86,8 @@ TEST_P(ObserverContract, EmptyObserverIsAllowed) {
   EXPECT_GT(stats.steps, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, ObserverContract, ::testing::Values("arkode", "cvode", "rk4"));
+INSTANTIATE_TEST_SUITE_P(Methods, ObserverContract,
+                         ::testing::Values("arkode", "dop853", "cvode", "rk4"));
 
 }  // namespace
 }  // namespace lagrange

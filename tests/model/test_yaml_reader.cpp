@@ -175,7 +175,7 @@ particles: {a: m}
   EXPECT_EQ(m.particles[0].point, "a");
   EXPECT_TRUE(m.kinetic.is_zero());
   EXPECT_FALSE(m.gravity.has_value());
-  EXPECT_EQ(m.simulate.integrator, "arkode");
+  EXPECT_EQ(m.simulate.integrator, "dop853");
   EXPECT_DOUBLE_EQ(m.stabilization.alpha, 20.0);
   ASSERT_EQ(m.generalized_forces.size(), 1u);
   EXPECT_TRUE(m.generalized_forces[0].is_zero());

@@ -1,9 +1,9 @@
 // Free bodies stay in SO(3) with the default settings (docs/theory.md §4.4): every example with a
 // free body, simulated with its own settings and the default stabilisation (γ = 1, projection
-// at output samples on), keeps ‖RᵀR − 1‖_F below 1e-10 — in the trajectory and before each
-// re-orthonormalisation. 1000 s for the tumbling brick (about 10 s of CPU); the others are
-// slower to integrate (the heavy top needs about 0.9 s of CPU per simulated second), so they
-// run for the times in kDuration, or 10 s.
+// at output samples on), keeps ‖RᵀR − 1‖_F below 1e-10 in the trajectory, and below 1e-8 before
+// each re-orthonormalisation (what one of DOP853's long steps leaves: up to 1.4e-9). 1000 s for the
+// tumbling brick (about 10 s of CPU); the others are slower to integrate (the heavy top needs about
+// 0.9 s of CPU per simulated second), so they run for the times in kDuration, or 10 s.
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -80,14 +80,14 @@ TEST(RotationDrift, EveryFreeBodyExampleStaysInSO3WithDefaultSettings) {
     RecordProperty(name + "_before_correction", fmt::format("{:.3e}", tr.rotation_drift));
     EXPECT_LT(recorded, 1e-10) << name << " over " << so.t_end << " s";
     EXPECT_GT(tr.rotation_drift, 0.0) << name;
-    EXPECT_LT(tr.rotation_drift, 1e-10) << name << " over " << so.t_end << " s";
+    EXPECT_LT(tr.rotation_drift, 1e-8) << name << " over " << so.t_end << " s";
   }
 }
 
 // At the program's default tolerances (rtol 1e-8, atol 1e-10) the integrator's error moves R
-// off SO(3) by a few 1e-9 over one of its internal steps (ARKODE steps freely, the samples are
-// dense output); re-orthonormalising after each step and at each sample keeps the trajectory at
-// 1e-11 instead of the 1e-8 that γ = 1 alone settles at.
+// off SO(3) by up to about 1e-7 over one of its internal steps (DOP853 steps freely and long, the
+// samples are dense output); re-orthonormalising after each step and at each sample keeps the
+// trajectory at 1e-11 instead of the 1e-8 that γ = 1 alone settles at.
 TEST(RotationDrift, BrickAtDefaultTolerancesOver1000s) {
   auto sys = load_example("tumbling_brick.yaml");
   SimulationOptions so = sys.options();
@@ -100,7 +100,7 @@ TEST(RotationDrift, BrickAtDefaultTolerancesOver1000s) {
   RecordProperty("recorded", fmt::format("{:.3e}", recorded));
   RecordProperty("before_correction", fmt::format("{:.3e}", tr.rotation_drift));
   EXPECT_LT(recorded, 1e-10);
-  EXPECT_LT(tr.rotation_drift, 1e-8);
+  EXPECT_LT(tr.rotation_drift, 1e-6);
 
   so.project = false;  // γ alone: RᵀR − 1 settles near 1e-8 within 100 s
   so.t_end = 100 * kTimeScale;
