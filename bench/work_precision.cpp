@@ -4,13 +4,15 @@
 // arkode:verner65, right-hand-side evaluations, steps, wall and CPU seconds of simulate().
 //   work_precision OUT_DIR [MODEL ...]  also writes OUT_DIR/reference_<model>.json (t and q per
 //                              sample), which bench/work_precision.py scores the SciPy peers
-//                              against; with MODEL names, runs only those models.
+//                              against; with MODEL names, runs only those models; with
+//                              LAGRANGE_WP_METHODS=m1,m2,… in the environment, only those methods.
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -90,14 +92,24 @@ int main(int argc, char** argv) {
   };
   // Optional model names after the output directory run only those cases.
   const std::vector<std::string> only(argv + std::min(argc, 2), argv + argc);
-  const std::vector<std::string> methods{"arkode",
-                                         "dop853",
-                                         "arkode:dormand-prince",
-                                         "arkode:verner65",
-                                         "arkode:verner87",
-                                         "arkode:fehlberg78",
-                                         "arkode:zonneveld",
-                                         "cvode"};
+  std::vector<std::string> methods{"arkode",
+                                   "dop853",
+                                   "arkode:dormand-prince",
+                                   "arkode:verner65",
+                                   "arkode:verner87",
+                                   "arkode:fehlberg78",
+                                   "arkode:zonneveld",
+                                   "cvode"};
+  // LAGRANGE_WP_METHODS=a,b,... runs only those methods (the reference run is always made).
+  if (const char* chosen = std::getenv("LAGRANGE_WP_METHODS")) {
+    std::vector<std::string> kept;
+    std::string list = chosen;
+    for (size_t start = 0, end = 0; start <= list.size(); start = end + 1) {
+      end = std::min(list.find(',', start), list.size());
+      if (end > start) kept.push_back(list.substr(start, end - start));
+    }
+    methods = kept;
+  }
   for (const Case& c : cases) {
     if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
     BuiltModel b = lagrange::bench::build_model(c.yaml, c.name, c.form);

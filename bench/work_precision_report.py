@@ -7,9 +7,12 @@ One table per model: a row per method, a column per rtol, each cell "achieved er
 right-hand-side evaluations / CPU ms" (process CPU time: both engines are single-threaded, and
 wall time on a shared machine measures the other jobs too). Fixed-step peers (runs with a "step"
 instead of an rtol: MuJoCo's RK4) get a second table per model: for each run of the default
-`arkode`, the fixed step at which the peer reaches the same error, with its evaluations and CPU
-time (log-log interpolation between the two steps around that error). The plot is the double
-pendulum's: achieved error on x, CPU time on y, one line per method.
+`dop853`, the fixed step at which the peer reaches the same error, with its evaluations and CPU
+time (log-log interpolation between the two steps around that error). Models with SciPy peers get
+a third: at the error of each default run, SciPy DOP853's evaluations (interpolated the same way
+between the two rtols around that error) and the fastest SciPy method's CPU and wall time, as
+ratios to ours. The plot is the double pendulum's: achieved error on x, CPU time on y, one line
+per method.
 """
 
 import json
@@ -19,28 +22,62 @@ import sys
 from collections import defaultdict
 
 
-def at_error(runs, error):
-    """(step, evaluations, CPU s) of the fixed-step runs interpolated (log-log) at `error`, or
-    None when no two consecutive steps bracket it."""
-    runs = sorted(runs, key=lambda r: -r["step"])  # coarse to fine
+DEFAULT = "dop853"
+
+
+def at_error(runs, error, keys=("step", "rhs_evals", "cpu_s"), coarse_first=None):
+    """`keys` of the runs interpolated (log-log) at `error` between two consecutive runs (ordered
+    coarse to fine by `coarse_first`, default: the fixed step, largest first) whose errors bracket
+    it, or None when no two do."""
+    runs = sorted(runs, key=coarse_first or (lambda r: -r["step"]))
     for a, b in zip(runs, runs[1:]):
         if not (math.isfinite(a["error"]) and b["error"] > 0):
             continue
         if b["error"] <= error <= a["error"] and a["error"] > b["error"]:
             w = math.log(a["error"] / error) / math.log(a["error"] / b["error"])
-
-            def mix(key):
-                return math.exp((1 - w) * math.log(a[key]) + w * math.log(b[key]))
-            return mix("step"), mix("rhs_evals"), mix("cpu_s")
+            return tuple(math.exp((1 - w) * math.log(a[k]) + w * math.log(b[k])) for k in keys)
     return None
 
 
+def print_scipy_targets(model, methods):
+    """At the error of each default run: SciPy DOP853's evaluations and the fastest SciPy
+    method's CPU and wall time, each as a ratio to ours (issue targets: evaluations ratio ≥ 1,
+    time ratio ≥ 50)."""
+    scipy = {m: list(runs.values()) for m, runs in methods.items() if m.startswith("scipy:")}
+    if not scipy:
+        return
+    by_rtol = lambda r: -r["rtol"]  # noqa: E731  (loose to tight)
+    print(f"\n{DEFAULT} on {model} against SciPy at equal achieved error (log-log interpolation "
+          "between the two SciPy runs whose errors bracket ours):\n")
+    print(f"| rtol | `{DEFAULT}`: error / evals / CPU ms / wall ms | scipy:DOP853 evals | "
+          "evals ratio | fastest SciPy: CPU ms / wall ms | CPU ratio | wall ratio |")
+    print("|---|---|---|---|---|---|---|")
+    for rtol, r in sorted(methods.get(DEFAULT, {}).items(), reverse=True):
+        ours = (f"{r['error']:.1e} / {r['rhs_evals']} / {1e3 * r['cpu_s']:.1f} / "
+                f"{1e3 * r['wall_s']:.1f}")
+        dop = at_error(scipy.get("scipy:DOP853", []), r["error"], ("rhs_evals",), by_rtol)
+        dop_cells = ("not bracketed | —" if dop is None else
+                     f"{dop[0]:.0f} | {dop[0] / r['rhs_evals']:.2f}×")
+        best = None
+        for name, runs in scipy.items():
+            t = at_error(runs, r["error"], ("cpu_s", "wall_s"), by_rtol)
+            if t is not None and (best is None or t[0] < best[1][0]):
+                best = (name, t)
+        if best is None:
+            time_cells = "not bracketed | — | —"
+        else:
+            name, (cpu, wall) = best
+            time_cells = (f"{name}: {1e3 * cpu:.0f} / {1e3 * wall:.0f} | "
+                          f"{cpu / r['cpu_s']:.0f}× | {wall / r['wall_s']:.0f}×")
+        print(f"| {rtol:.0e} | {ours} | {dop_cells} | {time_cells} |")
+
+
 def print_equal_error(model, method, runs, ours):
-    """The fixed-step peer at the error of each run of the default `arkode`."""
+    """The fixed-step peer at the error of each run of the default method."""
     sweep = ", ".join(f"h {r['step']:.3g}: {r['error']:.1e}"
                       for r in sorted(runs, key=lambda r: -r["step"]))
-    print(f"\n{method} on {model} at the error of each `arkode` run (fixed step h; {sweep}):\n")
-    print("| rtol | `arkode`: error / evals / CPU ms | " + method + ": h / evals / CPU ms "
+    print(f"\n{method} on {model} at the error of each `{DEFAULT}` run (fixed step h; {sweep}):\n")
+    print(f"| rtol | `{DEFAULT}`: error / evals / CPU ms | " + method + ": h / evals / CPU ms "
           "| evals ratio | CPU ratio |")
     print("|---|---|---|---|---|")
     for rtol, r in sorted(ours.items(), reverse=True):
@@ -70,7 +107,7 @@ def main():
         print("| method | " + " | ".join(f"rtol {rt:.0e}" for rt in rtols) + " |")
         print("|---|" + "---|" * len(rtols))
         for method, runs in methods.items():
-            label = "arkode (default)" if method == "arkode" else method
+            label = f"{method} (default)" if method == DEFAULT else method
             cells = []
             for rt in rtols:
                 r = runs.get(rt)
@@ -78,7 +115,8 @@ def main():
                              f"{r['error']:.1e} / {r['rhs_evals']} / {1e3 * r['cpu_s']:.1f}")
             print(f"| {label} | " + " | ".join(cells) + " |")
         for method, runs in fixed.get(model, {}).items():
-            print_equal_error(model, method, runs, methods.get("arkode", {}))
+            print_equal_error(model, method, runs, methods.get(DEFAULT, {}))
+        print_scipy_targets(model, methods)
     if plot and "double_pendulum" in by_model:
         data, plots = [], []
         lines = list(by_model["double_pendulum"].items())

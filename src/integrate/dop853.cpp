@@ -18,8 +18,12 @@ namespace lagrange::integration {
 
 namespace {
 
-// Hairer's defaults: h_new = h · clamp(0.9 · err^(−1/8), 1/3, 6) after an accepted step, at most
-// h after a rejected one.
+// Hairer's step-size control with his stabilisation (a PI controller): after an accepted step
+// h_new = h · clamp(0.9 · err^(−(1/8 − 0.2β)) · err_prev^β, 1/3, 6), at most h after a rejected
+// one. Hairer's code offers β as an option (0 by default in DOP853, 0.04 recommended for DOPRI5);
+// β = 0.04 saved 5–18 % of the evaluations at equal error on the work–precision chains and
+// rejects fewer steps (docs/theory.md §8, DOP853).
+constexpr double kBeta = 0.04;
 constexpr double kSafety = 0.9;
 constexpr double kSmallestFactor = 0.333;
 constexpr double kLargestFactor = 6.0;
@@ -57,7 +61,9 @@ class Dop853 {
     t_ = t;
     f(t, y_.data(), k_[0]);
     first_is_last_ = false;
-    if (!keep_step || h_ <= 0.0) h_ = options_.step > 0.0 ? options_.step : initial_step();
+    if (keep_step && h_ > 0.0) return;
+    h_ = options_.step > 0.0 ? options_.step : initial_step();
+    previous_error_ = 1e-4;
   }
 
   /// One accepted step from t toward t_end (the last one lands on it); returns the time reached.
@@ -84,10 +90,12 @@ class Dop853 {
         return t_;
       }
       const double err = error(h);
-      const double grow = std::pow(err, 0.125);  // err ~ h⁸
+      const double grow = std::pow(err, 0.125 - 0.2 * kBeta);  // err ~ h⁸
       if (err <= 1.0) {
-        double h_next = h / std::clamp(grow / kSafety, 1.0 / kLargestFactor, 1.0 / kSmallestFactor);
+        const double shrink = grow / std::pow(previous_error_, kBeta) / kSafety;
+        double h_next = h / std::clamp(shrink, 1.0 / kLargestFactor, 1.0 / kSmallestFactor);
         if (rejected) h_next = std::min(h_next, h);
+        previous_error_ = std::max(err, 1e-4);
         accept(h, last, h_next);
         return t_;
       }
@@ -237,6 +245,7 @@ class Dop853 {
   bool first_is_last_ = false;  // k_[12] holds f at y_, the next step's first stage
   bool dense_ready_ = false;
   long rejections_ = 0;
+  double previous_error_ = 1e-4;
   IntegratorStats stats_;
 };
 
