@@ -5,7 +5,8 @@
 // atol 1e-8 (as bench_tether), in CPU and wall seconds of this process, with the real-time
 // factor; N = 5 (the example's tether) for reference; then t_call(200)/t_call(50). Target:
 // N = 50 at ≥ 50× real time on one core.
-//   bench_kite [--quick] [--all]   (--quick: 5 s of flight; --all: also fly N = 200)
+//   bench_kite [--quick] [--all] [--integrator METHOD]   (--quick: 5 s of flight; --all: also
+//   fly N = 200; --integrator: another method than the default, to compare in one run)
 
 #include <fmt/format.h>
 
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "lagrange/integrator.hpp"
 #include "lagrange/simulation.hpp"
 
 namespace {
@@ -42,9 +44,11 @@ std::string kite_yaml(int segments) {
 int main(int argc, char** argv) {
   using namespace lagrange;
   bool quick = false, all = false;
+  std::string method = IntegratorOptions{}.method;
   for (int i = 1; i < argc; ++i) {
     quick = quick || std::strcmp(argv[i], "--quick") == 0;
     all = all || std::strcmp(argv[i], "--all") == 0;
+    if (std::strcmp(argv[i], "--integrator") == 0 && i + 1 < argc) method = argv[++i];
   }
   const double t_end = quick ? 5.0 : 60.0;
   const bench::Stopwatch clock;
@@ -74,6 +78,7 @@ int main(int argc, char** argv) {
     SimulationOptions so;
     so.output_step = 0.05;
     so.t_end = t_end;
+    so.integrator.method = method;
     so.integrator.rtol = c.rtol;
     so.integrator.atol = c.rtol * 1e-2;
     const auto s0 = clock.now();

@@ -4,7 +4,8 @@
 // included), and 60 s of simulation with output every 0.01 s at rtol 1e-6, atol 1e-8, with the
 // real-time factor. Targets: t_call(200)/t_call(50) ≤ 5, N = 100 at ≥ 20× real time, derive +
 // compile of N = 200 under 2 s.
-//   bench_tether [--quick]     (--quick: 5 s of simulation instead of 60, for a smoke run)
+//   bench_tether [--quick] [--integrator METHOD]   (--quick: 5 s of simulation instead of 60,
+//   for a smoke run; --integrator: another method than the default, to compare in one run)
 
 #include <fmt/format.h>
 
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "lagrange/integrator.hpp"
 #include "lagrange/simulation.hpp"
 
 namespace {
@@ -52,7 +54,12 @@ tethers:
 
 int main(int argc, char** argv) {
   using namespace lagrange;
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false;
+  std::string method = IntegratorOptions{}.method;
+  for (int i = 1; i < argc; ++i) {
+    quick = quick || std::strcmp(argv[i], "--quick") == 0;
+    if (std::strcmp(argv[i], "--integrator") == 0 && i + 1 < argc) method = argv[++i];
+  }
   const double t_end = quick ? 5.0 : 60.0;
   const bench::Stopwatch clock;
   std::map<int, double> call;
@@ -69,6 +76,7 @@ int main(int argc, char** argv) {
     SimulationOptions so;
     so.output_step = 0.01;
     so.t_end = t_end;
+    so.integrator.method = method;
     so.integrator.rtol = 1e-6;
     so.integrator.atol = 1e-8;
     const auto s0 = clock.now();

@@ -55,6 +55,8 @@ struct Run {
   double wall = 0.0, cpu = 0.0;
 };
 
+/// One run of `method`; its wall and CPU time are the least of up to three repetitions (one when
+/// a run takes over a second), so that a stray pause of the machine does not count.
 Run run(BuiltModel& b, const Case& c, const std::string& method, double rtol) {
   lagrange::SimulationOptions so;
   so.t_end = c.t_end;
@@ -64,12 +66,16 @@ Run run(BuiltModel& b, const Case& c, const std::string& method, double rtol) {
   so.integrator.atol = rtol / 100.0;
   so.integrator.max_steps = 100000000;
   const Stopwatch clock;
-  const auto start = clock.now();
   Run r;
-  r.trajectory = lagrange::simulate(*b.dynamics, so, b.compiled->q0, b.compiled->v0);
-  const auto end = clock.now();
-  r.wall = end.wall - start.wall;
-  r.cpu = end.cpu - start.cpu;
+  r.wall = r.cpu = HUGE_VAL;
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    const auto start = clock.now();
+    r.trajectory = lagrange::simulate(*b.dynamics, so, b.compiled->q0, b.compiled->v0);
+    const auto end = clock.now();
+    r.wall = std::min(r.wall, end.wall - start.wall);
+    r.cpu = std::min(r.cpu, end.cpu - start.cpu);
+    if (r.wall > 1.0) break;
+  }
   return r;
 }
 

@@ -9,6 +9,7 @@ against the reference the C++ program wrote (arkode:verner65 at rtol 1e-13), on 
 """
 
 import json
+import math
 import os
 import sys
 import time
@@ -64,10 +65,17 @@ def main():
         for method in ("RK45", "DOP853", "LSODA"):
             for e in range(4, 11):
                 rtol = 10.0 ** -e
-                w0, c0 = time.perf_counter(), time.process_time()
-                sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol,
-                                atol=rtol / 100)
-                wall, cpu = time.perf_counter() - w0, time.process_time() - c0
+                # The least time of up to three runs (one when a run takes over a second), as
+                # work_precision.cpp does for ours.
+                wall = cpu = math.inf
+                for _ in range(3):
+                    w0, c0 = time.perf_counter(), time.process_time()
+                    sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, t_eval=t_eval,
+                                    rtol=rtol, atol=rtol / 100)
+                    wall = min(wall, time.perf_counter() - w0)
+                    cpu = min(cpu, time.process_time() - c0)
+                    if wall > 1.0:
+                        break
                 error = (float(np.max(np.abs(sol.y[:n].T - q_ref))) if sol.success
                          and sol.y.shape[1] == q_ref.shape[0] else float("inf"))
                 print(json.dumps({"engine": "scipy", "model": name, "method": f"scipy:{method}",

@@ -67,7 +67,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(lagrange::integrator_methods()));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");
-  sim->add_option("--step", opt.step, "fixed step of rk4 and midpoint");
+  sim->add_option(
+      "--step", opt.step,
+      "fixed step of rk4 and midpoint; set, it also fixes the step of dop853 and arkode");
   sim->add_option("--compile", opt.compile,
                   "auto (default): machine code from the cache, or compiled in the background "
                   "for large models | on: compile before the run | off: interpreter only")
