@@ -108,15 +108,21 @@ int run_derive(const Options& opt) {
 int run_export(const Options& opt) {
   const Model model = read_model_file(opt.model);
   if (opt.form == "manipulator") {
+    if (opt.dynamics == "recursive")
+      throw UsageError(
+          "export --form manipulator: D, C and g come from the Lagrangian form; drop "
+          "--dynamics recursive");
     export_manipulator_c(derive(model), opt.c_dir);
     fmt::print("wrote {0}/lagrange_manipulator.h, {0}/lagrange_manipulator.c and {0}/main.c\n",
                opt.c_dir);
     return 0;
   }
-  const auto cm = compile(derive(model));
+  const Formulation form = formulation(model, opt.dynamics);
+  const auto cm = compile(derive(model, form));
   export_c(*cm, opt.c_dir);
-  fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions)\n",
-             opt.c_dir, cm->dynamics.num_instructions());
+  fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions, {2})\n",
+             opt.c_dir, cm->dynamics.num_instructions(),
+             form == Formulation::Recursive ? "recursive" : "lagrangian");
   return 0;
 }
 

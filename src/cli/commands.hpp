@@ -22,7 +22,7 @@ struct Options {
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
   std::string compile = "auto";   ///< simulate --compile: auto | on | off
-  std::string dynamics = "auto";  ///< simulate --dynamics: auto | lagrangian | recursive
+  std::string dynamics = "auto";  ///< simulate, export --dynamics: auto | lagrangian | recursive
   std::string csv, plot, c_dir;
   std::string report;      ///< simulate --report, report -o: the HTML report to write
   std::string trajectory;  ///< report: the saved trajectory CSV

@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
                   "lagrange (default): forward dynamics | manipulator: D, C q_dot, g, inverse "
                   "and forward dynamics")
       ->check(CLI::IsMember({"lagrange", "manipulator"}));
+  exp->add_option("--dynamics", opt.dynamics,
+                  "auto (default): recursive where it applies (joint trees) | lagrangian | "
+                  "recursive; as for simulate")
+      ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
 
   auto* check =
       app.add_subcommand("check", "validate the model and the consistency of its initial state");

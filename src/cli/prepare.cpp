@@ -62,21 +62,6 @@ struct GivenState {
   std::string option;
 };
 
-/// The formulation `--dynamics` asks for (docs/theory.md §4.9).
-Formulation formulation(const Model& model, const std::string& dynamics) {
-  if (dynamics == "lagrangian") return Formulation::Lagrangian;
-  const std::string why = recursive_unsuitable(model);
-  if (dynamics == "recursive") {
-    if (!why.empty())
-      throw UsageError(
-          fmt::format("--dynamics recursive: the articulated-body algorithm does "
-                      "not apply to {}: {}; use --dynamics lagrangian",
-                      model.file, why));
-    return Formulation::Recursive;
-  }
-  return why.empty() ? Formulation::Recursive : Formulation::Lagrangian;
-}
-
 Prepared prepare_with(const std::string& path, const ParameterOverrides& overrides,
                       const GivenState& initial, const std::string& dynamics) {
   Prepared p;
@@ -107,6 +92,21 @@ bool prepares_as_written(const std::string& path) {
 }
 
 }  // namespace
+
+// The formulation `--dynamics` asks for (docs/theory.md §4.9).
+Formulation formulation(const Model& model, const std::string& dynamics) {
+  if (dynamics == "lagrangian") return Formulation::Lagrangian;
+  const std::string why = recursive_unsuitable(model);
+  if (dynamics == "recursive") {
+    if (!why.empty())
+      throw UsageError(
+          fmt::format("--dynamics recursive: the articulated-body algorithm does "
+                      "not apply to {}: {}; use --dynamics lagrangian",
+                      model.file, why));
+    return Formulation::Recursive;
+  }
+  return why.empty() ? Formulation::Recursive : Formulation::Lagrangian;
+}
 
 std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
                                                               const std::string& option) {

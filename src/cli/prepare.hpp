@@ -45,10 +45,13 @@ std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<
 /// UsageError naming it. `dynamics` chooses the Formulation: "lagrangian", "recursive" (a
 /// UsageError saying why when the model cannot take it) or "auto" (recursive where it applies:
 /// faster to derive and per call at every size measured, docs/benchmarks.md).
+/// The formulation `--dynamics` names for `model` ("lagrangian", "recursive" or "auto", as for
+/// prepare); a UsageError saying why when "recursive" does not apply.
+Formulation formulation(const Model& model, const std::string& dynamics);
+
 Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::vector<std::string>& initial = {},
                  const std::string& initial_option = "--initial",
                  const std::string& dynamics = "lagrangian");
-
 
 }  // namespace lagrange::cli

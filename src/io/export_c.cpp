@@ -25,7 +25,8 @@ std::string pattern_array(const char* name, const std::vector<std::pair<size_t, 
 }
 
 // The dense range-space KKT solve of docs/theory.md §4.3 in plain C (Cholesky of M, then of
-// G M⁻¹ Gᵀ), mirroring Dynamics::forward.
+// G M⁻¹ Gᵀ), mirroring Dynamics::forward; an unconstrained model with a diagonal M (the recursive
+// formulation's M = 1, docs/theory.md §4.9) divides instead, as Dynamics::forward does.
 const char* kSolverC = R"C(
 int lagrange_dynamics(double t, const double* q, const double* v, const double* u,
                       const double* p, double alpha, double* qdot, double* a, double* lambda) {
@@ -43,8 +44,15 @@ int lagrange_dynamics(double t, const double* q, const double* v, const double* 
   for (i = 0; i < LAGRANGE_NM; ++i) M[M_row[i] * LAGRANGE_N + M_col[i]] = out[i];
   for (i = 0; i < LAGRANGE_N; ++i) a[i] = out[LAGRANGE_NM + i];
   for (i = 0; i < LAGRANGE_NQ; ++i) qdot[i] = out[LAGRANGE_NM + LAGRANGE_N + i];
+#if LAGRANGE_M == 0 && LAGRANGE_DIAGONAL_M
+  for (i = 0; i < LAGRANGE_N; ++i) {
+    if (!(M[i * LAGRANGE_N + i] > 0.0)) return 1;
+    a[i] /= M[i * LAGRANGE_N + i];
+  }
+#else
   if (lg_chol(M, LAGRANGE_N)) return 1;
   lg_chol_solve(M, LAGRANGE_N, a);
+#endif
 #if LAGRANGE_M > 0
   {
     const double* g = out + LAGRANGE_NM + LAGRANGE_N + LAGRANGE_NQ;
@@ -112,9 +120,9 @@ void export_c(const CompiledModel& cm, const std::string& dir) {
       "*/\n#include <math.h>\n#include \"lagrange_model.h\"\n\n";
   source += fmt::format(
       "#define LAGRANGE_NIN {}\n#define LAGRANGE_NOUT {}\n#define LAGRANGE_NM {}\n"
-      "#define LAGRANGE_NG {}\n\n",
+      "#define LAGRANGE_NG {}\n#define LAGRANGE_DIAGONAL_M {}\n\n",
       cm.input_count(), std::max<size_t>(cm.dynamics.num_outputs(), 1), cm.M_pattern.size(),
-      cm.G_pattern.size());
+      cm.G_pattern.size(), cm.M_diagonal ? 1 : 0);
   source += pattern_array("M", cm.M_pattern);
   if (cm.m > 0) source += pattern_array("G", cm.G_pattern);
   source += "\n" + cm.dynamics.to_c("lagrange_tape", true) + "\n";
@@ -131,7 +139,7 @@ void export_c(const CompiledModel& cm, const std::string& dir) {
         "void lagrange_inputs(double t, const double* p, double* u) { (void)t; (void)p; (void)u; "
         "}\n";
   }
-  source += c_cholesky_source();
+  if (cm.m > 0 || !cm.M_diagonal) source += c_cholesky_source();  // else unused (-Wunused)
   source += kSolverC;
   write_file_atomically(dir + "/lagrange_model.h", header);
   write_file_atomically(dir + "/lagrange_model.c", source);

@@ -1,10 +1,13 @@
-// `simulate --dynamics auto|lagrangian|recursive` as a user meets it (docs/theory.md §4.9): both
-// formulations give the same trajectory; auto takes the recursive one wherever it applies;
-// asking for it where it does not apply is a usage error that says why.
+// `simulate --dynamics auto|lagrangian|recursive` (and `export --dynamics`) as a user meets it
+// (docs/theory.md §4.9): both formulations give the same trajectory; auto takes the recursive one
+// wherever it applies; asking for it where it does not apply is a usage error that says why.
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <sstream>
+#include <string>
 
 #include "hardening/cli_runner.hpp"
 
@@ -122,6 +125,42 @@ TEST(DynamicsOption, DeriveFormRecursivePrintsTheAlgorithm) {
       run_lagrange(dir.path(), {"derive", example("pendulum.yaml"), "--form", "recursive"});
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("it has no joint tree"), std::string::npos) << refused.err;
+}
+
+// `export --dynamics`: auto exports a tree's recursive form (M = 1, no factorisation in the C),
+// lagrangian the energies' form; recursive where it does not apply, or with the manipulator form
+// (D, C, g are Lagrangian), is a usage error with nothing written.
+TEST(DynamicsOption, ExportTakesTheFormulationToo) {
+  const ScratchDir dir("export-recursive");
+  const auto c_source = [&](const std::string& sub) {
+    std::ifstream in(dir.path() / sub / "lagrange_model.c");
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const RunResult r = run_lagrange(
+      dir.path(), {"export", example("robots/ur5.urdf"), "--c", (dir.path() / "auto").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("recursive"), std::string::npos) << r.out;
+  EXPECT_NE(c_source("auto").find("#define LAGRANGE_DIAGONAL_M 1"), std::string::npos);
+  EXPECT_EQ(c_source("auto").find("static int lg_chol("), std::string::npos)
+      << "M = 1 needs no Cholesky";
+  const RunResult l =
+      run_lagrange(dir.path(), {"export", example("robots/ur5.urdf"), "--c",
+                                (dir.path() / "lagrangian").string(), "--dynamics", "lagrangian"});
+  ASSERT_EQ(l.exit_code, 0) << l.err;
+  EXPECT_NE(l.out.find("lagrangian"), std::string::npos) << l.out;
+  EXPECT_NE(c_source("lagrangian").find("static int lg_chol("), std::string::npos);
+  const RunResult refused =
+      run_lagrange(dir.path(), {"export", example("pendulum.yaml"), "--c",
+                                (dir.path() / "refused").string(), "--dynamics", "recursive"});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("it has no joint tree"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "refused"));
+  const RunResult manipulator = run_lagrange(
+      dir.path(), {"export", example("robots/ur5.urdf"), "--c", (dir.path() / "m").string(),
+                   "--form", "manipulator", "--dynamics", "recursive"});
+  EXPECT_EQ(manipulator.exit_code, 2);
+  EXPECT_NE(manipulator.err.find("drop --dynamics recursive"), std::string::npos)
+      << manipulator.err;
 }
 
 }  // namespace
