@@ -79,7 +79,9 @@ TEST(Dop853, AdaptiveErrorFollowsTheTolerance) {
                   });
     EXPECT_LT(worst, 50.0 * rtol) << "rtol " << rtol;
     EXPECT_GT(worst, 1e-3 * rtol) << "rtol " << rtol << ": suspiciously exact";
-    if (previous_evals > 0) EXPECT_LT(stats.rhs_evals, 1.9 * previous_evals) << rtol;
+    if (previous_evals > 0) {
+      EXPECT_LT(stats.rhs_evals, 1.9 * previous_evals) << rtol;
+    }
     previous_evals = stats.rhs_evals;
   }
 }
