@@ -163,14 +163,24 @@ class Dop853 {
         e5 += table_.e5[j] * k_[j][i];
         e3 += (m.b[j] - table_.b3[j]) * k_[j][i];
       }
-      const double sk =
-          options_.atol + options_.rtol * std::max(std::abs(y_old_[i]), std::abs(y_new_[i]));
+      const double sk = weight(i, std::max(std::abs(y_old_[i]), std::abs(y_new_[i])));
       sum5 += (e5 / sk) * (e5 / sk);
       sum3 += (e3 / sk) * (e3 / sk);
     }
     double denominator = sum5 + 0.01 * sum3;
     if (denominator <= 0.0) denominator = 1.0;
     return std::abs(h) * sum5 / std::sqrt(static_cast<double>(n_) * denominator);
+  }
+
+  /// The scale atol + rtol · size of component i's error; with atol = 0 a component that is 0
+  /// has none, and the run stops saying so rather than dividing by it.
+  double weight(size_t i, double size) const {
+    const double w = options_.atol + options_.rtol * size;
+    if (!(w > 0.0))
+      throw SimulationError(t_, fmt::format("dop853: y[{}] = 0 with atol = 0 leaves its error "
+                                            "nothing to be relative to: give atol > 0",
+                                            i));
+    return w;
   }
 
   void accept(double h, bool last, double h_next) {
@@ -190,7 +200,7 @@ class Dop853 {
   // the Euler guess and at most the whole interval.
   double initial_step() {
     const double span = t_end_ - t_;
-    for (size_t i = 0; i < n_; ++i) scale_[i] = options_.atol + options_.rtol * std::abs(y_[i]);
+    for (size_t i = 0; i < n_; ++i) scale_[i] = weight(i, std::abs(y_[i]));
     const double d0 = rms(y_, scale_), d1 = rms(k_[0], scale_);
     double h = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
     h = std::min(h, span);

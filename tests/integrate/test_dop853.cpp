@@ -106,5 +106,19 @@ TEST(Dop853, CollapsingStepSizeStopsAtTheSingularity) {
   }
 }
 
+// With atol = 0 a component that is exactly 0 has no error scale: the run stops at once and says
+// so (instead of dividing by zero and collapsing the step size).
+TEST(Dop853, ZeroAbsoluteToleranceOnAZeroComponentIsExplained) {
+  const Oscillator osc;
+  try {
+    integrate(osc.problem(), options_for("dop853", 1e-8, 0.0), 0.0, {1.0, 0.0}, 1.0, 0.1,
+              [](double, double*, double*) { return ObserverAction::Continue; });
+    FAIL() << "no exception";
+  } catch (const SimulationError& e) {
+    EXPECT_EQ(e.time(), 0.0);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("y[1] = 0 with atol = 0"));
+  }
+}
+
 }  // namespace
 }  // namespace lagrange
