@@ -26,13 +26,13 @@ std::string pattern_array(const char* name, const std::vector<std::pair<size_t, 
 
 // The dense range-space KKT solve of docs/theory.md §4.3 in plain C (Cholesky of M, then of
 // G M⁻¹ Gᵀ), mirroring Dynamics::forward; an unconstrained model with a diagonal M (the recursive
-// formulation's M = 1, docs/theory.md §4.9) divides instead, as Dynamics::forward does.
+// formulation's M = 1, docs/theory.md §4.9) divides instead, as Dynamics::forward does, and keeps
+// no N × N array on the stack.
 const char* kSolverC = R"C(
 int lagrange_dynamics(double t, const double* q, const double* v, const double* u,
                       const double* p, double alpha, double* qdot, double* a, double* lambda) {
   double in[LAGRANGE_NIN];
   double out[LAGRANGE_NOUT];
-  double M[LAGRANGE_N * LAGRANGE_N];
   int i, j, r;
   in[0] = t;
   for (i = 0; i < LAGRANGE_NQ; ++i) in[1 + i] = q[i];
@@ -40,16 +40,20 @@ int lagrange_dynamics(double t, const double* q, const double* v, const double* 
   for (i = 0; i < 3 * LAGRANGE_K; ++i) in[1 + LAGRANGE_NQ + LAGRANGE_N + i] = u[i];
   for (i = 0; i < LAGRANGE_NP; ++i) in[1 + LAGRANGE_NQ + LAGRANGE_N + 3 * LAGRANGE_K + i] = p[i];
   lagrange_tape(in, out);
-  for (i = 0; i < LAGRANGE_N * LAGRANGE_N; ++i) M[i] = 0.0;
-  for (i = 0; i < LAGRANGE_NM; ++i) M[M_row[i] * LAGRANGE_N + M_col[i]] = out[i];
   for (i = 0; i < LAGRANGE_N; ++i) a[i] = out[LAGRANGE_NM + i];
   for (i = 0; i < LAGRANGE_NQ; ++i) qdot[i] = out[LAGRANGE_NM + LAGRANGE_N + i];
 #if LAGRANGE_M == 0 && LAGRANGE_DIAGONAL_M
-  for (i = 0; i < LAGRANGE_N; ++i) {
-    if (!(M[i * LAGRANGE_N + i] > 0.0)) return 1;
-    a[i] /= M[i * LAGRANGE_N + i];
+  /* M's entries are its diagonal (no N x N array): a_i /= M_ii. */
+  if (LAGRANGE_NM != LAGRANGE_N) return 1;
+  for (i = 0; i < LAGRANGE_NM; ++i) {
+    if (!(out[i] > 0.0)) return 1;
+    a[M_row[i]] /= out[i];
   }
+  (void)M_col;
 #else
+  double M[LAGRANGE_N * LAGRANGE_N];
+  for (i = 0; i < LAGRANGE_N * LAGRANGE_N; ++i) M[i] = 0.0;
+  for (i = 0; i < LAGRANGE_NM; ++i) M[M_row[i] * LAGRANGE_N + M_col[i]] = out[i];
   if (lg_chol(M, LAGRANGE_N)) return 1;
   lg_chol_solve(M, LAGRANGE_N, a);
 #endif
