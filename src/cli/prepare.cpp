@@ -27,11 +27,12 @@ void apply_initial(const CompiledModel& cm,
                    const std::vector<std::pair<std::string, double>>& given,
                    const std::string& option, std::vector<double>& q, std::vector<double>& v) {
   for (const auto& [name, value] : given) {
-    const auto in = [&](const std::vector<std::string>& names) {
-      return std::find(names.begin(), names.end(), name) - names.begin();
+    // (A lambda may not capture a structured binding before C++20: pass the name.)
+    const auto in = [](const std::vector<std::string>& names, const std::string& wanted) {
+      return std::find(names.begin(), names.end(), wanted) - names.begin();
     };
-    const auto iq = static_cast<size_t>(in(cm.coordinate_names));
-    const auto iv = static_cast<size_t>(in(cm.velocity_names));
+    const auto iq = static_cast<size_t>(in(cm.coordinate_names, name));
+    const auto iv = static_cast<size_t>(in(cm.velocity_names, name));
     const bool rotation =
         iq < cm.nq && std::any_of(cm.rotations.begin(), cm.rotations.end(),
                                   [&](size_t r) { return iq >= r && iq < r + 9; });
