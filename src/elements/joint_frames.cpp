@@ -5,20 +5,6 @@
 
 namespace lagrange::elements {
 
-Mat3 mat_mul(const Mat3& a, const Mat3& b) {
-  Mat3 out;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      out[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
-  return out;
-}
-
-Vec3 mat_vec(const Mat3& a, const Vec3& v) {
-  Vec3 out;
-  for (size_t i = 0; i < 3; ++i) out[i] = a[i][0] * v[0] + a[i][1] * v[1] + a[i][2] * v[2];
-  return out;
-}
-
 // URDF: R = R_z(yaw) R_y(pitch) R_x(roll); zero angles leave their factor out.
 Mat3 rpy_rotation(const Vec3& rpy) {
   Mat3 r{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};

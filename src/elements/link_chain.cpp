@@ -15,6 +15,7 @@ namespace lagrange::elements {
 
 namespace {
 
+using model::mat_t_vec;
 using model::ModelReader;
 
 const Mat3 kIdentity{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
@@ -31,13 +32,6 @@ struct Frame {
   /// nested, it is far smaller than U(RᵀṘ) expanded from a product of rotations.
   Vec3 w{0, 0, 0};
 };
-
-/// Aᵀ x.
-Vec3 transpose_times(const Mat3& A, const Vec3& x) {
-  return {A[0][0] * x[0] + A[1][0] * x[1] + A[2][0] * x[2],
-          A[0][1] * x[0] + A[1][1] * x[1] + A[2][1] * x[2],
-          A[0][2] * x[0] + A[1][2] * x[1] + A[2][2] * x[2]};
-}
 
 Vec3 add(const Vec3& a, const Vec3& b) {
   return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
@@ -86,9 +80,9 @@ Frame child_frame(const Frame& p, const JointSpec& j, const Vec3& k, const GiNaC
                   const GiNaC::ex& qd) {
   const auto [plain, fixed] = origin_rotation(j);
   Frame f;
-  f.w = plain ? p.w : transpose_times(fixed, p.w);
+  f.w = plain ? p.w : mat_t_vec(fixed, p.w);
   if (j.type == JointSpec::Type::Revolute) {
-    f.w = transpose_times(axis_angle_rotation(k, q), f.w);
+    f.w = mat_t_vec(axis_angle_rotation(k, q), f.w);
     for (size_t i = 0; i < 3; ++i) f.w[i] += k[i] * qd;
   }
   f.r = add(p.r, p.identity ? j.xyz : mat_vec(p.R, j.xyz));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lagrange/model.hpp"
+#include "model/vec3_algebra.hpp"
 
 namespace lagrange::model {
 class ModelReader;
@@ -65,9 +66,8 @@ struct LinkChain {
 Mat3 rpy_rotation(const Vec3& rpy);
 /// Rotation by `angle` about the unit axis `k` (Rodrigues; rot_x/y/z for ±e_x, ±e_y, ±e_z).
 Mat3 axis_angle_rotation(const Vec3& k, const GiNaC::ex& angle);
-/// a·b for 3×3 matrices, and A v.
-Mat3 mat_mul(const Mat3& a, const Mat3& b);
-Vec3 mat_vec(const Mat3& a, const Vec3& v);
+using model::mat_mul;  // a·b for 3×3 matrices (model/vec3_algebra.hpp)
+using model::mat_vec;  // A v
 
 /// Phase 1: a coordinate per movable joint (declared under the joint's name), a posed body per
 /// link with mass (pose = product of the joint transforms), link points. Links come parents

@@ -74,7 +74,6 @@ class Dop853 {
     t_old_ = t_;
     const bool fixed = options_.step > 0.0;
     double h = h_;
-    bool rejected = false;
     for (;;) {
       const bool last = t_ + (fixed ? (1.0 + 1e-9) * h : 1.01 * h) >= t_end_;
       if (last) h = t_end_ - t_;
@@ -94,14 +93,13 @@ class Dop853 {
       if (err <= 1.0) {
         const double shrink = grow / std::pow(previous_error_, kBeta) / kSafety;
         double h_next = h / std::clamp(shrink, 1.0 / kLargestFactor, 1.0 / kSmallestFactor);
-        if (rejected) h_next = std::min(h_next, h);
+        if (rejections_ > 0) h_next = std::min(h_next, h);  // no growth right after a rejection
         previous_error_ = std::max(err, 1e-4);
         accept(h, last, h_next);
         return t_;
       }
       ++stats_.failed_steps;
       ++rejections_;
-      rejected = true;
       h /= std::min(1.0 / kSmallestFactor, grow / kSafety);
     }
   }
@@ -155,13 +153,12 @@ class Dop853 {
   // docs/theory.md §8, DOP853: err = |h| ‖e₅‖² / √(‖e₅‖² + 0.01 ‖e₃‖²) in the root-mean-square norm
   // scaled by atol + rtol · max(|y₀|, |y₁|).
   double error(double h) {
-    const ButcherCoefficients& m = table_.main;
     double sum5 = 0.0, sum3 = 0.0;
     for (size_t i = 0; i < n_; ++i) {
       double e5 = 0.0, e3 = 0.0;
       for (size_t j = 0; j < kStages; ++j) {
         e5 += table_.e5[j] * k_[j][i];
-        e3 += (m.b[j] - table_.b3[j]) * k_[j][i];
+        e3 += table_.e3[j] * k_[j][i];
       }
       const double sk = weight(i, std::max(std::abs(y_old_[i]), std::abs(y_new_[i])));
       sum5 += (e5 / sk) * (e5 / sk);

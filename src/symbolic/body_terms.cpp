@@ -2,11 +2,15 @@
 
 #include "lagrange/error.hpp"
 #include "lagrange/rigid_body.hpp"
+#include "model/vec3_algebra.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
-#include "symbolic/vec3_algebra.hpp"
 
 namespace lagrange::symbolic {
+
+using model::cross;
+using model::mat_t_vec;
+using model::mat_vec;
 
 namespace {
 

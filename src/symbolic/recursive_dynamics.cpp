@@ -12,9 +12,9 @@
 
 #include "lagrange/equations.hpp"
 #include "model/expression_algebra.hpp"
+#include "model/vec3_algebra.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
-#include "symbolic/vec3_algebra.hpp"
 
 namespace lagrange {
 
@@ -22,11 +22,11 @@ namespace {
 
 using GiNaC::ex;
 using Kind = TreeJoint::Kind;
-using symbolic::cross;
+using model::cross;
+using model::mat_mul;
+using model::mat_t_vec;
+using model::mat_vec;
 using symbolic::dot;
-using symbolic::mat_mul;
-using symbolic::mat_t_vec;
-using symbolic::mat_vec;
 
 /// A spatial motion vector: angular part, and linear velocity (or acceleration) of the point at
 /// the frame origin.

@@ -98,6 +98,19 @@ void expect_rows_sum_to_nodes(const std::vector<std::vector<double>>& a,
   }
 }
 
+/// The weights w meet every order condition up to `order` (residuals below `bar`) and, with
+/// `misses_by` > 0, miss some condition of order + 1 by more than that: their order is exactly
+/// `order`.
+void expect_order(const ButcherCoefficients& k, const std::vector<double>& w, int order, double bar,
+                  double misses_by, const char* what) {
+  for (int n = 1; n <= order; ++n)
+    EXPECT_LT(worst_residual(k, w, n), bar) << what << ", order " << n;
+  if (misses_by > 0.0) {
+    EXPECT_GT(worst_residual(k, w, order + 1), misses_by)
+        << what << ": order " << order + 1 << " holds too";
+  }
+}
+
 TEST(Verner87, RowsOfASumToTheNodes) {
   const ButcherCoefficients& k = verner_8_7();
   ASSERT_EQ(k.c.size(), 13u);
@@ -107,17 +120,13 @@ TEST(Verner87, RowsOfASumToTheNodes) {
 TEST(Verner87, WeightsMeetEveryOrderConditionUpToEight) {
   const ButcherCoefficients& k = verner_8_7();
   ASSERT_EQ(k.order, 8);
-  for (int order = 1; order <= 8; ++order)
-    EXPECT_LT(worst_residual(k, k.b, order), 1e-11) << "order " << order;
-  EXPECT_GT(worst_residual(k, k.b, 9), 1e-8) << "order 9 holds too: not an 8th-order table";
+  expect_order(k, k.b, 8, 1e-11, 1e-8, "weights");
 }
 
 TEST(Verner87, EmbeddingMeetsEveryOrderConditionUpToSeven) {
   const ButcherCoefficients& k = verner_8_7();
   ASSERT_EQ(k.embedding, 7);
-  for (int order = 1; order <= 7; ++order)
-    EXPECT_LT(worst_residual(k, k.d, order), 1e-11) << "order " << order;
-  EXPECT_GT(worst_residual(k, k.d, 8), 1e-7) << "the embedding is of order 8: no error estimate";
+  expect_order(k, k.d, 7, 1e-11, 1e-7, "embedding (of order 8 it would estimate no error)");
 }
 
 /// ARKODE's own table `id` as coefficients (its A is stored full, s × s).
@@ -140,11 +149,8 @@ TEST(Fehlberg78, ArkodeCoefficientsMeetEveryOrderConditionUpToEight) {
   const ButcherCoefficients k = arkode_table(ARKODE_FEHLBERG_13_7_8);
   ASSERT_EQ(k.order, 8);
   ASSERT_EQ(k.embedding, 7);
-  for (int order = 1; order <= 8; ++order)
-    EXPECT_LT(worst_residual(k, k.b, order), 1e-13) << "order " << order;
-  for (int order = 1; order <= 7; ++order)
-    EXPECT_LT(worst_residual(k, k.d, order), 1e-13) << "embedding, order " << order;
-  EXPECT_GT(worst_residual(k, k.d, 8), 1e-7);
+  expect_order(k, k.b, 8, 1e-13, 0.0, "weights");
+  expect_order(k, k.d, 7, 1e-13, 1e-7, "embedding");
 }
 
 // DOP853: the propagated weights are of order 8, the embedding behind its first error estimate
@@ -156,15 +162,9 @@ TEST(Dop853, CoefficientsMeetTheirOrderConditions) {
   ASSERT_EQ(k.c.size(), 12u);
   expect_rows_sum_to_nodes(k.a, k.c);
   expect_rows_sum_to_nodes(t.extra_a, t.extra_c, 13);
-  for (int order = 1; order <= 8; ++order)
-    EXPECT_LT(worst_residual(k, k.b, order), 1e-12) << "order " << order;
-  EXPECT_GT(worst_residual(k, k.b, 9), 1e-8);
-  for (int order = 1; order <= 5; ++order)
-    EXPECT_LT(worst_residual(k, k.d, order), 1e-12) << "fifth-order embedding, order " << order;
-  EXPECT_GT(worst_residual(k, k.d, 6), 1e-6);
-  for (int order = 1; order <= 3; ++order)
-    EXPECT_LT(worst_residual(k, t.b3, order), 1e-12) << "third-order weights, order " << order;
-  EXPECT_GT(worst_residual(k, t.b3, 4), 1e-6);
+  expect_order(k, k.b, 8, 1e-12, 1e-8, "weights");
+  expect_order(k, k.d, 5, 1e-12, 1e-6, "fifth-order embedding");
+  expect_order(k, t.b3, 3, 1e-12, 1e-6, "third-order weights");
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 #pragma once
-// 3-vector and 3×3-matrix products of expressions, shared by the rigid-body terms (§4.4) and the
-// recursive formulation (docs/theory.md §4.9).
+// 3-vector and 3×3-matrix products of expressions, shared by the elements' joint frames
+// (docs/theory.md §4.8), the rigid-body terms (§4.4) and the recursive formulation (§4.9).
 
 #include "lagrange/model.hpp"
 
-namespace lagrange::symbolic {
+namespace lagrange::model {
 
 /// a × b.
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
@@ -34,4 +34,4 @@ inline Mat3 mat_mul(const Mat3& X, const Mat3& Y) {
   return Z;
 }
 
-}  // namespace lagrange::symbolic
+}  // namespace lagrange::model
