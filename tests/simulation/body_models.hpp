@@ -9,6 +9,8 @@
 
 #include "lagrange/model.hpp"
 #include "lagrange/rigid_body.hpp"
+#include "model/expression_algebra.hpp"
+#include "model/vec3_algebra.hpp"
 
 namespace lagrange::testing {
 
@@ -16,19 +18,14 @@ inline Parameter param(const std::string& name, double value) {
   return Parameter{name, GiNaC::symbol(name), value, {}};
 }
 
+/// Rotations about z and x, and their products (the engine's own, src/model).
 inline Mat3 rot_z(const GiNaC::ex& a) {
-  return {Vec3{cos(a), -sin(a), 0}, Vec3{sin(a), cos(a), 0}, Vec3{0, 0, 1}};
+  return model::axis_rotation(2, a);
 }
 inline Mat3 rot_x(const GiNaC::ex& a) {
-  return {Vec3{1, 0, 0}, Vec3{0, cos(a), -sin(a)}, Vec3{0, sin(a), cos(a)}};
+  return model::axis_rotation(0, a);
 }
-inline Mat3 mul(const Mat3& A, const Mat3& B) {
-  Mat3 C;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
-  return C;
-}
+using model::mat_mul;
 /// Numeric value of a constant rotation expression, row-major.
 inline Rotation numeric(const Mat3& R) {
   Rotation out;
@@ -121,7 +118,7 @@ inline std::unique_ptr<Model> heavy_top_so3(const TopSetup& s) {
   b.mass = s.m;
   b.inertia = principal_inertia(s.i1, s.i1, s.i3);
   b.make_free();
-  const Rotation R = numeric(mul(mul(rot_z(s.phi), rot_x(s.theta)), rot_z(s.psi)));
+  const Rotation R = numeric(mat_mul(mat_mul(rot_z(s.phi), rot_x(s.theta)), rot_z(s.psi)));
   b.R0 = R;
   b.r0 = {R[2] * s.d, R[5] * s.d, R[8] * s.d};  // r = −R p = d R ẑ
   const double st = std::sin(s.theta), ct = std::cos(s.theta), sp = std::sin(s.psi),
