@@ -4,6 +4,7 @@
 #include <ginac/ginac.h>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -89,9 +90,13 @@ std::string recursive_unsuitable(const Model& model);
 /// Formulation; std::invalid_argument with recursive_unsuitable()'s reason when it does not apply.
 Equations derive(const Model& model, Formulation form = Formulation::Lagrangian);
 
-/// Symbolic accelerations a = M⁻¹(h + Q) for unconstrained systems with nv ≤ 4 (for display
-/// and tests); normalised. Throws std::invalid_argument when constrained or nv > 4.
+/// Symbolic accelerations a = M⁻¹(h + Q) for unconstrained systems with nv ≤ 4 (for tests),
+/// normalised. Throws std::invalid_argument when constrained or nv > 4.
 std::vector<GiNaC::ex> solve_accelerations(const Equations& eq);
+
+/// The same for display, within a budget: std::nullopt when Cramer's numerators or denominator
+/// would expand to more than `budget` terms, so that no printer does unbounded algebra.
+std::optional<std::vector<GiNaC::ex>> solve_accelerations(const Equations& eq, size_t budget);
 
 /// A canonical rational form with sin² + cos² = 1 applied (for display and for symbolic
 /// equality tests: a and b are equal when simplify(a − b) is zero).

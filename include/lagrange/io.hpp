@@ -32,6 +32,10 @@ void plot_trajectory(const Trajectory& traj, const std::vector<std::string>& col
 /// Expression-tree nodes up to which `derive` prints the equations in full (about 1 MB of text).
 constexpr size_t kFullExpansionLimit = 100000;
 
+/// Terms up to which Cramer's numerators and denominator may expand for `derive` to print the
+/// solved accelerations (docs/theory.md §4.1); larger systems are shown as M and h + Q only.
+constexpr size_t kSolvedAccelerationTerms = 2000;
+
 /// Equations as human-readable text, LaTeX, or JSON (`format`: text | latex | json). Models
 /// whose full expansion exceeds kFullExpansionLimit nodes are printed through the compiled
 /// tape's named common subexpressions instead, unless `expand` is set.

@@ -94,9 +94,17 @@ std::string format_text(const Equations& eq, Style style) {
       line((tex ? "\\dot{C}_{" : "Cdot_{") + cname(r) + "}", str(on_manifold(eq.Cdot[r]), style));
   }
   if (eq.m == 0 && eq.nv <= 3 && eq.nq == eq.nv) {
-    heading("Accelerations a = M^-1 (h + Q)");
-    const auto acc = solve_accelerations(eq);
-    for (size_t i = 0; i < eq.nv; ++i) line(symbol_str(eq.kin.a[i], style), str(acc[i], style));
+    heading(tex ? "Accelerations a = M^{-1} (h + Q)" : "Accelerations a = M^-1 (h + Q)");
+    if (const auto acc = solve_accelerations(eq, kSolvedAccelerationTerms)) {
+      for (size_t i = 0; i < eq.nv; ++i)
+        line(symbol_str(eq.kin.a[i], style), str((*acc)[i], style));
+    } else {
+      const std::string why = fmt::format(
+          "not solved symbolically: Cramer's rule would expand to more than {} terms; M and "
+          "h + Q above define them (lagrange simulate and eval evaluate them numerically)",
+          kSolvedAccelerationTerms);
+      out.raw(tex ? "% " + why + "\n" : "  " + why + "\n");
+    }
   }
   return out.finish();
 }

@@ -74,15 +74,4 @@ std::vector<GiNaC::symbol> Equations::tape_inputs() const {
   return in;
 }
 
-std::vector<GiNaC::ex> solve_accelerations(const Equations& eq) {
-  if (eq.m > 0) throw std::invalid_argument("solve_accelerations: the system is constrained");
-  if (eq.nv > 4) throw std::invalid_argument("solve_accelerations: more than 4 coordinates");
-  GiNaC::matrix rhs(static_cast<unsigned>(eq.nv), 1);
-  for (size_t i = 0; i < eq.nv; ++i) rhs(i, 0) = eq.h[i] + eq.Q[i];
-  GiNaC::matrix a = eq.M.inverse().mul(rhs);
-  std::vector<GiNaC::ex> out;
-  for (size_t i = 0; i < eq.nv; ++i) out.push_back(a(i, 0).normal());
-  return out;
-}
-
 }  // namespace lagrange
