@@ -162,8 +162,9 @@ struct ElementSummary {
 
 /// Constraint stabilisation settings (docs/theory.md §4.3).
 struct Stabilization {
-  double alpha = 20.0;  ///< Baumgarte: both eigenvalues of the constraint error at −α
-  bool project = true;  ///< project onto C = 0, Ċ = 0 after each output step
+  /// Baumgarte: both eigenvalues of the constraint error at −α; unset, baumgarte_rate() chooses.
+  std::optional<double> alpha;
+  bool project = true;  ///< project onto C = 0, Ċ = 0 after steps and at output samples
   double gamma = 1.0;   ///< SO(3) orthonormality drift correction rate (docs/theory.md §4.4)
   SourceLoc loc;
 };

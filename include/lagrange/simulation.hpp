@@ -8,6 +8,7 @@
 
 #include "lagrange/dynamics.hpp"
 #include "lagrange/integrator.hpp"
+#include "lagrange/model.hpp"
 
 namespace lagrange {
 
@@ -32,6 +33,15 @@ struct Trajectory {
   size_t column_index(const std::string& column) const;
   const char* status_name() const;
 };
+
+/// Baumgarte α when a model does not set one (methods that do not project between samples).
+constexpr double kDefaultBaumgarte = 20.0;
+
+/// The Baumgarte rate a run with `method` uses (docs/theory.md §4.3, "Choosing α"): the model's α
+/// when it sets one; otherwise 0 — post-stabilisation by projection alone — for the explicit and
+/// fixed-step methods, which project after every step that drifts, and kDefaultBaumgarte for
+/// cvode and ida, which correct only at output samples, and for any method without projection.
+double baumgarte_rate(const Stabilization& stabilization, const std::string& method);
 
 struct SimulationOptions {
   double t0 = 0.0;

@@ -46,6 +46,8 @@ SimulationOptions simulation_options(const Model& model, const Options& opt) {
 // --plot and --plot-columns, checked before the run: a known image format whose gnuplot terminal
 // is installed, and columns the trajectory will have (default: the coordinates).
 std::vector<std::string> checked_plot_columns(const Options& opt, const CompiledModel& cm) {
+  if (opt.plot.empty() && !opt.plot_columns.empty())
+    throw UsageError("--plot-columns chooses what --plot draws; give --plot FILE.svg too");
   if (opt.plot.empty()) return {};
   PlotFormat format;
   try {
@@ -162,9 +164,10 @@ int run_simulate(const Options& opt) {
   const Model& model = *p.model;
   const auto& cm = p.compiled;
   SimulationOptions so = simulation_options(model, opt);
+  p.dynamics->set_baumgarte(baumgarte_rate(model.stabilization, so.integrator.method));
   const std::vector<std::string> plot_columns = checked_plot_columns(opt, *cm);
   if (!opt.report.empty()) check_report(opt.report, model);
-  if (!p.initial.was_consistent) fmt::print(stderr, "note: {}\n", p.initial.note());
+  if (!p.initial.was_consistent && !opt.quiet) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
   choose_evaluation(*p.dynamics, opt.compile);
@@ -172,20 +175,21 @@ int run_simulate(const Options& opt) {
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);
   if (so.progress) fmt::print(stderr, "\r{:60}\r", "");
-  for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
-  if (opt.compile == "auto" && !p.dynamics->machine_code_error().empty())
+  if (!opt.quiet)
+    for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
+  if (opt.compile == "auto" && !opt.quiet && !p.dynamics->machine_code_error().empty())
     fmt::print(stderr, "note: machine code: {}; the tape interpreter ran instead\n",
                p.dynamics->machine_code_error());
 
   if (!opt.csv.empty()) write_trajectory_csv(traj, opt.csv);
   if (!opt.plot.empty() && traj.rows() > 1)
     plot_trajectory(traj, plot_columns, opt.plot, model.name);
-  if (!opt.report.empty() && traj.rows() > 0)
-    write_run_report(p, traj, so.integrator.method, t_sim, opt.report);
+  // The summary comes before the report, whose equations section may take a while to build.
   if (!opt.quiet) {
     const size_t rows = traj.rows();
-    fmt::print("{}: {} coordinates, {} constraints, {} tape instructions\n", model.name, cm->nq,
-               cm->m, cm->dynamics.num_instructions());
+    fmt::print(
+        "{}: {} coordinates, {} constraints, {} tape instructions (symbolic in the parameters)\n",
+        model.name, cm->nq, cm->m, cm->dynamics.num_instructions());
     fmt::print(
         "  derive {:.3f} s, compile {:.3f} s, simulate {:.3f} s ({} steps, {} rhs evaluations, "
         "{})\n",
@@ -216,7 +220,10 @@ int run_simulate(const Options& opt) {
     }
     if (!opt.csv.empty()) fmt::print("  wrote {} (+ .json status)\n", opt.csv);
     if (!opt.plot.empty()) fmt::print("  wrote {}\n", opt.plot);
-    if (!opt.report.empty() && traj.rows() > 0) fmt::print("  wrote {}\n", opt.report);
+  }
+  if (!opt.report.empty() && traj.rows() > 0) {
+    write_run_report(p, traj, so.integrator.method, t_sim, opt.report);
+    if (!opt.quiet) fmt::print("  wrote {}\n", opt.report);
   }
   if (traj.status == Trajectory::Status::Failed) {
     fmt::print(stderr, "lagrange: {}\n", traj.message);

@@ -73,7 +73,7 @@ Prepared prepare_with(const std::string& path, const ParameterOverrides& overrid
   const auto t1 = Clock::now();
   p.compiled = compile(p.equations);
   p.dynamics = std::make_unique<Dynamics>(p.compiled, p.compiled->parameter_defaults);
-  p.dynamics->set_baumgarte(p.model->stabilization.alpha);
+  p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, p.model->simulate.integrator));
   p.compile_seconds = seconds_since(t1);
   p.q = p.compiled->q0;
   p.v = p.compiled->v0;

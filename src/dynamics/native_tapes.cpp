@@ -64,7 +64,7 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
     return;
   }
   if (tapes[kDynamicsTape]->num_instructions() < Dynamics::kBackgroundMinInstructions) {
-    skip(fmt::format("a {}-instruction tape interprets faster than it compiles",
+    skip(fmt::format("the {}-instruction tape specialised to the parameter values interprets faster than it compiles",
                      tapes[kDynamicsTape]->num_instructions()));
     return;
   }

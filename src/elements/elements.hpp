@@ -38,6 +38,7 @@ struct Winch {
   std::optional<GiNaC::ex> torque;      ///< motor torque, positive in the reel-out sense
   std::optional<GiNaC::ex> reeled_out;  ///< prescribed reeled-out length ℓ(t)
   double initial = 0.0, rate = 0.0;
+  bool fixed = false;  ///< `initial: {fixed: true}`: ℓ and ℓ̇ kept by the initial projection
   size_t coordinate = 0;  ///< index of `<winch>.reeled_out` in Model::coordinates
   YAML::Node node, key;
   bool used = false;

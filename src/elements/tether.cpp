@@ -90,10 +90,13 @@ Num3 down_direction(ModelReader& r) {
 }
 
 // Initial shape (docs/model-language.md, "Tethers"): a free end hangs straight along gravity; a
-// slack tether between two ends sags along gravity (perpendicular to the chord) as the parabola
-// r(σ) = a + σ(b − a) + 4σ(1 − σ) s ĝ, with the sag s chosen by bisection so that the polyline
-// through the nodes has the tether's length; the initial projection then makes the segments
-// equal. A taut tether is straight.
+// slack tether between two ends starts as N equal segments of length ℓ/N, symmetric about the
+// chord's midpoint and sagging along gravity (perpendicular to the chord), with slopes
+// tan φᵢ = c uᵢ, uᵢ = 1 − (2i + 1)/N, that fall linearly along it as a parabola's do; c is found by
+// bisection so that the segments span the chord. The segments then meet the constraints to
+// rounding (antisymmetry closes the sag exactly), and no initial projection is needed. A taut
+// tether is straight; one too slack for the profile (N odd, span < ℓ/N) falls back to the
+// straight sag through the midpoint below.
 std::vector<Num3> initial_shape(ModelReader& r, const Tether& t, const Num3& a, const Num3* b,
                                 double length) {
   const size_t n = t.segments;
@@ -107,48 +110,47 @@ std::vector<Num3> initial_shape(ModelReader& r, const Tether& t, const Num3& a, 
   }
   const Num3 chord{(*b)[0] - a[0], (*b)[1] - a[1], (*b)[2] - a[2]};
   const double span = norm(chord);
+  for (size_t j = 0; j <= n; ++j) x[j] = lerp(a, *b, static_cast<double>(j) / n);
+  if (span >= length || span == 0) return x;
+  Num3 along{chord[0] / span, chord[1] / span, chord[2] / span};
   Num3 sag = down;  // the part of ĝ perpendicular to the chord
-  if (span > 0) {
-    const double along = (sag[0] * chord[0] + sag[1] * chord[1] + sag[2] * chord[2]) / span / span;
-    for (size_t k = 0; k < 3; ++k) sag[k] -= along * chord[k];
-    if (norm(sag) < 1e-6) sag = std::abs(chord[0]) < 0.9 * span ? Num3{1, 0, 0} : Num3{0, 1, 0};
-    const double along2 = (sag[0] * chord[0] + sag[1] * chord[1] + sag[2] * chord[2]) / span / span;
-    for (size_t k = 0; k < 3; ++k) sag[k] -= along2 * chord[k];
-    const double s = norm(sag);
-    for (auto& c : sag) c /= s;
-  }
-  // Nodes at equal arc length along the parabola of depth `depth`; returns their polyline length.
-  auto shape = [&](double depth) {
-    constexpr size_t kSamples = 4096;
-    std::vector<Num3> curve(kSamples + 1);
-    std::vector<double> arc(kSamples + 1, 0.0);
-    for (size_t i = 0; i <= kSamples; ++i) {
-      const double sigma = static_cast<double>(i) / kSamples;
-      curve[i] = lerp(a, *b, sigma);
-      for (size_t k = 0; k < 3; ++k) curve[i][k] += 4 * sigma * (1 - sigma) * depth * sag[k];
-      if (i > 0)
-        arc[i] = arc[i - 1] + norm({curve[i][0] - curve[i - 1][0], curve[i][1] - curve[i - 1][1],
-                                    curve[i][2] - curve[i - 1][2]});
-    }
-    size_t i = 0;
-    for (size_t j = 0; j <= n; ++j) {
-      const double target = arc.back() * static_cast<double>(j) / n;
-      while (i + 1 < kSamples && arc[i + 1] < target) ++i;
-      const double w = arc[i + 1] > arc[i] ? (target - arc[i]) / (arc[i + 1] - arc[i]) : 0.0;
-      x[j] = lerp(curve[i], curve[i + 1], std::min(1.0, std::max(0.0, w)));
-    }
-    double len = 0;
-    for (size_t j = 1; j <= n; ++j)
-      len += norm({x[j][0] - x[j - 1][0], x[j][1] - x[j - 1][1], x[j][2] - x[j - 1][2]});
-    return len;
+  const auto remove_along = [&] {
+    const double d = sag[0] * along[0] + sag[1] * along[1] + sag[2] * along[2];
+    for (size_t k = 0; k < 3; ++k) sag[k] -= d * along[k];
   };
-  if (shape(0) >= length) return x;
-  double lo = 0, hi = length;
-  for (int it = 0; it < 200 && hi - lo > 1e-14 * length; ++it) {
-    const double mid = (lo + hi) / 2;
-    (shape(mid) < length ? lo : hi) = mid;
+  remove_along();
+  if (norm(sag) < 1e-6) sag = std::abs(along[0]) < 0.9 ? Num3{1, 0, 0} : Num3{0, 1, 0};
+  remove_along();
+  const double s = norm(sag);
+  for (auto& c : sag) c /= s;
+  const double piece = length / static_cast<double>(n);
+  const auto u = [&](size_t i) { return 1.0 - (2.0 * static_cast<double>(i) + 1.0) / n; };
+  const auto reach = [&](double c) {  // the chordwise extent of the segments at slope factor c
+    double sum = 0;
+    for (size_t i = 0; i < n; ++i) sum += piece / std::sqrt(1 + c * c * u(i) * u(i));
+    return sum;
+  };
+  double lo = 0, hi = 1;
+  while (reach(hi) > span && hi < 1e12) hi *= 2;
+  if (reach(hi) > span) {  // N odd and nearly no span: the middle segment alone is too long
+    for (size_t j = 1; j < n; ++j) {
+      const double depth = std::sqrt(std::max(0.0, length * length - span * span)) / 2;
+      const double w = 1 - std::abs(2.0 * static_cast<double>(j) / n - 1);
+      for (size_t k = 0; k < 3; ++k) x[j][k] += w * depth * sag[k];
+    }
+    return x;
   }
-  shape((lo + hi) / 2);
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+    const double mid = (lo + hi) / 2;
+    (reach(mid) > span ? lo : hi) = mid;
+  }
+  const double c = (lo + hi) / 2, scale = span / reach(c);  // scale: 1 to rounding
+  for (size_t i = 0; i < n; ++i) {
+    const double g = 1 / std::sqrt(1 + c * c * u(i) * u(i));
+    const double dx = piece * g * scale, dy = piece * c * u(i) * g;
+    for (size_t k = 0; k < 3; ++k) x[i + 1][k] = x[i][k] + dx * along[k] + dy * sag[k];
+  }
+  x[n] = *b;
   return x;
 }
 
@@ -247,7 +249,7 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
         winch = &w;
         w.used = true;
       }
-    double length0 = 0;
+    double length0 = 0, rate0 = 0;  // ℓ and ℓ̇ at t = 0
     if (winch != nullptr) {
       if (spec["length"])
         r.fail(spec["length"],
@@ -255,6 +257,7 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       t.length = r.model().coordinates[winch->coordinate].q;
       t.variable_length = true;
       length0 = winch->initial;
+      rate0 = winch->rate;
     } else {
       if (!spec["length"]) r.fail(spec, fmt::format("expected 'length' in {}, got none", what));
       t.length = r.scalar_expr(spec["length"], model::kParams | model::kTime, "length of " + what);
@@ -263,6 +266,7 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       if (!l0 || *l0 <= 0)
         r.fail(spec["length"], fmt::format("expected a positive length for {} at t = 0", what));
       length0 = *l0;
+      if (t.variable_length) rate0 = r.initial_value(t.length.diff(r.model().t)).value_or(0.0);
     }
     if (t.variable_length &&
         (depends_on_free_body(r.model(), a.pos) || depends_on_free_body(r.model(), b.pos)))
@@ -284,6 +288,10 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
     }
     const std::vector<Num3> shape = initial_shape(r, t, a0, b.free ? nullptr : &b0, length0);
     const size_t n = t.segments;
+    // A free end reeled at ℓ̇ starts with the segments growing at ℓ̇/N: the straight tether
+    // stretches about its first end, ṙⱼ = (ℓ̇/ℓ)(rⱼ − r₀), so that Ċ = 0 holds with the file's rate
+    // (docs/theory.md §4.6). Between two ends the initial projection finds the node velocities.
+    const double stretch = b.free ? rate0 / length0 : 0.0;
     for (size_t j = 0; j <= n; ++j) {
       const std::string name = fmt::format("{}.node{}", t.name, j);
       const bool end = j == 0 || (j == n && !b.free);
@@ -295,7 +303,9 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       }
       Vec3 pos;
       for (size_t k = 0; k < 3; ++k)
-        pos[k] = r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k], 0.0, key).q;
+        pos[k] = r.add_coordinate(fmt::format("{}.{}", name, "xyz"[k]), shape[j][k],
+                                  stretch * (shape[j][k] - a0[k]), key)
+                     .q;
       r.add_point(name, pos, key);
       t.nodes.push_back(name);
     }

@@ -58,7 +58,8 @@ void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx
                                 what));
       const YAML::Node init = spec["initial"];
       r.expect_map(init, "initial state of " + what + " ({reeled_out, rate})");
-      r.check_keys(init, {"reeled_out", "rate"}, "initial state of " + what);
+      r.check_keys(init, {"reeled_out", "rate", "fixed"}, "initial state of " + what);
+      if (init["fixed"]) w.fixed = r.boolean(init["fixed"], "'fixed' of " + what);
       if (!init["reeled_out"])
         r.fail(init, fmt::format("expected 'reeled_out' in the initial state of {}", what));
       w.initial = r.number(init["reeled_out"], model::kParams, "reeled-out length of " + what);
@@ -76,6 +77,7 @@ void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx
                                                  w.initial, what, *total));
     }
     r.add_coordinate(w.name + ".reeled_out", w.initial, w.rate, key);
+    r.model().coordinates.back().fixed = w.fixed;
     w.coordinate = r.model().coordinates.size() - 1;
     ctx.winches.push_back(w);
   }

@@ -12,8 +12,9 @@ void ModelReader::read_stabilization(const YAML::Node& node) {
   Stabilization& s = m_.stabilization;
   s.loc = src_.at(node);
   if (node["alpha"]) {
-    s.alpha = number(node["alpha"], kParams, "stabilization alpha");
-    if (s.alpha < 0) fail(node["alpha"], fmt::format("expected alpha >= 0, got {:g}", s.alpha));
+    const double alpha = number(node["alpha"], kParams, "stabilization alpha");
+    if (alpha < 0) fail(node["alpha"], fmt::format("expected alpha >= 0, got {:g}", alpha));
+    s.alpha = alpha;
   }
   if (node["project"]) s.project = boolean(node["project"], "stabilization project");
   if (node["gamma"]) {

@@ -52,13 +52,21 @@ InitialConsistency make_initial_state_consistent(Dynamics& dyn, double t0, std::
   ic.consistent =
       within(ic.C, ic.Cdot) || (max_abs(ic.C) <= std::max(tol, ic.projection.floor) &&
                                 max_abs(ic.Cdot) <= std::max(tol, ic.projection.rate_floor));
-  for (size_t i = 0; i < cm.nq; ++i)
-    if (q[i] != q_old[i])
-      ic.changes +=
-          fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.coordinate_names[i], q_old[i], q[i]);
-  for (size_t i = 0; i < cm.nv; ++i)
-    if (v[i] != v_old[i])
-      ic.changes += fmt::format("\n  {}: {:.10g} -> {:.10g}", cm.velocity_names[i], v_old[i], v[i]);
+  // Each change that shows at ten digits; those that do not are counted, not listed as "x -> x".
+  size_t unseen = 0;
+  const auto list = [&](const std::string& name, double before, double after) {
+    if (before == after) return;
+    const std::string a = fmt::format("{:.10g}", before), b = fmt::format("{:.10g}", after);
+    if (a == b)
+      ++unseen;
+    else
+      ic.changes += fmt::format("\n  {}: {} -> {}", name, a, b);
+  };
+  for (size_t i = 0; i < cm.nq; ++i) list(cm.coordinate_names[i], q_old[i], q[i]);
+  for (size_t i = 0; i < cm.nv; ++i) list(cm.velocity_names[i], v_old[i], v[i]);
+  if (unseen > 0)
+    ic.changes += fmt::format("\n  ({} {} changed below the tenth digit)", unseen,
+                              unseen == 1 ? "value" : "values");
   if (!ic.consistent && std::find(cm.fixed.begin(), cm.fixed.end(), true) != cm.fixed.end()) {
     std::vector<double> q_free = q_old, v_free = v_old, C(cm.m), Cdot(cm.m);
     dyn.try_project(t0, q_free.data(), v_free.data(), {}, kProjectionTarget);

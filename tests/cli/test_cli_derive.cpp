@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -139,4 +141,67 @@ TEST(CliDerive, SmallModelsStillGetTheirSolvedAccelerations) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("Accelerations a = M^-1 (h + Q)\n  l_ddot = "), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("not solved symbolically"), std::string::npos);
+}
+
+// Issue 20, item 9: an option that would be ignored is a usage error, before anything runs.
+TEST(CliDerive, PlotColumnsWithoutPlotIsAUsageError) {
+  ScratchDir dir("plot-columns");
+  const std::string model = std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml";
+  const auto r = run_lagrange(dir.path(), {"simulate", model, "-o", (dir.path() / "p.csv").string(),
+                                           "--plot-columns", "theta"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--plot FILE"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "p.csv"));
+}
+
+// Issue 20, items 3 and 5, as a user meets them: a winch's initial reel rate is kept (the free
+// tether's nodes start stretching with it, no projection note), `fixed: true` is accepted in a
+// winch's `initial`, a tether strung between two supports starts on its constraints (no note),
+// and -q prints nothing on a run that succeeds.
+TEST(CliDerive, WinchRateIsKeptAndTethersBetweenSupportsStartQuietly) {
+  ScratchDir dir("winch-rate");
+  spit(dir.path() / "winch.yaml", R"(name: winch rate
+parameters: {R: 0.2, J: 0.05, mu: 0.4, L: 30, g: 9.81}
+gravity: [0, 0, -g]
+winches:
+  drum: {tether: line, radius: R, inertia: J, total_length: L,
+         initial: {reeled_out: 3, rate: 0.5, fixed: true}}
+tethers:
+  line: {between: [[0, 0, 0], free], segments: 6, mass_per_length: mu}
+simulate: {t_end: 0.2, output_step: 0.1}
+)");
+  auto r = run_lagrange(dir.path(), {"simulate", (dir.path() / "winch.yaml").string(), "-o",
+                                     (dir.path() / "w.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("note:"), std::string::npos) << r.err;
+  std::istringstream csv(lagrange::hardening::slurp(dir.path() / "w.csv"));
+  std::string header, first;
+  std::getline(csv, header);
+  std::getline(csv, first);
+  std::vector<std::string> names, values;
+  for (std::istringstream h(header), v(first);;) {
+    std::string a, b;
+    if (!std::getline(h, a, ',') || !std::getline(v, b, ',')) break;
+    names.push_back(a);
+    values.push_back(b);
+  }
+  const auto at = std::find(names.begin(), names.end(), "drum.reeled_out_dot");
+  ASSERT_NE(at, names.end());
+  EXPECT_DOUBLE_EQ(std::stod(values[static_cast<size_t>(at - names.begin())]), 0.5);
+
+  spit(dir.path() / "span.yaml", R"(name: span
+parameters: {g: 9.81}
+gravity: [0, 0, -g]
+tethers:
+  line: {between: [[0, 0, 0], [8, 0, 1]], segments: 7, length: 10, mass_per_length: 0.3}
+simulate: {t_end: 0.2, output_step: 0.1}
+)");
+  r = run_lagrange(dir.path(), {"simulate", (dir.path() / "span.yaml").string(), "-o",
+                                (dir.path() / "s.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("note:"), std::string::npos) << r.err;
+  r = run_lagrange(dir.path(), {"simulate", (dir.path() / "span.yaml").string(), "-q", "-o",
+                                (dir.path() / "s.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out + r.err, "");
 }

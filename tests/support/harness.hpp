@@ -70,7 +70,7 @@ inline Loaded load_model(std::unique_ptr<Model> model) {
   l.model = std::move(model);
   l.compiled = compile(derive(*l.model));
   l.dynamics = std::make_unique<Dynamics>(l.compiled, l.compiled->parameter_defaults);
-  l.dynamics->set_baumgarte(l.model->stabilization.alpha);
+  l.dynamics->set_baumgarte(baumgarte_rate(l.model->stabilization, l.model->simulate.integrator));
   return l;
 }
 
