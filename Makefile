@@ -22,10 +22,11 @@ demo: configure
 	$(BUILD)/lagrange simulate examples/double_pendulum.yaml -o out/double_pendulum.csv --plot out/double_pendulum.svg
 
 # Installs the command, the headers, the libraries and the docs under PREFIX (bin/, include/,
-# lib/, share/doc/lagrange/); only the command and its libraries are built for it.
+# lib/, share/doc/lagrange/) and the Python module (lib/python3/dist-packages/lagrange, found by
+# Debian's python3 under /usr/local; docs/python.md); only these and their libraries are built.
 PREFIX ?= /usr/local
 install: configure
-	@cmake --build $(BUILD) -j $(JOBS) --target lagrange
+	@cmake --build $(BUILD) -j $(JOBS) --target lagrange_installables
 	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 # The benchmarks are built too (not run), so that API changes cannot leave them broken.
