@@ -22,8 +22,8 @@ demo: configure
 	$(BUILD)/lagrange simulate examples/double_pendulum.yaml -o out/double_pendulum.csv --plot out/double_pendulum.svg
 
 # Installs the command, the headers, the libraries and the docs under PREFIX (bin/, include/,
-# lib/, share/doc/lagrange/) and the Python module (lib/python3/dist-packages/lagrange, found by
-# Debian's python3 under /usr/local; docs/python.md); only these and their libraries are built.
+# lib/, share/doc/lagrange/) and the Python module (lib/python3.X/dist-packages/lagrange, found
+# by Debian's python3 under /usr/local; docs/python.md); only these and their libraries are built.
 PREFIX ?= /usr/local
 install: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target lagrange_installables
