@@ -21,11 +21,11 @@ py::array read_only(py::array a) {
 
 }  // namespace
 
-std::vector<double> vector_of(const DoubleArray& a, size_t n, const char* what) {
+const double* vector_data(const DoubleArray& a, size_t n, const char* what) {
   if (a.ndim() != 1 || static_cast<size_t>(a.shape(0)) != n)
     throw py::value_error(std::string(what) + ": expected " + std::to_string(n) +
                           " values, got an array of shape " + shape_text(a));
-  return std::vector<double>(a.data(), a.data() + n);
+  return a.data();
 }
 
 void require_matrix(const DoubleArray& a, size_t n, const char* what) {

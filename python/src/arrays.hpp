@@ -14,8 +14,9 @@ namespace lagrange::python {
 using DoubleArray =
     pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 
-/// `a` as a vector of exactly `n` numbers; ValueError "q: expected 2 values, got 3" otherwise.
-std::vector<double> vector_of(const DoubleArray& a, size_t n, const char* what);
+/// The `n` numbers of the 1-D array `a`; ValueError "q: expected 2 values, got an array of shape
+/// (3,)" when it has another shape.
+const double* vector_data(const DoubleArray& a, size_t n, const char* what);
 
 /// Checks that `a` is rows × n (2-D); ValueError naming `what` and both shapes otherwise.
 void require_matrix(const DoubleArray& a, size_t n, const char* what);

@@ -96,11 +96,13 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
 py::object forward(PyModel& m, const DoubleArray& q_in, const DoubleArray& v_in, double t) {
   cli::Prepared& p = *m.prepared;
   const CompiledModel& cm = *p.compiled;
-  const std::vector<double> q = vector_of(q_in, cm.nq, "q"), v = vector_of(v_in, cm.nv, "v");
-  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
-  p.dynamics->forward(t, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
-  if (cm.m == 0) return to_array(a);
-  return py::make_tuple(to_array(a), to_array(lambda));
+  const double* q = vector_data(q_in, cm.nq, "q");
+  const double* v = vector_data(v_in, cm.nv, "v");
+  py::array_t<double> a(static_cast<py::ssize_t>(cm.nv)), lambda(static_cast<py::ssize_t>(cm.m));
+  m.qdot.resize(cm.nq);
+  p.dynamics->forward(t, q, v, m.qdot.data(), a.mutable_data(), lambda.mutable_data());
+  if (cm.m == 0) return std::move(a);
+  return py::make_tuple(a, lambda);
 }
 
 py::object forward_batch(const PyModel& m, const DoubleArray& Q, const DoubleArray& V, double t) {

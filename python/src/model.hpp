@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
+#include <vector>
 
 #include "cli/prepare.hpp"
 
@@ -18,6 +19,7 @@ struct PyModel {
   ParameterOverrides overrides;
   std::string dynamics;
   std::shared_ptr<cli::Prepared> prepared;
+  std::vector<double> qdot;  ///< forward's scratch (used with the GIL held)
 };
 
 /// Reads, derives, compiles and checks a model (holding the GIL: GiNaC is not thread-safe).
