@@ -74,6 +74,11 @@ class Run:
     @property
     def stats(self) -> Dict[str, Union[int, float, str]]:
         """steps, rhs_evals, failed_steps, method, rotation_drift."""
+    def report(self, path: str) -> None:
+        """Write the HTML report (3-D animation, plots, equations, statistics) to path (.html),
+        as `lagrange simulate --report` does."""
+    def _repr_html_(self) -> str:
+        """The report inline in a notebook (an iframe)."""
     def to_pandas(self) -> "pandas.DataFrame":  # type: ignore[name-defined]  # noqa: F821
         """A pandas DataFrame of the samples (pandas is imported only here)."""
 

@@ -2,6 +2,7 @@
 
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -78,9 +79,14 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
   dynamics.set_baumgarte(p.dynamics->baumgarte());
   cli::choose_evaluation(dynamics, compile);
   auto run = std::make_unique<Run>();
+  run->prepared = m.prepared;
+  run->integrator = so.integrator.method;
   {
     py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
     run->trajectory = lagrange::simulate(dynamics, so, p.q, p.v);
+    run->wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (!p.initial.was_consistent)
     run->trajectory.notes.insert(run->trajectory.notes.begin(), p.initial.note());

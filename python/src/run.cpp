@@ -3,8 +3,13 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "arrays.hpp"
+#include "cli/report_command.hpp"
 
 namespace py = pybind11;
 
@@ -30,6 +35,34 @@ py::dict stats(const Trajectory& traj) {
                   py::arg("failed_steps") = traj.stats.failed_steps,
                   py::arg("method") = traj.stats.method,
                   py::arg("rotation_drift") = traj.rotation_drift);
+}
+
+// The HTML report of the run (README.md, "Watching a model move"), as `simulate --report` writes
+// it; ValueError for a name that does not end in .html or a run without samples.
+void report(const Run& r, const std::string& path) {
+  if (r.trajectory.rows() == 0) throw py::value_error("the run has no samples to report");
+  cli::check_report(path, *r.prepared->model);
+  cli::write_run_report(*r.prepared, r.trajectory, r.integrator, r.wall_seconds, path);
+}
+
+// The report inline in a notebook: the self-contained page in an iframe's srcdoc.
+std::string report_iframe(const Run& r) {
+  const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("lagrange-report-" + std::to_string(stamp) + ".html");
+  report(r, file.string());
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream html;
+  html << in.rdbuf();
+  in.close();
+  std::filesystem::remove(file);
+  std::string escaped;
+  for (const char c : html.str())
+    escaped += c == '&'   ? std::string("&amp;")
+               : c == '"' ? std::string("&quot;")
+                          : std::string(1, c);
+  return "<iframe style=\"width: 100%; height: 640px; border: 0\" srcdoc=\"" + escaped +
+         "\"></iframe>";
 }
 
 }  // namespace
@@ -82,6 +115,10 @@ void bind_run(py::module_& m) {
                                             py::arg("columns") = r.trajectory.columns);
           },
           "A pandas.DataFrame over the samples (pandas is imported only here).")
+      .def("report", &report, py::arg("path"),
+           "Write the HTML report (3-D animation, plots, equations, statistics) to path "
+           "(.html), as `lagrange simulate --report`.")
+      .def("_repr_html_", &report_iframe)
       .def("__repr__", [](const Run& r) {
         const Trajectory& traj = r.trajectory;
         const size_t rows = traj.rows();

@@ -127,3 +127,15 @@ def test_export_c_writes_the_sources(double_pendulum, tmp_path):
     header = (tmp_path / "lagrange_model.h").read_text()
     assert "theta1" in header or "LAGRANGE" in header
     assert (tmp_path / "lagrange_model.c").stat().st_size > 1000
+
+
+def test_report_is_the_commands_html(double_pendulum, tmp_path):
+    run = double_pendulum.simulate(t_end=1.0)
+    path = tmp_path / "dp.html"
+    run.report(str(path))
+    html = path.read_text()
+    assert html.lower().startswith("<!doctype html>") and "double pendulum" in html
+    inline = run._repr_html_()
+    assert inline.startswith("<iframe") and "&quot;" in inline and '"en"' not in inline
+    with pytest.raises(ValueError, match="expected a file name ending in .html"):
+        run.report(str(tmp_path / "dp.txt"))
