@@ -142,14 +142,26 @@ class Model:
         """Write lagrange_model.h and lagrange_model.c into dir (as `lagrange export`)."""
     def __reduce__(self) -> object: ...
 
-def load(path: str, *, set: Mapping[str, float] = ..., dynamics: str = "auto") -> Model:
-    """Read, derive, compile and check a model file; `set` replaces parameter values.
+def load(
+    path: str,
+    *,
+    set: Mapping[str, float] = ...,
+    initial: Mapping[str, float] = ...,
+    dynamics: str = "auto",
+) -> Model:
+    """Read, derive, compile and check a model file; `set` replaces parameter values, `initial`
+    the initial values of coordinates and velocities (NAME_dot), as --set and --initial do.
 
     Raises ModelError (with .file, .line, .column) for a mistake in the file and ValueError
     for a `set` name the model does not have or a value it rejects.
     """
 
 def loads(
-    text: str, *, set: Mapping[str, float] = ..., dynamics: str = "auto", label: str = "<string>"
+    text: str,
+    *,
+    set: Mapping[str, float] = ...,
+    initial: Mapping[str, float] = ...,
+    dynamics: str = "auto",
+    label: str = "<string>",
 ) -> Model:
     """As load, for YAML text; `label` names it in error messages."""

@@ -138,26 +138,36 @@ py::object forward_batch(const PyModel& m, const DoubleArray& Q, const DoubleArr
   return py::make_tuple(A, L);
 }
 
+// initial= in its order (a dict keeps the caller's), as NAME=VALUE pairs.
+std::vector<std::pair<std::string, double>> initial_values(const py::dict& given) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [name, value] : given)
+    out.emplace_back(name.cast<std::string>(), value.cast<double>());
+  return out;
+}
+
 py::tuple pickled(const PyModel& m) {
   py::object text = m.source.text ? py::object(py::str(*m.source.text)) : py::none();
-  return py::make_tuple(m.source.path, text, m.overrides, m.dynamics);
+  return py::make_tuple(m.source.path, text, m.overrides, m.dynamics, m.initial);
 }
 
 PyModel unpickled(const py::tuple& state) {
-  if (state.size() != 4) throw std::runtime_error("lagrange.Model: invalid pickled state");
+  if (state.size() != 5) throw std::runtime_error("lagrange.Model: invalid pickled state");
   cli::ModelSource source{state[0].cast<std::string>(),
                           state[1].cast<std::optional<std::string>>()};
   return load_model(std::move(source), state[2].cast<ParameterOverrides>(),
-                    state[3].cast<std::string>());
+                    state[3].cast<std::string>(),
+                    state[4].cast<std::vector<std::pair<std::string, double>>>());
 }
 
 }  // namespace
 
 PyModel load_model(cli::ModelSource source, ParameterOverrides overrides,
-                   const std::string& dynamics) {
-  PyModel m{std::move(source), std::move(overrides), dynamics, nullptr};
-  m.prepared =
-      std::make_shared<cli::Prepared>(cli::prepare_source(m.source, m.overrides, dynamics));
+                   const std::string& dynamics,
+                   std::vector<std::pair<std::string, double>> initial) {
+  PyModel m{std::move(source), std::move(overrides), dynamics, std::move(initial), nullptr, {}};
+  m.prepared = std::make_shared<cli::Prepared>(
+      cli::prepare_source(m.source, m.overrides, dynamics, m.initial));
   return m;
 }
 
@@ -242,21 +252,24 @@ void bind_model(py::module_& m) {
 
   m.def(
       "load",
-      [](const std::string& path, const ParameterOverrides& set, const std::string& dynamics) {
-        return load_model(cli::ModelSource{path, file_text(path)}, set, dynamics);
+      [](const std::string& path, const ParameterOverrides& set, const py::dict& initial,
+         const std::string& dynamics) {
+        return load_model(cli::ModelSource{path, file_text(path)}, set, dynamics,
+                          initial_values(initial));
       },
       py::arg("path"), py::kw_only(), py::arg("set") = ParameterOverrides{},
-      py::arg("dynamics") = "auto",
-      "Read a model file with parameter values `set` replacing the file's; derive, compile and "
+      py::arg("initial") = py::dict(), py::arg("dynamics") = "auto",
+      "Read a model file with parameter values `set` replacing the file's and `initial` values of "
+      "coordinates and velocities (NAME_dot) replacing its initial state; derive, compile and "
       "check it. `dynamics`: auto, lagrangian or recursive (as `lagrange simulate --dynamics`).");
   m.def(
       "loads",
-      [](const std::string& text, const ParameterOverrides& set, const std::string& dynamics,
-         const std::string& label) {
-        return load_model(cli::ModelSource{label, text}, set, dynamics);
+      [](const std::string& text, const ParameterOverrides& set, const py::dict& initial,
+         const std::string& dynamics, const std::string& label) {
+        return load_model(cli::ModelSource{label, text}, set, dynamics, initial_values(initial));
       },
       py::arg("text"), py::kw_only(), py::arg("set") = ParameterOverrides{},
-      py::arg("dynamics") = "auto", py::arg("label") = "<string>",
+      py::arg("initial") = py::dict(), py::arg("dynamics") = "auto", py::arg("label") = "<string>",
       "As load, for YAML text; `label` names it in error messages.");
 }
 

@@ -5,6 +5,8 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/prepare.hpp"
@@ -18,13 +20,15 @@ struct PyModel {
   cli::ModelSource source;
   ParameterOverrides overrides;
   std::string dynamics;
+  std::vector<std::pair<std::string, double>> initial;  ///< coordinates and NAME_dot velocities
   std::shared_ptr<cli::Prepared> prepared;
   std::vector<double> qdot;  ///< forward's scratch (used with the GIL held)
 };
 
 /// Reads, derives, compiles and checks a model (holding the GIL: GiNaC is not thread-safe).
 PyModel load_model(cli::ModelSource source, ParameterOverrides overrides,
-                   const std::string& dynamics);
+                   const std::string& dynamics,
+                   std::vector<std::pair<std::string, double>> initial);
 
 /// Binds lagrange.Model, lagrange.Equations and the functions load and loads.
 void bind_model(pybind11::module_& m);

@@ -164,11 +164,12 @@ Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
 }
 
 Prepared prepare_source(const ModelSource& source, const ParameterOverrides& overrides,
-                        const std::string& dynamics) {
+                        const std::string& dynamics,
+                        const std::vector<std::pair<std::string, double>>& initial) {
   std::string given;
   for (const auto& [name, value] : overrides)
     given += fmt::format("{}{}={}", given.empty() ? "set " : ", ", name, value);
-  return prepare_checked(source, overrides, {}, dynamics, "set", given);
+  return prepare_checked(source, overrides, GivenState{initial, "initial"}, dynamics, "set", given);
 }
 
 Model ModelSource::read(const ParameterOverrides& overrides) const {

@@ -64,11 +64,12 @@ Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::string& initial_option = "--initial",
                  const std::string& dynamics = "lagrangian");
 
-/// As prepare() for a source with overrides already parsed and the file's initial state (the
-/// Python module's load): the same ModelError and UsageError, the latter naming the values as
-/// "set NAME=VALUE".
+/// As prepare() for a source with overrides and initial values already parsed (the Python
+/// module's load): the same ModelError and UsageError, the latter naming the values as
+/// "set NAME=VALUE" and "initial: …". `initial` replaces coordinates and velocities NAME_dot.
 Prepared prepare_source(const ModelSource& source, const ParameterOverrides& overrides,
-                        const std::string& dynamics = "auto");
+                        const std::string& dynamics = "auto",
+                        const std::vector<std::pair<std::string, double>>& initial = {});
 
 /// Simulation settings a caller gives (command-line options, Python keywords); unset ones keep
 /// the model file's `simulate:` values.

@@ -13,7 +13,8 @@ import lagrange
 
 @pytest.fixture(scope="module")
 def pendulum(examples_dir):
-    return lagrange.load(str(examples_dir / "double_pendulum.yaml"), set={"m2": 0.7})
+    return lagrange.load(str(examples_dir / "double_pendulum.yaml"), set={"m2": 0.7},
+                         initial={"theta2": 0.4})
 
 
 def test_two_simulations_in_threads_equal_sequential_ones(examples_dir, pendulum):
@@ -59,6 +60,7 @@ def test_pickle_round_trip_keeps_text_path_and_settings(pendulum):
     copy = pickle.loads(pickle.dumps(pendulum))
     assert copy.path == pendulum.path
     assert copy.parameters == pendulum.parameters and copy.parameters["m2"] == 0.7
+    assert copy.initial_state[0][1] == 0.4
     assert np.array_equal(copy.simulate(t_end=1.0).array, pendulum.simulate(t_end=1.0).array)
 
 

@@ -139,3 +139,14 @@ def test_report_is_the_commands_html(double_pendulum, tmp_path):
     assert inline.startswith("<iframe") and "&quot;" in inline and '"en"' not in inline
     with pytest.raises(ValueError, match="expected a file name ending in .html"):
         run.report(str(tmp_path / "dp.txt"))
+
+
+def test_initial_replaces_the_files_state(examples_dir):
+    m = lagrange.load(str(examples_dir / "double_pendulum.yaml"),
+                      initial={"theta1": 0.3, "theta2_dot": -1.5})
+    q, v = m.initial_state
+    assert q[0] == 0.3 and v[1] == -1.5
+    run = m.simulate(t_end=0.1)
+    assert run["theta1"][0] == 0.3 and run["theta2_dot"][0] == -1.5
+    with pytest.raises(ValueError, match="initial: no coordinate or velocity 'nope'"):
+        lagrange.load(str(examples_dir / "double_pendulum.yaml"), initial={"nope": 1.0})
