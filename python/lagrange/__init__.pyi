@@ -127,7 +127,8 @@ class Model:
         """Simulate from the initial state; unset settings keep the file's simulate: values.
 
         Releases the GIL while integrating. Raises SimulationError (with .run, the partial
-        trajectory) when the integration fails, ValueError for a bad setting.
+        trajectory) when the integration fails, ValueError for a bad setting. compile="on"
+        warns (RuntimeWarning) when machine code cannot be had and the interpreter runs.
         """
     def forward(
         self, q: ArrayLike, v: ArrayLike, t: float = 0.0
