@@ -22,10 +22,11 @@ demo: configure
 	$(BUILD)/lagrange simulate examples/double_pendulum.yaml -o out/double_pendulum.csv --plot out/double_pendulum.svg
 
 # Installs the command, the headers, the libraries and the docs under PREFIX (bin/, include/,
-# lib/, share/doc/lagrange/); only the command and its libraries are built for it.
+# lib/, share/doc/lagrange/) and the Python module (lib/python3.X/dist-packages/lagrange, found
+# by Debian's python3 under /usr/local; docs/python.md); only these and their libraries are built.
 PREFIX ?= /usr/local
 install: configure
-	@cmake --build $(BUILD) -j $(JOBS) --target lagrange
+	@cmake --build $(BUILD) -j $(JOBS) --target lagrange_installables
 	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 # The benchmarks are built too (not run), so that API changes cannot leave them broken.
@@ -47,7 +48,7 @@ SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 asan: deps
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-	  -DLAGRANGE_SANITIZE=ON -DLAGRANGE_BUILD_BENCH=OFF >/dev/null
+	  -DLAGRANGE_SANITIZE=ON -DLAGRANGE_BUILD_BENCH=OFF -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
 	@$(SANITIZER_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS)
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
 
@@ -62,7 +63,8 @@ FUZZ_RUNS_EXPRESSION ?=
 fuzz:
 	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-	  -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF >/dev/null
+	  -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF \
+	  -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression
 	@FUZZ_RUNS=$(FUZZ_RUNS) FUZZ_RUNS_MODEL=$(FUZZ_RUNS_MODEL) FUZZ_RUNS_EXPRESSION=$(FUZZ_RUNS_EXPRESSION) \
 	  ./fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)

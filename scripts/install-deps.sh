@@ -8,6 +8,7 @@ packages=(
   libcli11-dev libfmt-dev nlohmann-json3-dev libtinyxml2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox python3 python3-sympy
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
   chromium
 )
 # node and npm build the report front-end; any install of them will do (Debian's when absent).

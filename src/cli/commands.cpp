@@ -28,19 +28,8 @@ double seconds_since(Clock::time_point start) {
 }
 
 SimulationOptions simulation_options(const Model& model, const Options& opt) {
-  SimulationOptions so;
-  so.t_end = opt.t_end.value_or(model.simulate.t_end);
-  so.output_step = opt.output_step.value_or(model.simulate.output_step);
-  so.integrator.method = opt.integrator.value_or(model.simulate.integrator);
-  so.integrator.rtol = opt.rtol.value_or(model.simulate.rtol);
-  so.integrator.atol = opt.atol.value_or(model.simulate.atol);
-  so.integrator.step = opt.step.value_or(model.simulate.step);
-  so.project = model.stabilization.project;
-  if (!(so.t_end > 0)) throw UsageError("--t-end must be positive");
-  if (!(so.output_step > 0)) throw UsageError("--output-step must be positive");
-  if (!(so.integrator.rtol > 0) || !(so.integrator.atol > 0))
-    throw UsageError("tolerances must be positive");
-  return so;
+  return simulation_options(
+      model, RunSettings{opt.t_end, opt.output_step, opt.rtol, opt.atol, opt.step, opt.integrator});
 }
 
 // --plot and --plot-columns, checked before the run: a known image format whose gnuplot terminal
@@ -145,20 +134,6 @@ int run_check(const Options& opt) {
   return 0;
 }
 
-namespace {
-
-// docs/theory.md §8, machine code: `on` compiles before the run (and says at once when it cannot),
-// `auto` runs the interpreter while a large model compiles in the background.
-void choose_evaluation(Dynamics& dynamics, const std::string& mode) {
-  if (mode == "off") return;
-  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background);
-  if (mode == "on" && !dynamics.uses_machine_code())
-    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
-               dynamics.machine_code_error());
-}
-
-}  // namespace
-
 int run_simulate(const Options& opt) {
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const Model& model = *p.model;
@@ -170,7 +145,9 @@ int run_simulate(const Options& opt) {
   if (!p.initial.was_consistent && !opt.quiet) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
-  choose_evaluation(*p.dynamics, opt.compile);
+  if (!choose_evaluation(*p.dynamics, opt.compile))
+    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
+               p.dynamics->machine_code_error());
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);

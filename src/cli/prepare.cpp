@@ -63,11 +63,11 @@ struct GivenState {
   std::string option;
 };
 
-Prepared prepare_with(const std::string& path, const ParameterOverrides& overrides,
+Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overrides,
                       const GivenState& initial, const std::string& dynamics) {
   Prepared p;
   const auto t0 = Clock::now();
-  p.model = std::make_unique<const Model>(read_model_file(path, overrides));
+  p.model = std::make_unique<const Model>(source.read(overrides));
   p.equations = derive(*p.model, formulation(*p.model, dynamics));
   p.derive_seconds = seconds_since(t0);
   const auto t1 = Clock::now();
@@ -83,12 +83,29 @@ Prepared prepare_with(const std::string& path, const ParameterOverrides& overrid
   return p;
 }
 
-bool prepares_as_written(const std::string& path) {
+bool prepares_as_written(const ModelSource& source) {
   try {
-    (void)prepare_with(path, {}, {}, "lagrangian");
+    (void)prepare_with(source, {}, {}, "lagrangian");
     return true;
   } catch (const ModelError&) {
     return false;
+  }
+}
+
+// prepare_with, with the caller's values blamed (as `option`: "--set" or "set", the values
+// spelled `given`) for a ModelError that the file as written does not have.
+Prepared prepare_checked(const ModelSource& source, const ParameterOverrides& overrides,
+                         const GivenState& initial, const std::string& dynamics,
+                         const std::string& option, const std::string& given) {
+  try {
+    return prepare_with(source, overrides, initial, dynamics);
+  } catch (const ParameterOverrideError& e) {
+    throw UsageError(fmt::format("{}: {}", option, e.what()));
+  } catch (const ModelError& e) {
+    // The file's own mistake stays a model error; a value only the caller brings is its.
+    if (overrides.empty() || !prepares_as_written(source)) throw;
+    throw UsageError(fmt::format("{}: the model does not accept this value: {} (found at {})",
+                                 given, e.detail(), e.loc().str()));
   }
 }
 
@@ -140,18 +157,49 @@ Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::string& dynamics) {
   const ParameterOverrides overrides = parse_sets(sets);
   const GivenState initial_values{parse_assignments(initial, initial_option), initial_option};
-  try {
-    return prepare_with(path, overrides, initial_values, dynamics);
-  } catch (const ParameterOverrideError& e) {
-    throw UsageError(fmt::format("--set: {}", e.what()));
-  } catch (const ModelError& e) {
-    // The file's own mistake stays a model error; a value only the command line brings is its.
-    if (overrides.empty() || !prepares_as_written(path)) throw;
-    std::string given;
-    for (const auto& s : sets) given += (given.empty() ? "--set " : " --set ") + s;
-    throw UsageError(fmt::format("{}: the model does not accept this value: {} (found at {})",
-                                 given, e.detail(), e.loc().str()));
-  }
+  std::string given;
+  for (const auto& s : sets) given += (given.empty() ? "--set " : " --set ") + s;
+  return prepare_checked(ModelSource{path, std::nullopt}, overrides, initial_values, dynamics,
+                         "--set", given);
+}
+
+Prepared prepare_source(const ModelSource& source, const ParameterOverrides& overrides,
+                        const std::string& dynamics,
+                        const std::vector<std::pair<std::string, double>>& initial) {
+  std::string given;
+  for (const auto& [name, value] : overrides)
+    given += fmt::format("{}{}={}", given.empty() ? "set " : ", ", name, value);
+  return prepare_checked(source, overrides, GivenState{initial, "initial"}, dynamics, "set", given);
+}
+
+Model ModelSource::read(const ParameterOverrides& overrides) const {
+  return text ? read_model_string(*text, path, overrides) : read_model_file(path, overrides);
+}
+
+SimulationOptions simulation_options(const Model& model, const RunSettings& given) {
+  SimulationOptions so;
+  so.t_end = given.t_end.value_or(model.simulate.t_end);
+  so.output_step = given.output_step.value_or(model.simulate.output_step);
+  so.integrator.method = given.integrator.value_or(model.simulate.integrator);
+  so.integrator.rtol = given.rtol.value_or(model.simulate.rtol);
+  so.integrator.atol = given.atol.value_or(model.simulate.atol);
+  so.integrator.step = given.step.value_or(model.simulate.step);
+  so.project = model.stabilization.project;
+  if (!(so.t_end > 0)) throw UsageError("--t-end must be positive");
+  if (!(so.output_step > 0)) throw UsageError("--output-step must be positive");
+  if (!(so.integrator.rtol > 0) || !(so.integrator.atol > 0))
+    throw UsageError("tolerances must be positive");
+  return so;
+}
+
+// docs/theory.md §8, machine code: `on` compiles before the run (and says at once when it cannot),
+// `auto` runs the interpreter while a large model compiles in the background.
+bool choose_evaluation(Dynamics& dynamics, const std::string& mode) {
+  if (mode == "off") return true;
+  if (mode != "on" && mode != "auto")
+    throw UsageError("compile: expected auto, on or off, got '" + mode + "'");
+  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background);
+  return mode != "on" || dynamics.uses_machine_code();
 }
 
 }  // namespace lagrange::cli

@@ -3,6 +3,7 @@
 // derive, compile, and make the initial state consistent and regular.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,15 @@ struct Prepared {
   std::vector<double> q, v;
   InitialConsistency initial;
   double derive_seconds = 0.0, compile_seconds = 0.0;
+};
+
+/// Where a model comes from: the file `path`, or YAML `text` that messages label `path` (the
+/// Python module's loads(), and a pickled model).
+struct ModelSource {
+  std::string path;
+  std::optional<std::string> text;
+  /// read_model_file(path) or read_model_string(*text, path) with `overrides`.
+  Model read(const ParameterOverrides& overrides) const;
 };
 
 /// `--set NAME=VALUE` arguments as overrides; UsageError for a missing '=' or a value that is
@@ -53,5 +63,28 @@ Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::vector<std::string>& initial = {},
                  const std::string& initial_option = "--initial",
                  const std::string& dynamics = "lagrangian");
+
+/// As prepare() for a source with overrides and initial values already parsed (the Python
+/// module's load): the same ModelError and UsageError, the latter naming the values as
+/// "set NAME=VALUE" and "initial: …". `initial` replaces coordinates and velocities NAME_dot.
+Prepared prepare_source(const ModelSource& source, const ParameterOverrides& overrides,
+                        const std::string& dynamics = "auto",
+                        const std::vector<std::pair<std::string, double>>& initial = {});
+
+/// Simulation settings a caller gives (command-line options, Python keywords); unset ones keep
+/// the model file's `simulate:` values.
+struct RunSettings {
+  std::optional<double> t_end, output_step, rtol, atol, step;
+  std::optional<std::string> integrator;
+};
+
+/// The model's `simulate:` settings with `given` applied and projection as the model says;
+/// UsageError for a non-positive end time, output step or tolerance.
+SimulationOptions simulation_options(const Model& model, const RunSettings& given);
+
+/// What evaluates the tapes (docs/theory.md §8): "off" the interpreter, "on" machine code at once
+/// (false when it could not be had, evaluation_note() says why), "auto" machine code compiled in
+/// the background for large tapes; UsageError for another word.
+bool choose_evaluation(Dynamics& dynamics, const std::string& mode);
 
 }  // namespace lagrange::cli

@@ -32,4 +32,13 @@ foreach(f include/lagrange/model.hpp include/lagrange/simulation.hpp
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
+if(PYTHON)  # the Python module: importable from PREFIX/PYTHON_DIR, it runs the installed example
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${PREFIX}/${PYTHON_DIR} ${PYTHON} -c
+                          "import lagrange, sys; print(lagrange.__file__); print(lagrange.load(sys.argv[1]).simulate(t_end=1).status)"
+                          ${doc}/examples/pendulum.yaml
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out STREQUAL "${PREFIX}/${PYTHON_DIR}/lagrange/__init__.py\ncomplete\n")
+    message(FATAL_ERROR "installed Python module: exit ${rc}: ${out}${err}")
+  endif()
+endif()
 file(REMOVE_RECURSE ${PREFIX})

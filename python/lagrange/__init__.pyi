@@ -1,0 +1,168 @@
+"""Type stubs of the lagrange module (docs/python.md)."""
+
+from typing import Dict, List, Mapping, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Vector = npt.NDArray[np.float64]
+
+class ModelError(ValueError):
+    """A mistake in a model; the message reads 'file:line:column: error: ...'."""
+
+    file: str
+    """The model file (or the label given to loads)."""
+    line: int
+    """1-based line of the mistake (0 when unknown)."""
+    column: int
+    """1-based column of the mistake (0 when unknown)."""
+    detail: str
+    """The message without the location."""
+
+class SimulationError(RuntimeError):
+    """A numerical failure: singular mass matrix, integrator gave up, NaN."""
+
+    time: float
+    """The time at which the run failed."""
+    run: Optional["Run"]
+    """The trajectory computed up to the failure (None when raised by forward)."""
+
+class Equations:
+    """Euler-Lagrange equations as `lagrange derive` prints them (Lagrangian form)."""
+
+    @property
+    def text(self) -> str:
+        """Plain text, as `lagrange derive` prints it."""
+    @property
+    def latex(self) -> str:
+        """LaTeX, as `lagrange derive --format latex` prints it."""
+    @property
+    def json(self) -> str:
+        """A JSON document, as `lagrange derive --format json` prints it."""
+    def _repr_latex_(self) -> str: ...
+
+class Run:
+    """A simulated trajectory; columns are read-only numpy views of the engine's buffer."""
+
+    @property
+    def columns(self) -> List[str]:
+        """t, coordinates, velocities (NAME_dot), kinetic, potential, energy, outputs, ..."""
+    @property
+    def t(self) -> Vector:
+        """Sample times (a view)."""
+    def __getitem__(self, column: str) -> Vector:
+        """The named column (a view); KeyError for an unknown name."""
+    def __contains__(self, column: str) -> bool: ...
+    def __len__(self) -> int:
+        """Number of samples."""
+    @property
+    def array(self) -> npt.NDArray[np.float64]:
+        """All samples, rows x columns, a view without a copy."""
+    @property
+    def status(self) -> str:
+        """'complete', 'failed' or 'interrupted'."""
+    @property
+    def message(self) -> str:
+        """Why the run failed ('' when complete)."""
+    @property
+    def failure_time(self) -> float:
+        """Where a failed run stopped."""
+    @property
+    def notes(self) -> List[str]:
+        """What the engine noted, e.g. how it projected the initial state."""
+    @property
+    def stats(self) -> Dict[str, Union[int, float, str]]:
+        """steps, rhs_evals, failed_steps, method, rotation_drift."""
+    def report(self, path: str) -> None:
+        """Write the HTML report (3-D animation, plots, equations, statistics) to path (.html),
+        as `lagrange simulate --report` does."""
+    def _repr_html_(self) -> str:
+        """The report inline in a notebook (an iframe)."""
+    def to_pandas(self) -> "pandas.DataFrame":  # type: ignore[name-defined]  # noqa: F821
+        """A pandas DataFrame of the samples (pandas is imported only here)."""
+
+class Model:
+    """A model read, derived, compiled and checked as `lagrange simulate` does."""
+
+    @property
+    def name(self) -> str:
+        """The model's name."""
+    @property
+    def path(self) -> str:
+        """The file it was read from (or the label given to loads)."""
+    @property
+    def coordinates(self) -> List[str]:
+        """Position coordinates q, in state order."""
+    @property
+    def velocities(self) -> List[str]:
+        """Velocities v in state order (NAME_dot for plain coordinates)."""
+    @property
+    def constraints(self) -> List[str]:
+        """Constraint names (one multiplier each)."""
+    @property
+    def parameters(self) -> Dict[str, float]:
+        """Parameter values by name (with the values given as set=)."""
+    @property
+    def inputs(self) -> List[str]:
+        """Names of the model's inputs."""
+    @property
+    def columns(self) -> List[str]:
+        """The columns a run of this model has."""
+    @property
+    def initial_state(self) -> Tuple[Vector, Vector]:
+        """(q, v) a run starts from, consistent with the constraints."""
+    def derive(self) -> Equations:
+        """The equations of motion, as `lagrange derive` prints them."""
+    def simulate(
+        self,
+        t_end: Optional[float] = None,
+        output_step: Optional[float] = None,
+        integrator: Optional[str] = None,
+        rtol: Optional[float] = None,
+        atol: Optional[float] = None,
+        step: Optional[float] = None,
+        compile: str = "auto",
+    ) -> Run:
+        """Simulate from the initial state; unset settings keep the file's simulate: values.
+
+        Releases the GIL while integrating. Raises SimulationError (with .run, the partial
+        trajectory) when the integration fails, ValueError for a bad setting. compile="on"
+        warns (RuntimeWarning) when machine code cannot be had and the interpreter runs.
+        """
+    def forward(
+        self, q: ArrayLike, v: ArrayLike, t: float = 0.0
+    ) -> Union[Vector, Tuple[Vector, Vector]]:
+        """Accelerations (q-double-dot for plain coordinates) at (t, q, v); (a, lambda) when
+        the model has constraints."""
+    def forward_batch(
+        self, Q: ArrayLike, V: ArrayLike, t: float = 0.0
+    ) -> Union[npt.NDArray[np.float64], Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
+        """forward for each row of Q (rows x nq) and V (rows x nv), GIL released."""
+    def export_c(self, dir: str) -> None:
+        """Write lagrange_model.h and lagrange_model.c into dir (as `lagrange export`)."""
+    def __reduce__(self) -> object: ...
+
+def load(
+    path: str,
+    *,
+    set: Mapping[str, float] = ...,
+    initial: Mapping[str, float] = ...,
+    dynamics: str = "auto",
+) -> Model:
+    """Read, derive, compile and check a model file; `set` replaces parameter values, `initial`
+    the initial values of coordinates and velocities (NAME_dot), as --set and --initial do.
+
+    Raises ModelError (with .file, .line, .column) for a mistake in the file and ValueError
+    for a `set` name the model does not have or a value it rejects.
+    """
+
+def loads(
+    text: str,
+    *,
+    set: Mapping[str, float] = ...,
+    initial: Mapping[str, float] = ...,
+    dynamics: str = "auto",
+    label: str = "<string>",
+) -> Model:
+    """As load, for YAML text; `label` names it in error messages."""

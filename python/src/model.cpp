@@ -1,0 +1,280 @@
+#include "model.hpp"
+
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "arrays.hpp"
+#include "errors.hpp"
+#include "lagrange/io.hpp"
+#include "run.hpp"
+
+namespace py = pybind11;
+
+namespace lagrange::python {
+
+namespace {
+
+// The file's text, so that a pickled model carries it; nullopt when it cannot be read here (the
+// reader then reports why) or when the reader makes the text itself (a bare .urdf file).
+std::optional<std::string> file_text(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::path(path).extension() == ".urdf" ||
+      !std::filesystem::is_regular_file(path, ec))
+    return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in || in.bad()) return std::nullopt;
+  return text.str();
+}
+
+/// Derived equations in the Lagrangian form (as `lagrange derive` prints them), each format made
+/// once on first use.
+struct PyEquations {
+  std::shared_ptr<cli::Prepared> prepared;  // keeps the Model the equations point into alive
+  std::shared_ptr<const Equations> equations;
+  std::optional<std::string> text, latex, json;
+
+  const std::string& format(std::optional<std::string>& cache, const char* name) {
+    if (!cache) cache = format_equations(*equations, name);
+    return *cache;
+  }
+};
+
+// The LaTeX for a notebook: its `% heading` comment lines become plain-text headings between the
+// align* blocks that MathJax renders.
+std::string notebook_latex(const std::string& latex) {
+  std::istringstream in(latex);
+  std::string out, line;
+  while (std::getline(in, line)) out += (line.rfind("% ", 0) == 0 ? line.substr(2) : line) + "\n";
+  return out;
+}
+
+const cli::Prepared& prepared(const PyModel& m) {
+  return *m.prepared;
+}
+
+py::dict parameters(const PyModel& m) {
+  const CompiledModel& cm = *m.prepared->compiled;
+  const std::vector<double>& values = m.prepared->dynamics->parameters();
+  py::dict out;
+  for (size_t i = 0; i < cm.np; ++i) out[py::str(cm.parameter_names[i])] = values[i];
+  return out;
+}
+
+py::object simulate(const PyModel& m, std::optional<double> t_end,
+                    std::optional<double> output_step, std::optional<std::string> integrator,
+                    std::optional<double> rtol, std::optional<double> atol,
+                    std::optional<double> step, const std::string& compile) {
+  const cli::Prepared& p = prepared(m);
+  const SimulationOptions so = cli::simulation_options(
+      *p.model, cli::RunSettings{t_end, output_step, rtol, atol, step, integrator});
+  // A workspace of its own, so that runs of one model on several threads never share scratch.
+  Dynamics dynamics(p.compiled, p.dynamics->parameters());
+  dynamics.set_baumgarte(p.dynamics->baumgarte());
+  if (!cli::choose_evaluation(dynamics, compile)) {
+    const std::string why =
+        "machine code: " + dynamics.machine_code_error() + "; the tape interpreter runs instead";
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, why.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  auto run = std::make_unique<Run>();
+  run->prepared = m.prepared;
+  run->integrator = so.integrator.method;
+  {
+    py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
+    run->trajectory = lagrange::simulate(dynamics, so, p.q, p.v);
+    run->wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  if (!p.initial.was_consistent)
+    run->trajectory.notes.insert(run->trajectory.notes.begin(), p.initial.note());
+  const Trajectory::Status status = run->trajectory.status;
+  const std::string message = run->trajectory.message;
+  const double failed_at = run->trajectory.failure_time;
+  py::object result = py::cast(std::move(run));
+  if (status == Trajectory::Status::Failed) raise_simulation_error(message, failed_at, result);
+  return result;
+}
+
+// q̇ is not returned: for plain coordinates it is v; a = v̇ (q̈ for plain coordinates).
+py::object forward(PyModel& m, const DoubleArray& q_in, const DoubleArray& v_in, double t) {
+  cli::Prepared& p = *m.prepared;
+  const CompiledModel& cm = *p.compiled;
+  const double* q = vector_data(q_in, cm.nq, "q");
+  const double* v = vector_data(v_in, cm.nv, "v");
+  py::array_t<double> a(static_cast<py::ssize_t>(cm.nv)), lambda(static_cast<py::ssize_t>(cm.m));
+  m.qdot.resize(cm.nq);
+  p.dynamics->forward(t, q, v, m.qdot.data(), a.mutable_data(), lambda.mutable_data());
+  if (cm.m == 0) return std::move(a);
+  return py::make_tuple(a, lambda);
+}
+
+py::object forward_batch(const PyModel& m, const DoubleArray& Q, const DoubleArray& V, double t) {
+  const cli::Prepared& p = prepared(m);
+  const CompiledModel& cm = *p.compiled;
+  require_matrix(Q, cm.nq, "Q");
+  require_matrix(V, cm.nv, "V");
+  const size_t rows = static_cast<size_t>(Q.shape(0));
+  if (static_cast<size_t>(V.shape(0)) != rows)
+    throw py::value_error("V: expected " + std::to_string(rows) + " rows like Q, got " +
+                          std::to_string(V.shape(0)));
+  py::array_t<double> A({rows, cm.nv}), L({rows, cm.m});
+  double* a = A.mutable_data();
+  double* lambda = L.mutable_data();
+  const double* q = Q.data();
+  const double* v = V.data();
+  {
+    py::gil_scoped_release release;
+    Dynamics dynamics(p.compiled, p.dynamics->parameters());
+    dynamics.set_baumgarte(p.dynamics->baumgarte());
+    std::vector<double> qdot(cm.nq);
+    for (size_t r = 0; r < rows; ++r)
+      dynamics.forward(t, q + r * cm.nq, v + r * cm.nv, qdot.data(), a + r * cm.nv,
+                       lambda + r * cm.m);
+  }
+  if (cm.m == 0) return std::move(A);
+  return py::make_tuple(A, L);
+}
+
+// initial= in its order (a dict keeps the caller's), as NAME=VALUE pairs.
+std::vector<std::pair<std::string, double>> initial_values(const py::dict& given) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [name, value] : given)
+    out.emplace_back(name.cast<std::string>(), value.cast<double>());
+  return out;
+}
+
+py::tuple pickled(const PyModel& m) {
+  py::object text = m.source.text ? py::object(py::str(*m.source.text)) : py::none();
+  return py::make_tuple(m.source.path, text, m.overrides, m.dynamics, m.initial);
+}
+
+PyModel unpickled(const py::tuple& state) {
+  if (state.size() != 5) throw std::runtime_error("lagrange.Model: invalid pickled state");
+  cli::ModelSource source{state[0].cast<std::string>(),
+                          state[1].cast<std::optional<std::string>>()};
+  return load_model(std::move(source), state[2].cast<ParameterOverrides>(),
+                    state[3].cast<std::string>(),
+                    state[4].cast<std::vector<std::pair<std::string, double>>>());
+}
+
+}  // namespace
+
+PyModel load_model(cli::ModelSource source, ParameterOverrides overrides,
+                   const std::string& dynamics,
+                   std::vector<std::pair<std::string, double>> initial) {
+  PyModel m{std::move(source), std::move(overrides), dynamics, std::move(initial), nullptr, {}};
+  m.prepared = std::make_shared<cli::Prepared>(
+      cli::prepare_source(m.source, m.overrides, dynamics, m.initial));
+  return m;
+}
+
+void bind_model(py::module_& m) {
+  py::class_<PyEquations>(m, "Equations",
+                          "Euler–Lagrange equations as `lagrange derive` prints them; Jupyter "
+                          "shows them as LaTeX.")
+      .def_property_readonly(
+          "text", [](PyEquations& e) { return e.format(e.text, "text"); }, "Plain text.")
+      .def_property_readonly(
+          "latex", [](PyEquations& e) { return e.format(e.latex, "latex"); }, "LaTeX source.")
+      .def_property_readonly(
+          "json", [](PyEquations& e) { return e.format(e.json, "json"); }, "A JSON document.")
+      .def("_repr_latex_",
+           [](PyEquations& e) { return notebook_latex(e.format(e.latex, "latex")); })
+      .def("__str__", [](PyEquations& e) { return e.format(e.text, "text"); });
+
+  py::class_<PyModel>(m, "Model",
+                      "A model read, derived, compiled and checked as `lagrange simulate` does; "
+                      "make one with lagrange.load or lagrange.loads.")
+      .def_property_readonly(
+          "name", [](const PyModel& pm) { return prepared(pm).model->name; }, "The model's name.")
+      .def_property_readonly(
+          "path", [](const PyModel& pm) { return pm.source.path; },
+          "The file it was read from (or the label given to loads).")
+      .def_property_readonly(
+          "coordinates", [](const PyModel& pm) { return prepared(pm).compiled->coordinate_names; },
+          "Position coordinates q, in state order.")
+      .def_property_readonly(
+          "velocities", [](const PyModel& pm) { return prepared(pm).compiled->velocity_names; },
+          "Velocities v, in state order (NAME_dot for plain coordinates).")
+      .def_property_readonly(
+          "constraints", [](const PyModel& pm) { return prepared(pm).compiled->constraint_names; },
+          "Constraint names (one multiplier λ each).")
+      .def_property_readonly("parameters", &parameters, "Parameter values by name.")
+      .def_property_readonly(
+          "inputs", [](const PyModel& pm) { return prepared(pm).compiled->input_names; },
+          "Names of the model's inputs (functions of t written in the file).")
+      .def_property_readonly(
+          "columns", [](const PyModel& pm) { return trajectory_columns(*prepared(pm).compiled); },
+          "The columns a run of this model has.")
+      .def_property_readonly(
+          "initial_state",
+          [](const PyModel& pm) {
+            return py::make_tuple(to_array(prepared(pm).q), to_array(prepared(pm).v));
+          },
+          "(q, v) a run starts from: the file's, made consistent with the constraints.")
+      .def(
+          "derive",
+          [](const PyModel& pm) {
+            PyEquations e;
+            e.prepared = pm.prepared;
+            e.equations = std::make_shared<const Equations>(derive(*pm.prepared->model));
+            return e;
+          },
+          "The equations of motion (Lagrangian form, as `lagrange derive`).")
+      .def("simulate", &simulate, py::arg("t_end") = py::none(),
+           py::arg("output_step") = py::none(), py::arg("integrator") = py::none(),
+           py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("step") = py::none(),
+           py::arg("compile") = "auto",
+           "Simulate from the initial state (unset settings keep the file's simulate: values), "
+           "with the GIL released. Raises SimulationError carrying the partial run on failure.")
+      .def("forward", &forward, py::arg("q"), py::arg("v"), py::arg("t") = 0.0,
+           "Accelerations v̇ at (t, q, v) (q̈ for plain coordinates); for a constrained model "
+           "the tuple (v̇, λ).")
+      .def("forward_batch", &forward_batch, py::arg("Q"), py::arg("V"), py::arg("t") = 0.0,
+           "forward for each row of Q (rows × nq) and V (rows × nv) with the GIL released: "
+           "rows × nv accelerations, or (accelerations, rows × m multipliers).")
+      .def(
+          "export_c",
+          [](const PyModel& pm, const std::string& dir) { export_c(*prepared(pm).compiled, dir); },
+          py::arg("dir"),
+          "Write lagrange_model.h and lagrange_model.c (standalone C99) into dir, as `lagrange "
+          "export`.")
+      .def("__repr__",
+           [](const PyModel& pm) {
+             const CompiledModel& cm = *prepared(pm).compiled;
+             return "<lagrange.Model '" + prepared(pm).model->name + "': " + std::to_string(cm.nq) +
+                    " coordinates, " + std::to_string(cm.m) + " constraints>";
+           })
+      .def(py::pickle(&pickled, &unpickled));
+
+  m.def(
+      "load",
+      [](const std::string& path, const ParameterOverrides& set, const py::dict& initial,
+         const std::string& dynamics) {
+        return load_model(cli::ModelSource{path, file_text(path)}, set, dynamics,
+                          initial_values(initial));
+      },
+      py::arg("path"), py::kw_only(), py::arg("set") = ParameterOverrides{},
+      py::arg("initial") = py::dict(), py::arg("dynamics") = "auto",
+      "Read a model file with parameter values `set` replacing the file's and `initial` values of "
+      "coordinates and velocities (NAME_dot) replacing its initial state; derive, compile and "
+      "check it. `dynamics`: auto, lagrangian or recursive (as `lagrange simulate --dynamics`).");
+  m.def(
+      "loads",
+      [](const std::string& text, const ParameterOverrides& set, const py::dict& initial,
+         const std::string& dynamics, const std::string& label) {
+        return load_model(cli::ModelSource{label, text}, set, dynamics, initial_values(initial));
+      },
+      py::arg("text"), py::kw_only(), py::arg("set") = ParameterOverrides{},
+      py::arg("initial") = py::dict(), py::arg("dynamics") = "auto", py::arg("label") = "<string>",
+      "As load, for YAML text; `label` names it in error messages.");
+}
+
+}  // namespace lagrange::python
