@@ -76,7 +76,7 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
       *p.model, cli::RunSettings{t_end, output_step, rtol, atol, step, integrator});
   // A workspace of its own, so that runs of one model on several threads never share scratch.
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
-  dynamics.set_baumgarte(p.dynamics->baumgarte());
+  dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
   if (!cli::choose_evaluation(dynamics, compile)) {
     const std::string why =
         "machine code: " + dynamics.machine_code_error() + "; the tape interpreter runs instead";
