@@ -70,6 +70,26 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
   const std::vector<GiNaC::symbol> in = eq.tape_inputs();
   SymbolColumns column_of;
   for (size_t k = 0; k < columns_.size(); ++k) column_of.emplace(in[columns_[k]], k);
+  // A parameter also acts through the prescribed inputs u(t, p), u̇, ü (Model::inputs):
+  // d/dp = ∂/∂p + Σᵢ (∂/∂uᵢ ∂uᵢ/∂p + ∂/∂u̇ᵢ ∂u̇ᵢ/∂p + ∂/∂üᵢ ∂üᵢ/∂p). `through` holds, per
+  // column, the (input symbol, ∂signal/∂p) pairs, and the input symbols point to those columns.
+  const Model& model = *eq.model;
+  std::vector<std::vector<std::pair<GiNaC::ex, GiNaC::ex>>> through(columns_.size());
+  std::map<GiNaC::ex, std::vector<size_t>, GiNaC::ex_is_less> implies;
+  for (size_t k = 0; k < columns_.size(); ++k) {
+    if (columns_[k] < c.p_offset()) continue;
+    const GiNaC::symbol& p = in[columns_[k]];
+    for (const auto& u : model.inputs) {
+      const GiNaC::ex signals[3] = {u.expr, u.expr.diff(model.t), u.expr.diff(model.t, 2)};
+      const GiNaC::ex symbols[3] = {u.u, u.ud, u.udd};
+      for (size_t d = 0; d < 3; ++d) {
+        const GiNaC::ex ds = signals[d].diff(p);
+        if (ds.is_zero()) continue;
+        through[k].emplace_back(symbols[d], ds);
+        implies[symbols[d]].push_back(k);
+      }
+    }
+  }
 
   // Values: the dynamics tape's outputs up to (not including) ∂C/∂q, then the model's outputs.
   std::vector<GiNaC::ex> values = dynamics_expressions(eq, c);
@@ -83,8 +103,15 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
   std::vector<GiNaC::ex> all = values;
   for (size_t r = 0; r < values.size(); ++r) {
     if (r >= c.qdot_out() && r < c.G_out()) continue;
-    for (size_t k : columns_in(column_of, values[r])) {
-      const GiNaC::ex d = values[r].diff(in[columns_[k]]);
+    std::vector<size_t> cols = columns_in(column_of, values[r]);
+    for (const auto& [symbol, ks] : implies)
+      if (values[r].has(symbol)) cols.insert(cols.end(), ks.begin(), ks.end());
+    std::sort(cols.begin(), cols.end());
+    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+    for (size_t k : cols) {
+      GiNaC::ex d = values[r].diff(in[columns_[k]]);
+      for (const auto& [symbol, ds] : through[k])
+        d += values[r].diff(GiNaC::ex_to<GiNaC::symbol>(symbol)) * ds;
       if (d.is_zero()) continue;
       pattern_.emplace_back(r, k);
       all.push_back(d);

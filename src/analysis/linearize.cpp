@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "lagrange/analysis.hpp"
 
@@ -44,6 +45,19 @@ void output_rows(const CompiledModel& cm, const TangentChart& chart, const State
           known));
     }
   }
+}
+
+// A NaN or infinite derivative: the dynamics are not differentiable at the point (|x| at 0, a
+// norm at the zero vector under a division, …); name the first entry.
+void require_finite(const Eigen::MatrixXd& X, const std::vector<std::string>& rows,
+                    const std::vector<std::string>& cols, const char* what) {
+  for (long j = 0; j < X.cols(); ++j)
+    for (long i = 0; i < X.rows(); ++i)
+      if (!std::isfinite(X(i, j)))
+        throw AnalysisError(fmt::format(
+            "{} is not finite at the operating point (d {}/d {} = {}): the dynamics are not "
+            "differentiable there",
+            what, rows[static_cast<size_t>(i)], cols[static_cast<size_t>(j)], X(i, j)));
 }
 
 }  // namespace
@@ -111,6 +125,8 @@ LinearModel linearize(const DynamicsJacobian& jac, Dynamics& dyn, double t, cons
     for (long k = 0; k < 2 * m; ++k) W.row(d[static_cast<size_t>(k)]) = Zd.row(k);
   }
   const long r = static_cast<long>(independent.size());
+  require_finite(A, lin.full_state_names, lin.full_state_names, "A");
+  require_finite(B, lin.full_state_names, lin.input_names, "B");
   lin.A.resize(r, r);
   lin.B.resize(r, B.cols());
   const Eigen::MatrixXd AW = A * W;

@@ -76,6 +76,11 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
     const Eigen::MatrixXd Ax = J.a_q * chart.T;
     Eigen::MatrixXd Af(n, static_cast<long>(unknowns.size()));
     for (size_t k = 0; k < unknowns.size(); ++k) Af.col(static_cast<long>(k)) = Ax.col(unknowns[k]);
+    if (!Af.allFinite())
+      throw AnalysisError(fmt::format(
+          "trim: the Jacobian ∂a/∂q is not finite at iteration {} (the dynamics are not "
+          "differentiable there); stopped at {}",
+          it, describe(cm, result.q)));
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Af);
     qr.setThreshold(1e-10);
     if (qr.rank() < Af.cols()) {
