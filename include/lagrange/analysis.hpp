@@ -34,19 +34,22 @@ struct StateJacobian {
   Eigen::MatrixXd y_q, y_v, y_w;    ///< their derivatives
 };
 
-/// The dynamics tape's outputs (M, h + Q, q̇, G, c, Ċ, C) and the model's outputs with their exact
+/// The dynamics tape's outputs (M, h + Q, q̇, G, c, Ċ, C) and named model outputs with their exact
 /// derivatives with respect to q, v and named inputs (model `inputs:` or parameters), compiled
 /// onto one tape that keeps only the structural non-zeros (docs/theory.md §5.1). Immutable.
 class DynamicsJacobian {
  public:
   /// Differentiate `eq` (compiled as `cm`) symbolically. `inputs` names model inputs or
-  /// parameters; std::invalid_argument for an unknown name (saying what is known), for the
-  /// recursive formulation (derive with Formulation::Lagrangian) and for repeated names.
+  /// parameters, `outputs` model outputs (CompiledModel::output_names) to differentiate too;
+  /// std::invalid_argument for an unknown or repeated name (saying what is known) and for the
+  /// recursive formulation (derive with Formulation::Lagrangian).
   DynamicsJacobian(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
-                   const std::vector<std::string>& inputs = {});
+                   const std::vector<std::string>& inputs = {},
+                   const std::vector<std::string>& outputs = {});
 
   const CompiledModel& model() const { return *cm_; }
   const std::vector<std::string>& input_names() const { return input_names_; }
+  const std::vector<std::string>& output_names() const { return output_names_; }
   /// Structural non-zeros of the derivatives (the sparsity the tape keeps).
   size_t nonzeros() const { return pattern_.size(); }
   const Tape& tape() const { return tape_; }
@@ -59,7 +62,7 @@ class DynamicsJacobian {
 
  private:
   std::shared_ptr<const CompiledModel> cm_;
-  std::vector<std::string> input_names_;
+  std::vector<std::string> input_names_, output_names_;
   std::vector<size_t> columns_;  ///< tape input index of each column: q, v, then the inputs
   size_t values_ = 0;            ///< leading tape outputs that are values, not derivatives
   size_t outputs_ = 0;           ///< model outputs among the values (after the dynamics')

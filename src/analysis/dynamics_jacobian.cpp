@@ -52,8 +52,9 @@ size_t named_input(const CompiledModel& cm, const std::string& name) {
 }  // namespace
 
 DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
-                                   const std::vector<std::string>& inputs)
-    : cm_(std::move(cm)), input_names_(inputs) {
+                                   const std::vector<std::string>& inputs,
+                                   const std::vector<std::string>& outputs)
+    : cm_(std::move(cm)), input_names_(inputs), output_names_(outputs) {
   const CompiledModel& c = *cm_;
   if (eq.recursive || !eq.definitions.empty())
     throw std::invalid_argument(
@@ -94,9 +95,20 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
   // Values: the dynamics tape's outputs up to (not including) ∂C/∂q, then the model's outputs.
   std::vector<GiNaC::ex> values = dynamics_expressions(eq, c);
   values.resize(c.Cq_out());
-  values.insert(values.end(), eq.outputs.begin(), eq.outputs.end());
+  for (const auto& name : outputs) {
+    const auto it = std::find(c.output_names.begin(), c.output_names.end(), name);
+    if (it == c.output_names.end()) {
+      std::string known;
+      for (const auto& n : c.output_names) known += (known.empty() ? "" : ", ") + n;
+      throw std::invalid_argument(fmt::format("no output '{}' in the model (expected one of: {})",
+                                              name, known.empty() ? "none" : known));
+    }
+    if (std::count(outputs.begin(), outputs.end(), name) > 1)
+      throw std::invalid_argument(fmt::format("output '{}' named twice", name));
+    values.push_back(eq.outputs[static_cast<size_t>(it - c.output_names.begin())]);
+  }
   values_ = values.size();
-  outputs_ = eq.outputs.size();
+  outputs_ = outputs.size();
 
   // docs/theory.md §5.1: ∂e/∂x for each value e and each column symbol it contains; q̇ is not
   // differentiated (the tangent chart supplies the kinematics' derivatives).

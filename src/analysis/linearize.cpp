@@ -17,8 +17,9 @@ long index_of(const std::vector<std::string>& names, const std::string& name) {
 }
 
 // Rows of C (full tangent state) and D for the named outputs.
-void output_rows(const CompiledModel& cm, const TangentChart& chart, const StateJacobian& J,
+void output_rows(const DynamicsJacobian& jac, const TangentChart& chart, const StateJacobian& J,
                  const std::vector<std::string>& outputs, Eigen::MatrixXd& C, Eigen::MatrixXd& D) {
+  const CompiledModel& cm = jac.model();
   const long n = static_cast<long>(cm.nv);
   C = Eigen::MatrixXd::Zero(static_cast<long>(outputs.size()), 2 * n);
   D = Eigen::MatrixXd::Zero(static_cast<long>(outputs.size()), J.a_w.cols());
@@ -31,10 +32,14 @@ void output_rows(const CompiledModel& cm, const TangentChart& chart, const State
       C.row(row).head(n) = chart.T.row(j);  // a rotation entry: δR_ij = (T δx)_ij
     } else if (const long k = index_of(cm.velocity_names, name); k >= 0) {
       C(row, n + k) = 1.0;
-    } else if (const long y = index_of(cm.output_names, name); y >= 0) {
+    } else if (const long y = index_of(jac.output_names(), name); y >= 0) {
       C.row(row).head(n) = J.y_q.row(y) * chart.T;
       C.row(row).tail(n) = J.y_v.row(y);
       D.row(row) = J.y_w.row(y);
+    } else if (index_of(cm.output_names, name) >= 0) {
+      throw std::invalid_argument(fmt::format(
+          "output '{}' was not differentiated: name it among the DynamicsJacobian's outputs",
+          name));
     } else {
       std::string known;
       for (const auto& s : chart.names) known += (known.empty() ? "" : ", ") + s;
@@ -144,7 +149,7 @@ LinearModel linearize(const DynamicsJacobian& jac, Dynamics& dyn, double t, cons
   } else {
     lin.output_names = outputs;
     Eigen::MatrixXd Cfull;
-    output_rows(cm, chart, J, outputs, Cfull, lin.D);
+    output_rows(jac, chart, J, outputs, Cfull, lin.D);
     lin.C = Cfull * W;
   }
   return lin;

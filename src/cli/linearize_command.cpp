@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -186,7 +187,13 @@ int run_linearize(const Options& opt) {
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--at", "lagrangian");
   std::unique_ptr<DynamicsJacobian> jac;
   try {
-    jac = std::make_unique<DynamicsJacobian>(p.equations, p.compiled, opt.inputs);
+    // Only the named model outputs are differentiated (a tether's per-segment outputs cost).
+    std::vector<std::string> model_outputs;
+    for (const auto& name : opt.outputs)
+      if (std::count(p.compiled->output_names.begin(), p.compiled->output_names.end(), name) &&
+          !std::count(model_outputs.begin(), model_outputs.end(), name))
+        model_outputs.push_back(name);
+    jac = std::make_unique<DynamicsJacobian>(p.equations, p.compiled, opt.inputs, model_outputs);
   } catch (const std::invalid_argument& e) {
     throw UsageError(fmt::format("--inputs: {}", e.what()));
   }

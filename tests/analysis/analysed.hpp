@@ -33,14 +33,15 @@ struct Analysed {
 };
 
 /// `model` analysed with derivatives with respect to `inputs` (model inputs or parameters).
-inline Analysed analyse(std::unique_ptr<Model> model, const std::vector<std::string>& inputs = {}) {
+inline Analysed analyse(std::unique_ptr<Model> model, const std::vector<std::string>& inputs = {},
+                        const std::vector<std::string>& outputs = {}) {
   Analysed a;
   a.model = std::move(model);
   a.eq = derive(*a.model);
   a.cm = compile(a.eq);
   a.dyn = std::make_unique<Dynamics>(a.cm, a.cm->parameter_defaults);
   a.dyn->set_baumgarte(a.model->stabilization.alpha);
-  a.jac = std::make_unique<DynamicsJacobian>(a.eq, a.cm, inputs);
+  a.jac = std::make_unique<DynamicsJacobian>(a.eq, a.cm, inputs, outputs);
   a.q = a.cm->q0;
   a.v = a.cm->v0;
   if (a.cm->m > 0) a.dyn->project(0.0, a.q.data(), a.v.data(), a.cm->fixed);
@@ -52,9 +53,9 @@ inline Analysed analyse_example(const std::string& name,
   return analyse(std::make_unique<Model>(read_model_file(example_path(name))), inputs);
 }
 
-inline Analysed analyse_string(const std::string& yaml,
-                               const std::vector<std::string>& inputs = {}) {
-  return analyse(std::make_unique<Model>(read_model_string(yaml, "<test>")), inputs);
+inline Analysed analyse_string(const std::string& yaml, const std::vector<std::string>& inputs = {},
+                               const std::vector<std::string>& outputs = {}) {
+  return analyse(std::make_unique<Model>(read_model_string(yaml, "<test>")), inputs, outputs);
 }
 
 }  // namespace lagrange::testing

@@ -153,7 +153,7 @@ generalized_forces: {theta: (F + F0)*l*cos(theta)}
 outputs:
   bob_x: bob.x + 0.5*F
 )";
-  auto s = analyse_string(yaml, {"F", "F0"});
+  auto s = analyse_string(yaml, {"F", "F0"}, {"bob_x"});
   const LinearModel lin = s.linear({"bob_x"});
   ASSERT_EQ(lin.B.cols(), 2);
   EXPECT_NEAR(lin.B(1, 0), 1.5 / (2.0 * 1.5 * 1.5), 1e-12);  // F l / (m l²)
