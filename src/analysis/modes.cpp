@@ -38,8 +38,10 @@ std::vector<Mode> modes(const LinearModel& lin, size_t components) {
     const std::complex<double> lambda = es.eigenvalues()[k];
     if (lambda.imag() < -1e-12 * scale) continue;  // the conjugate of a listed pair
     Mode mode;
-    mode.eigenvalue = {lambda.real(),
-                       std::abs(lambda.imag()) <= 1e-12 * scale ? 0.0 : lambda.imag()};
+    // Parts below round-off of A's scale are zero: a conservative system's pairs are printed
+    // as purely imaginary, with damping 0 and an infinite time constant.
+    const auto clean = [&](double x) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; };
+    mode.eigenvalue = {clean(lambda.real()), clean(lambda.imag())};
     const double mag = std::abs(mode.eigenvalue);
     mode.frequency_hz = mag / (2 * M_PI);
     mode.damping = mag > 0 ? -mode.eigenvalue.real() / mag + 0.0 : 0.0;

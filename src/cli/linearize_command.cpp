@@ -31,14 +31,15 @@ std::string text_matrix(const std::string& title, const Eigen::MatrixXd& X,
   if (X.cols() > kTextMatrixLimit || X.rows() > 4 * kTextMatrixLimit)
     return fmt::format("{} ({}×{}): too large for text; use --format csv or json\n", title,
                        X.rows(), X.cols());
-  size_t w = 0;
+  size_t w = 0, cw = 12;
   for (const auto& r : rows) w = std::max(w, r.size());
+  for (const auto& c : cols) cw = std::max(cw, c.size());
   std::string out = fmt::format("{} ({}×{})\n  {:<{}}", title, X.rows(), X.cols(), "", w);
-  for (const auto& c : cols) out += fmt::format(" {:>12.12}", c);
+  for (const auto& c : cols) out += fmt::format(" {:>{}}", c, cw);
   out += "\n";
   for (long i = 0; i < X.rows(); ++i) {
     out += fmt::format("  {:<{}}", rows[static_cast<size_t>(i)], w);
-    for (long j = 0; j < X.cols(); ++j) out += fmt::format(" {:>12.6g}", X(i, j) + 0.0);
+    for (long j = 0; j < X.cols(); ++j) out += fmt::format(" {:>{}.6g}", X(i, j) + 0.0, cw);
     out += "\n";
   }
   return out;
