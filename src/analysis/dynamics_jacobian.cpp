@@ -6,32 +6,12 @@
 #include <algorithm>
 #include <map>
 
+#include "analysis/memo_diff.hpp"
 #include "lagrange/analysis.hpp"
 
 namespace lagrange {
 
 namespace {
-
-using SymbolColumns = std::map<GiNaC::ex, size_t, GiNaC::ex_is_less>;
-
-// The columns whose symbols occur in e, ascending, found in one pass over e.
-std::vector<size_t> columns_in(const SymbolColumns& columns, const GiNaC::ex& e) {
-  std::vector<size_t> found;
-  std::vector<GiNaC::ex> stack{e};
-  while (!stack.empty()) {
-    const GiNaC::ex x = stack.back();
-    stack.pop_back();
-    if (GiNaC::is_a<GiNaC::symbol>(x)) {
-      const auto it = columns.find(x);
-      if (it != columns.end()) found.push_back(it->second);
-      continue;
-    }
-    for (size_t i = 0; i < x.nops(); ++i) stack.push_back(x.op(i));
-  }
-  std::sort(found.begin(), found.end());
-  found.erase(std::unique(found.begin(), found.end()), found.end());
-  return found;
-}
 
 // Tape input index of a named model input (u) or parameter.
 size_t named_input(const CompiledModel& cm, const std::string& name) {
@@ -69,8 +49,9 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
     columns_.push_back(index);
   }
   const std::vector<GiNaC::symbol> in = eq.tape_inputs();
-  SymbolColumns column_of;
-  for (size_t k = 0; k < columns_.size(); ++k) column_of.emplace(in[columns_[k]], k);
+  std::vector<GiNaC::symbol> column_symbols;
+  for (size_t k : columns_) column_symbols.push_back(in[k]);
+  analysis::MemoDiff differentiate(column_symbols);
   // A parameter also acts through the prescribed inputs u(t, p), u̇, ü (Model::inputs):
   // d/dp = ∂/∂p + Σᵢ (∂/∂uᵢ ∂uᵢ/∂p + ∂/∂u̇ᵢ ∂u̇ᵢ/∂p + ∂/∂üᵢ ∂üᵢ/∂p). `through` holds, per
   // column, the (input symbol, ∂signal/∂p) pairs, and the input symbols point to those columns.
@@ -115,13 +96,13 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
   std::vector<GiNaC::ex> all = values;
   for (size_t r = 0; r < values.size(); ++r) {
     if (r >= c.qdot_out() && r < c.G_out()) continue;
-    std::vector<size_t> cols = columns_in(column_of, values[r]);
+    std::vector<size_t> cols = differentiate.columns_in(values[r]);
     for (const auto& [symbol, ks] : implies)
       if (values[r].has(symbol)) cols.insert(cols.end(), ks.begin(), ks.end());
     std::sort(cols.begin(), cols.end());
     cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
     for (size_t k : cols) {
-      GiNaC::ex d = values[r].diff(in[columns_[k]]);
+      GiNaC::ex d = differentiate.diff(values[r], k);
       for (const auto& [symbol, ds] : through[k])
         d += values[r].diff(GiNaC::ex_to<GiNaC::symbol>(symbol)) * ds;
       if (d.is_zero()) continue;
