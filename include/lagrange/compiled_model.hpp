@@ -61,4 +61,7 @@ struct CompiledModel {
 /// tape inputs so that a new value needs no new derivation).
 std::shared_ptr<const CompiledModel> compile(const Equations& eq);
 
+/// The expressions of `cm.dynamics`' outputs, in its output order (`cm` compiled from `eq`).
+std::vector<GiNaC::ex> dynamics_expressions(const Equations& eq, const CompiledModel& cm);
+
 }  // namespace lagrange

@@ -27,8 +27,13 @@ struct Options {
   std::string report;      ///< simulate --report, report -o: the HTML report to write
   std::string trajectory;  ///< report: the saved trajectory CSV
   std::vector<std::string> plot_columns, sets;
-  std::vector<std::string> initial;  ///< --initial NAME=VALUE (coordinates, NAME_dot rates)
-  std::vector<std::string> tau;      ///< eval --tau NAME=VALUE (joint forces)
+  std::vector<std::string> initial;    ///< --initial NAME=VALUE (coordinates, NAME_dot rates)
+  std::vector<std::string> tau;        ///< eval --tau NAME=VALUE (joint forces)
+  std::vector<std::string> inputs;     ///< linearize --inputs: model inputs or parameters
+  std::vector<std::string> outputs;    ///< linearize --outputs: coordinates, velocities, outputs
+  std::optional<double> discrete;      ///< linearize --discrete DT (zero-order hold)
+  std::vector<std::string> free, fix;  ///< trim --free / --fix: tangent coordinates
+  double tol = 1e-9;                   ///< trim --tol: on max |acceleration|
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;
@@ -43,5 +48,9 @@ int run_check(const Options& opt);
 int run_report(const Options& opt);
 /// M, bias forces, accelerations and inverse dynamics at the state of --state (src/cli/eval.cpp).
 int run_eval(const Options& opt);
+/// A, B, C, D and the modes at an operating point (src/cli/linearize_command.cpp).
+int run_linearize(const Options& opt);
+/// An equilibrium by Newton's method, printed as an initial-state block (src/cli/trim_command.cpp).
+int run_trim(const Options& opt);
 
 }  // namespace lagrange::cli

@@ -1,5 +1,5 @@
 // The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval,
-// report.
+// report, linearize, trim.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
@@ -14,6 +14,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/version.hpp"
+#include "lagrange/analysis.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/integrator.hpp"
 
@@ -121,6 +122,36 @@ int main(int argc, char** argv) {
   report->add_option("--set", opt.sets, "parameter value the run used, NAME=VALUE (repeatable)");
   report->add_flag("-q,--quiet", opt.quiet, "no summary line");
 
+  auto* lin = app.add_subcommand(
+      "linearize", "A, B, C, D and the modes at an operating point, on the constraint manifold");
+  lin->add_option("model", opt.model, "model file (YAML or URDF)")->required();
+  lin->add_option("--at", opt.initial,
+                  "operating point: coordinate or rate NAME_dot, NAME=VALUE (comma-separated; "
+                  "others keep the model's initial values)")
+      ->delimiter(',');
+  lin->add_option("--inputs", opt.inputs,
+                  "columns of B and D: model inputs or parameters, comma-separated")
+      ->delimiter(',');
+  lin->add_option("--outputs", opt.outputs,
+                  "rows of C and D: coordinates, velocities or model outputs (default: the state)")
+      ->delimiter(',');
+  lin->add_option("--format", opt.format, "text | json | csv")
+      ->check(CLI::IsMember({"text", "json", "csv"}));
+  lin->add_option("--discrete", opt.discrete, "zero-order-hold discretisation with this step");
+  lin->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+
+  auto* trim = app.add_subcommand(
+      "trim", "find an equilibrium from the initial state (Newton on the exact Jacobian)");
+  trim->add_option("model", opt.model, "model file (YAML or URDF)")->required();
+  trim->add_option("--free", opt.free,
+                   "coordinates Newton may vary (default: all), comma-separated")
+      ->delimiter(',');
+  trim->add_option("--fix", opt.fix, "coordinates held at their initial values")->delimiter(',');
+  trim->add_option("--at", opt.initial, "start: coordinate NAME=VALUE (comma-separated)")
+      ->delimiter(',');
+  trim->add_option("--tol", opt.tol, "tolerance on max |acceleration| (default 1e-9)");
+  trim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -137,6 +168,11 @@ int main(int argc, char** argv) {
     if (*check) return run_check(opt);
     if (*report) return run_report(opt);
     if (*eval) return run_eval(opt);
+    if (*lin) return run_linearize(opt);
+    if (*trim) return run_trim(opt);
+  } catch (const lagrange::AnalysisError& e) {
+    fmt::print(stderr, "lagrange: {}\n", e.what());
+    return 3;
   } catch (const lagrange::ModelError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return 1;

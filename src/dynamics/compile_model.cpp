@@ -2,6 +2,19 @@
 
 namespace lagrange {
 
+std::vector<GiNaC::ex> dynamics_expressions(const Equations& eq, const CompiledModel& cm) {
+  std::vector<GiNaC::ex> dyn;
+  for (const auto& [i, j] : cm.M_pattern) dyn.push_back(eq.M(i, j));
+  for (size_t i = 0; i < eq.nv; ++i) dyn.push_back(eq.h[i] + eq.Q[i]);
+  for (size_t i = 0; i < eq.nq; ++i) dyn.push_back(eq.qdot[i]);
+  for (const auto& [r, j] : cm.G_pattern) dyn.push_back(eq.G(r, j));
+  for (const auto& e : eq.c) dyn.push_back(e);
+  for (const auto& e : eq.Cdot) dyn.push_back(e);
+  for (const auto& e : eq.C) dyn.push_back(e);
+  for (const auto& [r, j] : cm.Cq_pattern) dyn.push_back(eq.Cq(r, j));
+  return dyn;
+}
+
 std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   const Model& model = *eq.model;
   auto cm = std::make_shared<CompiledModel>();
@@ -44,32 +57,20 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   }
   cm->np = cm->parameter_names.size();
 
-  std::vector<GiNaC::ex> dyn;
   cm->M_diagonal = true;
   for (size_t i = 0; i < eq.nv; ++i)
     for (size_t j = 0; j <= i; ++j)
       if (!eq.M(i, j).is_zero()) {
         cm->M_pattern.emplace_back(i, j);
-        dyn.push_back(eq.M(i, j));
         if (i != j) cm->M_diagonal = false;
       }
-  for (size_t i = 0; i < eq.nv; ++i) dyn.push_back(eq.h[i] + eq.Q[i]);
-  for (size_t i = 0; i < eq.nq; ++i) dyn.push_back(eq.qdot[i]);
   for (size_t r = 0; r < eq.m; ++r)
     for (size_t j = 0; j < eq.nv; ++j)
-      if (!eq.G(r, j).is_zero()) {
-        cm->G_pattern.emplace_back(r, j);
-        dyn.push_back(eq.G(r, j));
-      }
-  for (const auto& e : eq.c) dyn.push_back(e);
-  for (const auto& e : eq.Cdot) dyn.push_back(e);
-  for (const auto& e : eq.C) dyn.push_back(e);
+      if (!eq.G(r, j).is_zero()) cm->G_pattern.emplace_back(r, j);
   for (size_t r = 0; r < eq.m; ++r)
     for (size_t j = 0; j < eq.nq; ++j)
-      if (!eq.Cq(r, j).is_zero()) {
-        cm->Cq_pattern.emplace_back(r, j);
-        dyn.push_back(eq.Cq(r, j));
-      }
+      if (!eq.Cq(r, j).is_zero()) cm->Cq_pattern.emplace_back(r, j);
+  const std::vector<GiNaC::ex> dyn = dynamics_expressions(eq, *cm);
 
   const std::vector<GiNaC::symbol> in = eq.tape_inputs();
   cm->dynamics = Tape::compile(dyn, in, eq.definitions);

@@ -1,0 +1,154 @@
+#pragma once
+// What is computed from the dynamics rather than by integrating it (docs/theory.md §5): exact
+// Jacobians, linearisation on the constraint manifold with modes, and trim (equilibria).
+
+#include <Eigen/Dense>
+#include <complex>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/tape.hpp"
+
+namespace lagrange {
+
+/// A numerical failure of an analysis (singular Jacobian, Newton stalled): exit code 3.
+class AnalysisError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Derivatives at one state (t, q, v): values and exact first derivatives of the accelerations,
+/// the kinematics, the constraints and the model's outputs, with respect to q, v and the named
+/// inputs w (columns of the *_w blocks in DynamicsJacobian::input_names() order).
+struct StateJacobian {
+  Eigen::VectorXd qdot, a, lambda;  ///< nq, nv, m
+  Eigen::MatrixXd a_q, a_v, a_w;    ///< ∂a/∂q (nv×nq), ∂a/∂v (nv×nv), ∂a/∂w (nv×nw)
+  Eigen::MatrixXd G, C_q, Cdot_q;   ///< m×nv ∂Ċ/∂v, m×nq ∂C/∂q, m×nq ∂Ċ/∂q
+  Eigen::VectorXd y;                ///< the model's outputs (Equations::outputs)
+  Eigen::MatrixXd y_q, y_v, y_w;    ///< their derivatives
+};
+
+/// The dynamics tape's outputs (M, h + Q, q̇, G, c, Ċ, C) and named model outputs with their exact
+/// derivatives with respect to q, v and named inputs (model `inputs:` or parameters), compiled
+/// onto one tape that keeps only the structural non-zeros (docs/theory.md §5.1). Immutable.
+class DynamicsJacobian {
+ public:
+  /// Differentiate `eq` (compiled as `cm`) symbolically. `inputs` names model inputs or
+  /// parameters, `outputs` model outputs (CompiledModel::output_names) to differentiate too;
+  /// std::invalid_argument for an unknown or repeated name (saying what is known) and for the
+  /// recursive formulation (derive with Formulation::Lagrangian).
+  DynamicsJacobian(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
+                   const std::vector<std::string>& inputs = {},
+                   const std::vector<std::string>& outputs = {});
+
+  const CompiledModel& model() const { return *cm_; }
+  const std::vector<std::string>& input_names() const { return input_names_; }
+  const std::vector<std::string>& output_names() const { return output_names_; }
+  /// Structural non-zeros of the derivatives (the sparsity the tape keeps).
+  size_t nonzeros() const { return pattern_.size(); }
+  const Tape& tape() const { return tape_; }
+
+  /// Values and derivatives at (t, q, v) with `dyn`'s parameter values and Baumgarte rate α.
+  /// The accelerations come from dyn.forward (the one KKT path); their derivatives from the
+  /// differentiated KKT system, one more factorisation of [M Gᵀ; G 0] (docs/theory.md §5.1).
+  /// Throws AnalysisError when that matrix is singular.
+  StateJacobian evaluate(Dynamics& dyn, double t, const double* q, const double* v) const;
+
+ private:
+  std::shared_ptr<const CompiledModel> cm_;
+  std::vector<std::string> input_names_, output_names_;
+  std::vector<size_t> columns_;  ///< tape input index of each column: q, v, then the inputs
+  size_t values_ = 0;            ///< leading tape outputs that are values, not derivatives
+  size_t outputs_ = 0;           ///< model outputs among the values (after the dynamics')
+  std::vector<std::pair<size_t, size_t>> pattern_;  ///< (value index, column) per derivative
+  Tape tape_;
+};
+
+/// Tangent coordinates of the positions (docs/theory.md §5.2): nv of them, one per velocity:
+/// plain coordinates themselves, a free body's r and a local rotation vector δθ with
+/// R = R₀ exp([δθ]×). `T` (nq×nv) maps them to q to first order: δq = T δx.
+struct TangentChart {
+  std::vector<std::string> names;  ///< nv: plain names, `<body>.x`…, `<body>.dtheta_x`…
+  Eigen::MatrixXd T;               ///< nq×nv
+  /// ∂ẋ/∂x at velocity v: zero except −½[ω]× per free body (δθ̇ = ω + ½ δθ×ω + O(δθ²)).
+  Eigen::MatrixXd rate_x;
+};
+
+/// The chart at q, v.
+TangentChart tangent_chart(const CompiledModel& cm, const double* q, const double* v);
+
+/// q ⊕ δx: plain coordinates and r added, R ← R exp([δθ]×) (Rodrigues).
+void retract(const CompiledModel& cm, const double* dx, double* q);
+
+/// A linear model δż = A δz + B δw, δy = C δz + D δw about an operating point (continuous time,
+/// or with `dt` > 0 the zero-order-hold discretisation δz⁺ = A δz + B δw).
+struct LinearModel {
+  std::vector<std::string> state_names;   ///< independent positions, then their rates
+  std::vector<std::string> input_names;   ///< columns of B and D
+  std::vector<std::string> output_names;  ///< rows of C and D
+  Eigen::MatrixXd A, B, C, D;
+  double dt = 0.0;  ///< sampling time of a discrete model, 0 when continuous
+  /// The full tangent state (δx, v) (2nv, TangentChart names then velocity names) of each reduced
+  /// state: W, with S W = 1 for the selection S of the independent ones (docs/theory.md §5.3).
+  std::vector<std::string> full_state_names;
+  Eigen::MatrixXd basis;
+  /// Constrained models: the coordinates (tangent names) expressed through the independent ones.
+  std::vector<std::string> dependent;
+  double equilibrium_residual = 0.0;  ///< max |q̇|, |a| at the operating point (0 at equilibrium)
+};
+
+/// Linearise at (t, q, v) (a consistent state), on the constraint manifold {C = 0, Ċ = 0} for
+/// constrained models (docs/theory.md §5.3). `outputs` names coordinates, tangent coordinates,
+/// velocities or model outputs; empty: the reduced state itself (C = 1, D = 0).
+/// std::invalid_argument for an unknown output name.
+LinearModel linearize(const DynamicsJacobian& jac, Dynamics& dyn, double t, const double* q,
+                      const double* v, const std::vector<std::string>& outputs = {});
+
+/// Zero-order-hold discretisation: exp([A B; 0 0] dt) = [A_d B_d; 0 1] (docs/theory.md §5.4).
+LinearModel discretize(const LinearModel& continuous, double dt);
+
+/// One eigenvalue of A (one per complex-conjugate pair, Im ≥ 0) and what it means physically.
+struct Mode {
+  std::complex<double> eigenvalue;
+  double frequency_hz = 0.0;   ///< |λ|/2π (undamped natural frequency)
+  double damping = 0.0;        ///< ζ = −Re λ / |λ| (1 for a real negative eigenvalue)
+  double time_constant = 0.0;  ///< −1/Re λ; infinite when Re λ = 0, negative when unstable
+  /// Largest components of the eigenvector in the full tangent state, by name, normalised so
+  /// that the largest has magnitude 1: (name, magnitude, phase in degrees).
+  struct Component {
+    std::string name;
+    double magnitude, phase_deg;
+  };
+  std::vector<Component> shape;
+};
+
+/// Modes of a continuous linear model, sorted by |λ| then Im λ; `components` per mode shape.
+std::vector<Mode> modes(const LinearModel& lin, size_t components = 4);
+
+/// Options of trim().
+struct TrimOptions {
+  std::vector<bool> free;  ///< per tangent coordinate (nv): varied by Newton; empty = all
+  double tol = 1e-10;      ///< on max |a| (and max |C| for constrained models)
+  int max_iterations = 50;
+};
+
+/// Result of trim(): the equilibrium and how it was found.
+struct TrimResult {
+  std::vector<double> q, v;  ///< v = 0
+  double residual = 0.0;     ///< max |a| at q
+  int iterations = 0;
+};
+
+/// An equilibrium (v = 0, a = 0) from q0 by Newton's method on the exact Jacobian ∂a/∂x with a
+/// backtracking line search on ‖a‖₂, constrained models kept on C = 0 by projection after each
+/// step (docs/theory.md §5.5). Throws AnalysisError saying why and where it stopped.
+TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
+                const TrimOptions& options = {});
+
+}  // namespace lagrange

@@ -1,0 +1,80 @@
+// Eigenvalues, natural frequencies, damping ratios and mode shapes of a linear model, and its
+// zero-order-hold discretisation (docs/theory.md §5.4).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "lagrange/analysis.hpp"
+
+namespace lagrange {
+
+LinearModel discretize(const LinearModel& continuous, double dt) {
+  if (!(dt > 0)) throw std::invalid_argument("the sampling time must be positive");
+  if (continuous.dt > 0) throw std::invalid_argument("the model is already discrete");
+  const long n = continuous.A.rows(), k = continuous.B.cols();
+  // exp([A B; 0 0] dt) = [A_d B_d; 0 1]: the state transition and the held input's effect.
+  Eigen::MatrixXd aug = Eigen::MatrixXd::Zero(n + k, n + k);
+  aug.topLeftCorner(n, n) = continuous.A * dt;
+  aug.topRightCorner(n, k) = continuous.B * dt;
+  const Eigen::MatrixXd E = aug.exp();
+  LinearModel d = continuous;
+  d.A = E.topLeftCorner(n, n);
+  d.B = E.topRightCorner(n, k);
+  d.dt = dt;
+  return d;
+}
+
+std::vector<Mode> modes(const LinearModel& lin, size_t components) {
+  std::vector<Mode> out;
+  if (lin.A.rows() == 0) return out;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(lin.A);
+  if (es.info() != Eigen::Success) throw AnalysisError("the eigenvalue solver did not converge");
+  const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
+  const long n_full = lin.basis.rows() / 2;
+  for (long k = 0; k < lin.A.rows(); ++k) {
+    const std::complex<double> lambda = es.eigenvalues()[k];
+    if (lambda.imag() < -1e-12 * scale) continue;  // the conjugate of a listed pair
+    Mode mode;
+    // Parts below round-off of A's scale are zero: a conservative system's pairs are printed
+    // as purely imaginary, with damping 0 and an infinite time constant.
+    const auto clean = [&](double x) { return std::abs(x) <= 1e-12 * scale ? 0.0 : x; };
+    mode.eigenvalue = {clean(lambda.real()), clean(lambda.imag())};
+    const double mag = std::abs(mode.eigenvalue);
+    mode.frequency_hz = mag / (2 * M_PI);
+    mode.damping = mag > 0 ? -mode.eigenvalue.real() / mag + 0.0 : 0.0;
+    mode.time_constant = mode.eigenvalue.real() != 0.0 ? -1.0 / mode.eigenvalue.real()
+                                                       : std::numeric_limits<double>::infinity();
+    // The shape in the full tangent state; positions tell it (rates are λ times them) unless
+    // the mode lives in the velocities alone.
+    const Eigen::VectorXcd z = lin.basis.cast<std::complex<double>>() * es.eigenvectors().col(k);
+    long first = 0, count = n_full;
+    if (z.head(n_full).cwiseAbs().maxCoeff() < 1e-9 * z.cwiseAbs().maxCoeff()) count = 2 * n_full;
+    if (count == 2 * n_full) first = 0;
+    Eigen::Index top = 0;
+    z.segment(first, count).cwiseAbs().maxCoeff(&top);
+    const std::complex<double> ref = z[first + top];
+    std::vector<long> order(static_cast<size_t>(count));
+    std::iota(order.begin(), order.end(), first);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](long a, long b) { return std::abs(z[a]) > std::abs(z[b]); });
+    for (long i : order) {
+      if (mode.shape.size() >= components) break;
+      const std::complex<double> c = z[i] / ref;
+      if (std::abs(c) < 1e-3) break;
+      mode.shape.push_back(
+          {lin.full_state_names[static_cast<size_t>(i)], std::abs(c), std::arg(c) * 180.0 / M_PI});
+    }
+    out.push_back(std::move(mode));
+  }
+  std::sort(out.begin(), out.end(), [](const Mode& a, const Mode& b) {
+    const double ma = std::abs(a.eigenvalue), mb = std::abs(b.eigenvalue);
+    if (std::abs(ma - mb) > 1e-12 * std::max(ma, mb)) return ma < mb;
+    return a.eigenvalue.real() < b.eigenvalue.real();
+  });
+  return out;
+}
+
+}  // namespace lagrange

@@ -1,0 +1,130 @@
+// `lagrange linearize` and `lagrange trim` as a user runs them: output, formats, exit codes.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli/shell_run.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Result = lagrange::testing::ShellResult;
+
+Result run(const std::string& args) {
+  return lagrange::testing::run_shell(args);
+}
+
+std::string example(const std::string& name) {
+  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
+}
+
+fs::path write_model(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "lagrange_cli_analysis_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+TEST(CliLinearize, PendulumTextShowsStatesMatricesAndModes) {
+  const Result r = run("linearize " + example("pendulum.yaml") + " --at theta=0");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("states (2): theta, theta_dot"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("-9.81"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0 ± 3.13209i"), std::string::npos) << r.output;  // √9.81
+  EXPECT_NE(r.output.find("0.498488"), std::string::npos) << r.output;      // √9.81 / 2π Hz
+  EXPECT_EQ(r.output.find("not an equilibrium"), std::string::npos) << r.output;
+}
+
+TEST(CliLinearize, CartesianPendulumJsonOnTheManifold) {
+  const Result r =
+      run("linearize " + example("cartesian_pendulum.yaml") + " --at x=0,y=-1 --format json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["states"], (std::vector<std::string>{"x", "x_dot"}));
+  EXPECT_EQ(j["dependent"], (std::vector<std::string>{"y"}));
+  ASSERT_EQ(j["modes"].size(), 1u);
+  EXPECT_NEAR(j["modes"][0]["im"].get<double>(), std::sqrt(9.81), 1e-9);
+  EXPECT_NEAR(j["A"][1][0].get<double>(), -9.81, 1e-9);
+}
+
+TEST(CliLinearize, InputsOutputsDiscreteAndCsv) {
+  const Result r = run("linearize " + example("pendulum.yaml") +
+                       " --at theta=0 --inputs g --outputs x,theta --discrete 0.01 --format csv");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("B,g\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("C,theta,theta_dot\nx,1,0\ntheta,1,0\n"), std::string::npos) << r.output;
+  // A_d(0,0) = cos(ω dt) at ω = √9.81, dt = 0.01.
+  const std::string row = "\ntheta,";
+  const size_t at = r.output.find(row, r.output.find("A,theta,theta_dot"));
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(at + row.size())), std::cos(std::sqrt(9.81) * 0.01), 1e-14);
+}
+
+TEST(CliLinearize, BadNamesAreUsageErrors) {
+  Result r = run("linearize " + example("pendulum.yaml") + " --inputs torque");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--inputs: no input or parameter 'torque'"), std::string::npos)
+      << r.output;
+  r = run("linearize " + example("pendulum.yaml") + " --outputs speed");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("no output 'speed'"), std::string::npos) << r.output;
+  r = run("linearize " + example("pendulum.yaml") + " --at phi=1");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("'phi'"), std::string::npos) << r.output;
+  r = run("linearize " + example("pendulum.yaml") + " --discrete -1");
+  EXPECT_EQ(r.code, 2) << r.output;
+}
+
+// A control law with |azimuth| at azimuth 0 is not differentiable there: refused (exit 3).
+TEST(CliLinearize, NonDifferentiablePointIsRefused) {
+  const Result r = run("linearize " + example("figure_eight.yaml"));
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("not differentiable"), std::string::npos) << r.output;
+}
+
+TEST(CliTrim, PendulumFromTwentyDegreesPrintsTheInitialBlock) {
+  const Result r = run("trim " + example("pendulum.yaml") + " --at theta=0.349");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("equilibrium found by Newton's method"), std::string::npos) << r.output;
+  const std::string key = "theta: {initial: ";
+  const size_t at = r.output.find(key);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(at + key.size())), 0.0, 1e-12) << r.output;
+  EXPECT_NE(r.output.find("rate: 0}"), std::string::npos) << r.output;
+}
+
+TEST(CliTrim, CartesianPendulumReportsTheConstraintResidual) {
+  const Result r = run("trim " + example("cartesian_pendulum.yaml"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("max |C| ="), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("y: {initial: -1"), std::string::npos) << r.output;
+}
+
+TEST(CliTrim, NoEquilibriumExitsThreeWithTheReason) {
+  const auto model = write_model("pushed.yaml", R"(
+name: pushed mass
+parameters: {m: 2.0, F: 3.0}
+coordinates:
+  x: {initial: 0.5, rate: 0}
+kinetic: m/2*der(x)^2
+generalized_forces: {x: F}
+)");
+  const Result r = run("trim " + model.string());
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("singular"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stopped at x = 0.5"), std::string::npos) << r.output;
+}
+
+TEST(CliTrim, UnknownOrNoFreeCoordinatesAreUsageErrors) {
+  Result r = run("trim " + example("pendulum.yaml") + " --free phi");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--free: no coordinate 'phi'"), std::string::npos) << r.output;
+  r = run("trim " + example("pendulum.yaml") + " --fix theta");
+  EXPECT_EQ(r.code, 2) << r.output;
+}
+
+}  // namespace
