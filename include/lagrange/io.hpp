@@ -63,8 +63,17 @@ void export_manipulator_c(const Equations& eq, const std::string& dir);
 /// directory when that fails).
 void create_parent_directories(const std::string& path);
 
-/// Write `text` to `path` through a temporary file and an atomic rename, creating missing
-/// directories above it.
+/// Write `text` to `path` through a unique temporary file beside it, fsync and an atomic
+/// rename, creating missing directories above it; errors name the file and errno's reason.
 void write_file_atomically(const std::string& path, const std::string& text);
+
+/// Publishes `text` at `path`, then `sidecar_text` at `path`.json, both as write_file_atomically;
+/// the old sidecar is removed first, so a sidecar present always describes the file present.
+void write_file_with_sidecar(const std::string& path, const std::string& text,
+                             const std::string& sidecar_text);
+
+/// Throws std::runtime_error (naming `path` and the reason) unless a new file can be created
+/// at `path`: the check `simulate -o` makes before the run.
+void check_writable(const std::string& path);
 
 }  // namespace lagrange

@@ -1,6 +1,7 @@
 #pragma once
 // Machine code for tapes: their C (Tape::to_native_c) built by the system C compiler into a
-// shared library, cached on disk under the hash of the source and the compiler (docs/theory.md §8).
+// shared library, cached on disk under the hash of the source and the compiler (docs/theory.md §8);
+// an entry is loaded only from a private directory and when its recorded SHA-256 matches.
 
 #include <atomic>
 #include <memory>
@@ -33,13 +34,17 @@ class MachineCode {
  public:
   using Function = void (*)(const double* in, double* out, double* work);
 
-  /// The library of `tapes`, from the cache or compiled into it. Throws MachineCodeError.
+  /// The library of `tapes`, from the cache or compiled into it (replacing an entry that fails
+  /// its SHA-256 check; note() says so). Throws MachineCodeError, also for a cache directory
+  /// that others can write.
   static std::shared_ptr<const MachineCode> build(const std::vector<const Tape*>& tapes,
                                                   const MachineCodeOptions& options = {});
-  /// The library of `tapes` if the cache has it already, else nullptr; never compiles. Throws
-  /// MachineCodeError only for a cached file that cannot be loaded.
+  /// The library of `tapes` if the cache has it already and it passes its SHA-256 check, else
+  /// nullptr (with the reason in `*rejected` for an entry that failed the check); never
+  /// compiles. Throws MachineCodeError for a file that cannot be loaded or an unsafe directory.
   static std::shared_ptr<const MachineCode> cached(const std::vector<const Tape*>& tapes,
-                                                   const MachineCodeOptions& options = {});
+                                                   const MachineCodeOptions& options = {},
+                                                   std::string* rejected = nullptr);
 
   ~MachineCode();
   MachineCode(const MachineCode&) = delete;
@@ -50,12 +55,18 @@ class MachineCode {
   bool from_cache() const { return from_cache_; }
   double seconds() const { return seconds_; }  ///< wall time of compiling (or loading)
   const std::string& path() const { return path_; }
+  /// Why a cache entry was replaced by a fresh compile ("" when none was).
+  const std::string& note() const { return note_; }
 
  private:
   MachineCode() = default;
-  /// dlopen + dlsym of `count` tape functions; nullptr when `path` does not exist.
-  static std::shared_ptr<MachineCode> load(const std::string& path, size_t count);
+  /// dlopen + dlsym of `count` tape functions from the verified bytes of `path`; nullptr when
+  /// it does not exist or fails its record (built from `origin`), saying why in `*rejected`.
+  static std::shared_ptr<MachineCode> load(const std::string& path, const std::string& origin,
+                                           size_t count, std::string* rejected);
   void* handle_ = nullptr;
+  int memfd_ = -1;  ///< the in-memory copy dlopen read, kept open while loaded
+  std::string note_;
   std::vector<Function> functions_;
   bool from_cache_ = false;
   double seconds_ = 0.0;

@@ -135,6 +135,17 @@ int run_check(const Options& opt) {
 }
 
 int run_simulate(const Options& opt) {
+  // Output locations are checked before the run, not found unwritable after it (issue 25).
+  for (const auto& [path, option] : {std::pair{opt.csv, "-o"}, std::pair{opt.plot, "--plot"},
+                                     std::pair{opt.report, "--report"}}) {
+    if (path.empty()) continue;
+    try {
+      check_writable(path);
+      if (std::string(option) == "-o") check_writable(path + ".json");
+    } catch (const std::runtime_error& e) {
+      throw UsageError(fmt::format("{}: {}", option, e.what()));
+    }
+  }
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const Model& model = *p.model;
   const auto& cm = p.compiled;

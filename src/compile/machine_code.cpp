@@ -2,15 +2,21 @@
 // (docs/theory.md §8, machine code). The library's name is the hash of everything that decides
 // its contents — the C source, the compiler's path, size and modification time, and the flags —
 // so a cached file is never stale, and two processes compiling the same tapes race harmlessly
-// (each renames a finished file into place).
+// (each renames a finished file into place). Beside each library NAME.so, NAME.so.sha256 records
+// the SHA-256 of its bytes and of what it was built from; an entry is loaded only from a private
+// directory (not writable by group or others, ours) and only when both digests match, from a
+// sealed in-memory copy of the verified bytes, so a truncated, foreign or swapped file is never
+// run (issue 25 item 2): build() recompiles it, saying so.
 
 #include "lagrange/machine_code.hpp"
 
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <openssl/evp.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -84,8 +90,33 @@ std::string function_name(size_t i) {
   return fmt::format("lagrange_tape_{}", i);
 }
 
+/// SHA-256 of `bytes` in hex.
+std::string sha256_hex(const std::string& bytes) {
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int n = 0;
+  if (EVP_Digest(bytes.data(), bytes.size(), md, &n, EVP_sha256(), nullptr) != 1)
+    throw MachineCodeError("cannot compute a SHA-256 digest (OpenSSL)");
+  std::string hex;
+  for (unsigned int i = 0; i < n; ++i) hex += fmt::format("{:02x}", md[i]);
+  return hex;
+}
+
+/// The whole content of the open file `fd`; false on a read error.
+bool read_all(int fd, std::string& out) {
+  char buffer[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n == 0) return true;
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return false;
+    out.append(buffer, static_cast<size_t>(n));
+  }
+}
+
 struct Plan {
   std::string source, compiler, dir, path;
+  std::string origin;  ///< SHA-256 of everything the library is built from (the key's inputs)
+  std::string record() const { return path + ".sha256"; }
 };
 
 Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& options) {
@@ -98,14 +129,34 @@ Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& optio
   if (::stat(p.compiler.c_str(), &st) != 0)
     throw MachineCodeError(
         fmt::format("cannot read the C compiler '{}': {}", p.compiler, std::strerror(errno)));
+  std::vector<std::string> inputs{
+      kFormat, p.source, p.compiler,
+      fmt::format("{} {} {}", st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec)};
+  for (const char* f : kFlags) inputs.emplace_back(f);
   Fnv h;
-  h.add(kFormat);
-  h.add(p.source);
-  h.add(p.compiler);
-  h.add(fmt::format("{} {} {}", st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec));
-  for (const char* f : kFlags) h.add(f);
+  std::string joined;
+  for (const std::string& s : inputs) {
+    h.add(s);
+    joined += std::to_string(s.size()) + ":" + s;
+  }
   p.path = fmt::format("{}/tapes-{:016x}.so", p.dir, h.h);
+  p.origin = sha256_hex(joined);
   return p;
+}
+
+/// Throws unless `dir`, when it exists, is ours and writable by no one else: code found in a
+/// directory others can write could be anyone's.
+void check_private(const std::string& dir) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0) return;  // created 0700 when compiling
+  if (!S_ISDIR(st.st_mode))
+    throw MachineCodeError(fmt::format("the machine-code cache '{}' is not a directory", dir));
+  if ((st.st_mode & (S_IWGRP | S_IWOTH)) != 0 || st.st_uid != ::geteuid())
+    throw MachineCodeError(fmt::format(
+        "the machine-code cache directory '{}' is {} (mode {:04o}): code in it is not loaded; "
+        "make it private (chmod 700) or set LAGRANGE_CACHE_DIR to a private directory",
+        dir, st.st_uid != ::geteuid() ? "owned by another user" : "writable by group or others",
+        st.st_mode & 07777));
 }
 
 /// mkdir -p, owner-only for the directories it creates (the cache holds code that is loaded).
@@ -187,12 +238,42 @@ void run_compiler(const Plan& p, const std::string& c_file, const std::string& s
 
 MachineCode::~MachineCode() {
   if (handle_ != nullptr) ::dlclose(handle_);
+  if (memfd_ >= 0) ::close(memfd_);
 }
 
-std::shared_ptr<MachineCode> MachineCode::load(const std::string& path, size_t count) {
-  if (::access(path.c_str(), R_OK) != 0) return nullptr;
+std::shared_ptr<MachineCode> MachineCode::load(const std::string& path, const std::string& origin,
+                                               size_t count, std::string* rejected) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) return nullptr;
+  std::string bytes, record;
+  const bool read = read_all(fd, bytes);
+  ::close(fd);
+  std::ifstream(path + ".sha256") >> record;  // "<library digest>:<origin digest>"
+  const std::string want = (read ? sha256_hex(bytes) : std::string("unreadable")) + ":" + origin;
+  if (record != want) {
+    if (rejected != nullptr)
+      *rejected =
+          fmt::format("the cached '{}' does not match its recorded SHA-256 ({})", path,
+                      record.empty() ? "no record" : "truncated, replaced or another model's");
+    return nullptr;
+  }
   std::shared_ptr<MachineCode> code(new MachineCode());
-  code->handle_ = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  // dlopen a sealed in-memory copy of the verified bytes: the file may change after the check.
+  code->memfd_ = ::memfd_create("lagrange-tapes", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+  std::string loaded = path;
+  if (code->memfd_ >= 0) {
+    size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(code->memfd_, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0)
+        throw MachineCodeError(fmt::format("cannot copy '{}': {}", path, std::strerror(errno)));
+      done += static_cast<size_t>(n);
+    }
+    ::fcntl(code->memfd_, F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL);
+    loaded = fmt::format("/proc/self/fd/{}", code->memfd_);
+  }
+  code->handle_ = ::dlopen(loaded.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (code->handle_ == nullptr) {
     const char* why = ::dlerror();
     throw MachineCodeError(
@@ -208,9 +289,12 @@ std::shared_ptr<MachineCode> MachineCode::load(const std::string& path, size_t c
 }
 
 std::shared_ptr<const MachineCode> MachineCode::cached(const std::vector<const Tape*>& tapes,
-                                                       const MachineCodeOptions& options) {
+                                                       const MachineCodeOptions& options,
+                                                       std::string* rejected) {
   const auto start = Clock::now();
-  auto code = load(plan(tapes, options).path, tapes.size());
+  const Plan p = plan(tapes, options);
+  check_private(p.dir);
+  auto code = load(p.path, p.origin, tapes.size(), rejected);
   if (code) {
     code->from_cache_ = true;
     code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
@@ -222,33 +306,50 @@ std::shared_ptr<const MachineCode> MachineCode::build(const std::vector<const Ta
                                                       const MachineCodeOptions& options) {
   const auto start = Clock::now();
   const Plan p = plan(tapes, options);
-  if (auto code = load(p.path, tapes.size())) {
+  check_private(p.dir);
+  std::string rejected;
+  if (auto code = load(p.path, p.origin, tapes.size(), &rejected)) {
     code->from_cache_ = true;
     code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
     return code;
   }
   make_directories(p.dir);
+  check_private(p.dir);
   // Private names for the files in flight; only the finished library is renamed into place.
   static std::atomic<unsigned> counter{0};
   const std::string stem =
       fmt::format("{}.{}.{}", p.path.substr(0, p.path.size() - 3), ::getpid(), counter++);
-  const std::string c_file = stem + ".c", so_file = stem + ".so.part", log_file = stem + ".log";
+  const std::string c_file = stem + ".c", so_file = stem + ".so.part", log_file = stem + ".log",
+                    record_file = stem + ".sha256.part";
   try {
     write_file(c_file, p.source);
     run_compiler(p, c_file, so_file, log_file, options.cancel);
-    if (std::rename(so_file.c_str(), p.path.c_str()) != 0)
+    std::string bytes;
+    const int fd = ::open(so_file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0 || !read_all(fd, bytes))
+      throw MachineCodeError(fmt::format("cannot read '{}': {}", so_file, std::strerror(errno)));
+    ::close(fd);
+    write_file(record_file, sha256_hex(bytes) + ":" + p.origin + "\n");
+    // Library first, then its record: a reader between the two sees a mismatch and recompiles.
+    if (std::rename(so_file.c_str(), p.path.c_str()) != 0 ||
+        std::rename(record_file.c_str(), p.record().c_str()) != 0)
       throw MachineCodeError(
           fmt::format("cannot move '{}' into place: {}", so_file, std::strerror(errno)));
   } catch (...) {
     std::remove(c_file.c_str());
     std::remove(so_file.c_str());
     std::remove(log_file.c_str());
+    std::remove(record_file.c_str());
     throw;
   }
   std::remove(c_file.c_str());
   std::remove(log_file.c_str());
-  auto code = load(p.path, tapes.size());
-  if (!code) throw MachineCodeError(fmt::format("'{}' vanished from the cache", p.path));
+  std::string again;
+  auto code = load(p.path, p.origin, tapes.size(), &again);
+  if (!code)
+    throw MachineCodeError(again.empty() ? fmt::format("'{}' vanished from the cache", p.path)
+                                         : again);
+  if (!rejected.empty()) code->note_ = rejected + "; recompiled";
   code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
   return code;
 }

@@ -19,6 +19,7 @@ void NativeTapes::reset() {
   library.reset();
   why.clear();
   skipped.clear();
+  cache_note.clear();
 }
 
 void NativeTapes::publish(std::shared_ptr<const MachineCode> lib) {
@@ -55,7 +56,13 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
       publish(MachineCode::build(tapes, opts));
       return;
     }
-    if (auto lib = MachineCode::cached(tapes, opts)) {
+    std::string rejected;
+    auto lib = MachineCode::cached(tapes, opts, &rejected);
+    if (!rejected.empty()) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      cache_note = rejected;
+    }
+    if (lib) {
       publish(std::move(lib));
       return;
     }
@@ -85,14 +92,17 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
 
 std::string NativeTapes::note() const {
   const std::lock_guard<std::mutex> lock(mutex);
-  if (ready.load(std::memory_order_acquire) && library)
-    return library->from_cache()
-               ? "machine code (from the cache)"
-               : fmt::format("machine code (compiled in {:.2f} s)", library->seconds());
-  if (!why.empty()) return fmt::format("interpreter (machine code: {})", why);
-  if (!skipped.empty()) return fmt::format("interpreter ({})", skipped);
-  if (worker.joinable()) return "interpreter (machine code still compiling)";
-  return "interpreter";
+  if (ready.load(std::memory_order_acquire) && library) {
+    if (library->from_cache()) return "machine code (from the cache)";
+    const std::string& replaced = library->note().empty() ? cache_note : library->note();
+    return fmt::format("machine code (compiled in {:.2f} s{}{})", library->seconds(),
+                       replaced.empty() ? "" : "; ", replaced);
+  }
+  const std::string also = cache_note.empty() ? "" : "; " + cache_note;
+  if (!why.empty()) return fmt::format("interpreter (machine code: {}{})", why, also);
+  if (!skipped.empty()) return fmt::format("interpreter ({}{})", skipped, also);
+  if (worker.joinable()) return fmt::format("interpreter (machine code still compiling{})", also);
+  return "interpreter" + (also.empty() ? "" : " (" + cache_note + ")");
 }
 
 }  // namespace dynamics

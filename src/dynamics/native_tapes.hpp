@@ -49,6 +49,7 @@ struct NativeTapes {
   mutable std::mutex mutex;  // guards `why` and `library` between the worker and note()
   std::string why;           // why machine code failed
   std::string skipped;       // why machine code was not tried
+  std::string cache_note;    // why a cache entry was not loaded
 };
 
 }  // namespace lagrange::dynamics

@@ -7,12 +7,12 @@
 #include <tinyxml2.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
 
 #include "elements/links.hpp"
+#include "model/decimal_number.hpp"
 #include "model/model_reader.hpp"
 
 namespace lagrange::elements {
@@ -33,31 +33,12 @@ class UrdfReader {
   }
 
   /// A decimal number as an exact rational ("0.089159" → 89159/1000000): no rounded floating
-  /// point enters the expressions.
+  /// point enters the expressions. URDF numbers are decimal (xs:double without INF and NaN).
   GiNaC::ex decimal(const std::string& text, const XMLElement* at, const std::string& what) const {
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(value))
-      fail(at, fmt::format("expected a finite number for {}, got '{}'", what, model::clip(text)));
-    std::string digits;
-    long exponent = 0;
-    bool negative = false, fraction = false;
-    for (size_t i = 0; i < text.size(); ++i) {
-      const char c = text[i];
-      if (c == '-' || c == '+') {
-        negative = negative || (c == '-' && i == 0);
-      } else if (c == '.') {
-        fraction = true;
-      } else if (c == 'e' || c == 'E') {
-        exponent += std::strtol(text.c_str() + i + 1, nullptr, 10);
-        break;
-      } else {
-        digits += c;
-        if (fraction) --exponent;
-      }
-    }
-    GiNaC::ex x = GiNaC::numeric(digits.c_str()) * GiNaC::pow(GiNaC::numeric(10), exponent);
-    return negative ? -x : x;
+    model::Decimal d = model::read_decimal(text);
+    if (!d.problem.empty())
+      fail(at, fmt::format("{} for {}, got '{}'", d.problem, what, model::clip(text)));
+    return d.value;
   }
 
   /// Three numbers separated by spaces (an attribute; `fallback` when absent).

@@ -15,9 +15,13 @@ constexpr int kMaxExponent = 1000;
 constexpr double kMaxDigits = 10000;
 /// Largest denominator of a fractional exponent of a number (2^(1/10^12) is fine).
 constexpr long long kMaxDenominator = 1000000000000LL;
+/// Deepest tower of powers with non-numeric exponents (a^b^c is 2): GiNaC's sign and
+/// realness queries (abs, 1/P, derivatives) visit a tower's levels twice each, 2^height work.
+constexpr int kMaxPowerTower = 8;
 
 /// Throws ExprError at `offset` for powers GiNaC must not be asked for: 0 to a symbolic or
-/// non-positive power, an exponent beyond kMaxExponent, a number to a fraction whose
+/// non-positive power, an exponent beyond kMaxExponent, a tower of symbolic powers higher
+/// than kMaxPowerTower, a number to a fraction whose
 /// denominator exceeds kMaxDenominator, and a power whose exact numbers — the
 /// base's numeric factors raised to the exponent — would exceed kMaxDigits.
 void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset);

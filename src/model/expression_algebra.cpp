@@ -100,6 +100,13 @@ GiNaC::ex real_abs(const GiNaC::ex& x) {
   if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(0)) &&
       GiNaC::ex_to<GiNaC::numeric>(x.op(0)).is_positive())
     return x;
+  // exp of a real argument is positive; GiNaC's abs() of an exp tower doubles per level too.
+  if (GiNaC::is_the_function<GiNaC::exp_SERIAL>(x)) return x;
+  // |b^e| = |b|^e for a real exponent: answered here, since GiNaC's abs() of a power of a
+  // power asks whether every level is positive, twice per level (issue 25 item 4).
+  if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
+      GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_real())
+    return GiNaC::pow(real_abs(x.op(0)), x.op(1));
   if (GiNaC::is_a<GiNaC::mul>(x)) {
     GiNaC::exvector factors;
     for (size_t i = 0; i < x.nops(); ++i) factors.push_back(real_abs(x.op(i)));

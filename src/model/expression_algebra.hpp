@@ -23,8 +23,9 @@ Value divide(const Value& l, const Value& r, size_t offset);
 /// Mᵀ.
 Mat3 transpose(const Mat3& m);
 /// |x| for a real-valued model expression: a power of a positive number is its own absolute
-/// value and |a b| = |a| |b|. GiNaC's abs() treats symbols as complex and, for such a power,
-/// expands real parts whose size doubles with each level of a power tower (a fuzz finding).
+/// value, as is exp(y), |b^e| = |b|^e for a real number e, and |a b| = |a| |b|. GiNaC's abs()
+/// treats symbols as complex and, for such a power, expands real parts whose size doubles with each
+/// level of a power tower (a fuzz finding).
 GiNaC::ex real_abs(const GiNaC::ex& x);
 
 /// Rotation by `angle` about body axis 0 (x), 1 (y) or 2 (z): rot_x, rot_y, rot_z.

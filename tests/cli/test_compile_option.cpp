@@ -66,6 +66,58 @@ TEST(CompileOption, MissingCompilerIsSaidOnceAndTheRunGoesOn) {
   EXPECT_TRUE(fs::exists(dir.path() / "dp.csv"));
 }
 
+TEST(CompileOption, TamperedCacheEntriesAreRecompiledAndTheAnswerIsRight) {
+  const ScratchDir dir("compile-tampered");
+  const auto run = [&](const std::string& model, const std::string& csv) {
+    return run_with(dir, {"simulate", example(model), "--t-end", "1", "--compile", "on", "-o",
+                          (dir.path() / csv).string()});
+  };
+  const auto library = [&] {
+    std::vector<fs::path> found;
+    for (const auto& e : fs::directory_iterator(dir.path() / "cache"))
+      if (e.path().extension() == ".so") found.push_back(e.path());
+    EXPECT_EQ(found.size(), 1u);
+    return found.at(0);
+  };
+  ASSERT_EQ(run("double_pendulum.yaml", "good.csv").exit_code, 0);
+  const fs::path mine = library();
+  const std::string good = slurp(dir.path() / "good.csv");
+  // Truncated (was SIGBUS), then another model's library and record under this name (SIGSEGV).
+  fs::resize_file(mine, fs::file_size(mine) / 3);
+  const RunResult truncated = run("double_pendulum.yaml", "truncated.csv");
+  const fs::path moved = dir.path() / "mine.so";
+  fs::rename(mine, moved);
+  fs::rename(mine.string() + ".sha256", moved.string() + ".sha256");
+  ASSERT_EQ(run("pendulum.yaml", "other.csv").exit_code, 0);
+  const fs::path other = library();
+  fs::copy_file(other, mine);
+  fs::copy_file(other.string() + ".sha256", mine.string() + ".sha256");
+  const RunResult foreign = run("double_pendulum.yaml", "foreign.csv");
+  for (const RunResult* r : {&truncated, &foreign}) {
+    EXPECT_EQ(r->exit_code, 0) << r->err;
+    EXPECT_NE(r->out.find("does not match its recorded SHA-256 (truncated, replaced or another "
+                          "model's); recompiled"),
+              std::string::npos)
+        << r->out;
+  }
+  EXPECT_EQ(slurp(dir.path() / "truncated.csv"), good);
+  EXPECT_EQ(slurp(dir.path() / "foreign.csv"), good);
+}
+
+TEST(CompileOption, CacheDirectoryOthersCanWriteIsNotUsed) {
+  const ScratchDir dir("compile-open-cache");
+  fs::create_directory(dir.path() / "cache");
+  fs::permissions(dir.path() / "cache", fs::perms::all);
+  const RunResult r = run_with(dir, {"simulate", example("double_pendulum.yaml"), "--t-end", "1",
+                                     "--compile", "on", "-o", (dir.path() / "dp.csv").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("is writable by group or others (mode 0777): code in it is not loaded"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("evaluation: interpreter"), std::string::npos) << r.out;
+  EXPECT_EQ(fs::directory_iterator(dir.path() / "cache"), fs::directory_iterator());
+}
+
 TEST(CompileOption, UnknownValueIsAUsageError) {
   const ScratchDir dir("compile-bad-value");
   const RunResult r =

@@ -8,6 +8,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -87,13 +88,81 @@ TEST_F(MachineCodeTest, SecondBuildComesFromTheCache) {
   EXPECT_TRUE(second->from_cache());
   EXPECT_EQ(first->path(), second->path());
   EXPECT_NE(MachineCode::cached({&t}, options_), nullptr);
-  // Only the finished library is left in the cache: no sources, logs or partial files.
-  size_t files = 0;
-  for (const auto& e : fs::directory_iterator(dir_)) {
-    EXPECT_EQ(e.path().extension(), ".so") << e.path();
-    ++files;
+  // Only the finished library and its record are left: no sources, logs or partial files.
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(dir_)) files.push_back(e.path().filename());
+  std::sort(files.begin(), files.end());
+  const std::string name = fs::path(first->path()).filename();
+  EXPECT_EQ(files, (std::vector<std::string>{name, name + ".sha256"}));
+  EXPECT_EQ(fs::status(dir_).permissions() & fs::perms::all, fs::perms::owner_all);
+}
+
+/// x + 1 evaluated by `code`'s first function.
+double plus_one(const MachineCode& code, double x) {
+  double out = 0.0, work[4];
+  code.function(0)(&x, &out, work);
+  return out;
+}
+
+TEST_F(MachineCodeTest, TruncatedEntryIsRecompiledSayingSo) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x + 1}, {x});
+  const std::string path = MachineCode::build({&t}, options_)->path();
+  fs::resize_file(path, fs::file_size(path) / 2);  // was a SIGBUS at dlopen or the first call
+  std::string rejected;
+  EXPECT_EQ(MachineCode::cached({&t}, options_, &rejected), nullptr);
+  EXPECT_NE(rejected.find("does not match its recorded SHA-256"), std::string::npos) << rejected;
+  const auto again = MachineCode::build({&t}, options_);
+  EXPECT_FALSE(again->from_cache());
+  EXPECT_NE(again->note().find("truncated, replaced or another model's); recompiled"),
+            std::string::npos)
+      << again->note();
+  EXPECT_EQ(plus_one(*again, 2.0), 3.0);
+  EXPECT_TRUE(MachineCode::build({&t}, options_)->from_cache());  // the entry was replaced
+}
+
+TEST_F(MachineCodeTest, ForeignEntryIsRecompiledSayingSo) {
+  GiNaC::symbol x("x");
+  const Tape mine = Tape::compile({x + 1}, {x}), other = Tape::compile({x * 10, x}, {x});
+  const std::string path = MachineCode::build({&mine}, options_)->path();
+  const std::string foreign = MachineCode::build({&other}, options_)->path();
+  // Another model's library under this one's name: with its own record, and with a record
+  // rewritten to its bytes (as an attacker who can write the directory would).
+  for (const bool with_record : {true, false}) {
+    SCOPED_TRACE(with_record);
+    fs::copy_file(foreign, path, fs::copy_options::overwrite_existing);
+    if (with_record)
+      fs::copy_file(foreign + ".sha256", path + ".sha256", fs::copy_options::overwrite_existing);
+    else
+      fs::remove(path + ".sha256");
+    std::string rejected;
+    EXPECT_EQ(MachineCode::cached({&mine}, options_, &rejected), nullptr);
+    EXPECT_FALSE(rejected.empty());
+    const auto code = MachineCode::build({&mine}, options_);
+    EXPECT_FALSE(code->from_cache());
+    EXPECT_NE(code->note().find("recompiled"), std::string::npos);
+    EXPECT_EQ(plus_one(*code, 2.0), 3.0);
   }
-  EXPECT_EQ(files, 1u);
+}
+
+TEST_F(MachineCodeTest, CacheOthersCanWriteIsRefused) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x + 1}, {x});
+  (void)MachineCode::build({&t}, options_);
+  fs::permissions(dir_, fs::perms::all);  // 0777
+  for (const bool compile : {false, true}) {
+    try {
+      if (compile)
+        (void)MachineCode::build({&t}, options_);
+      else
+        (void)MachineCode::cached({&t}, options_);
+      ADD_FAILURE() << "loaded code from a directory anyone can write";
+    } catch (const MachineCodeError& e) {
+      EXPECT_NE(std::string(e.what()).find("is writable by group or others (mode 0777)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST_F(MachineCodeTest, TwoLibrariesInOneProcessKeepTheirOwnFunctions) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -42,14 +43,17 @@ inline void spit(const fs::path& path, const std::string& text) {
 
 /// What a finished run of the command left behind.
 struct RunResult {
-  int exit_code = -1;  ///< exit status, or 128 + signal number when killed
+  int exit_code = -1;   ///< exit status, or 128 + signal number when killed
+  double seconds = 0;   ///< wall time from start to exit (or to the kill at the limit)
+  long max_rss_kb = 0;  ///< the child's peak resident memory
   std::string out, err;
 };
 
 /// A child `lagrange` process started with `args`; its output goes to files in `dir`.
 class Child {
  public:
-  Child(const fs::path& dir, const std::vector<std::string>& args) : dir_(dir) {
+  Child(const fs::path& dir, const std::vector<std::string>& args)
+      : dir_(dir), start_(std::chrono::steady_clock::now()) {
     std::vector<std::string> argv{LAGRANGE_BINARY};
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char*> cargv;
@@ -79,16 +83,19 @@ class Child {
   RunResult wait(std::chrono::seconds limit = std::chrono::seconds(300)) {
     const auto deadline = std::chrono::steady_clock::now() + limit;
     int status = 0;
-    while (waitpid(pid_, &status, WNOHANG) == 0) {
+    struct rusage usage {};
+    while (wait4(pid_, &status, WNOHANG, &usage) == 0) {
       if (std::chrono::steady_clock::now() > deadline) {
         kill(pid_, SIGKILL);
-        waitpid(pid_, &status, 0);
+        wait4(pid_, &status, 0, &usage);
         break;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     pid_ = -1;
     RunResult r;
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    r.max_rss_kb = usage.ru_maxrss;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     r.out = slurp(dir_ / "stdout.txt");
     r.err = slurp(dir_ / "stderr.txt");
@@ -99,12 +106,14 @@ class Child {
 
  private:
   fs::path dir_;
+  std::chrono::steady_clock::time_point start_;
   pid_t pid_ = -1;
 };
 
 /// Runs `lagrange args...` to completion.
-inline RunResult run_lagrange(const fs::path& dir, const std::vector<std::string>& args) {
-  return Child(dir, args).wait();
+inline RunResult run_lagrange(const fs::path& dir, const std::vector<std::string>& args,
+                              std::chrono::seconds limit = std::chrono::seconds(300)) {
+  return Child(dir, args).wait(limit);
 }
 
 /// A fresh scratch directory under the build tree, removed by the destructor.

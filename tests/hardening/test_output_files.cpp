@@ -1,0 +1,148 @@
+// The trajectory CSV and its sidecar never disagree (issue 25 item 1): concurrent writers to
+// one -o, SIGKILL during the write, a full disk and an unwritable location each leave either
+// the old pair, the new pair, or a CSV without a sidecar — never a sidecar describing a file
+// that is not there — and no temporary file once a later run has cleaned up.
+
+#include <gtest/gtest.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+
+#include <nlohmann/json.hpp>
+
+#include "hardening/cli_runner.hpp"
+
+namespace lagrange::hardening {
+namespace {
+
+const std::string kPendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml";
+
+std::vector<std::string> simulate(const fs::path& csv, const std::string& t_end,
+                                  const std::string& step = "0.01") {
+  return {"simulate",      kPendulum, "-o",        csv.string(), "--t-end", t_end,
+          "--output-step", step,      "--compile", "off",        "-q"};
+}
+
+/// Size of `path` in bytes, -1 when it does not exist.
+long long size_of(const fs::path& path) {
+  std::error_code ec;
+  const auto n = fs::file_size(path, ec);
+  return ec ? -1 : static_cast<long long>(n);
+}
+
+/// The sidecar's record of the CSV's size (-1 without a sidecar).
+long long recorded_size(const fs::path& csv) {
+  const std::string text = slurp(csv.string() + ".json");
+  if (text.empty()) return -1;
+  return nlohmann::json::parse(text).at("csv_bytes").get<long long>();
+}
+
+/// Names in `dir` ending in ".part".
+std::vector<std::string> parts_in(const ScratchDir& dir) {
+  std::vector<std::string> parts;
+  for (const auto& name : dir.files())
+    if (name.size() > 5 && name.compare(name.size() - 5, 5, ".part") == 0) parts.push_back(name);
+  return parts;
+}
+
+/// A sidecar, when present, describes the CSV present: its size and number of rows.
+void expect_truthful_pair(const fs::path& csv) {
+  const long long recorded = recorded_size(csv);
+  if (recorded < 0) return;
+  EXPECT_EQ(recorded, size_of(csv)) << "the sidecar describes another file";
+  const std::string text = slurp(csv);
+  const auto rows = nlohmann::json::parse(slurp(csv.string() + ".json")).at("rows").get<long>();
+  EXPECT_EQ(static_cast<long>(std::count(text.begin(), text.end(), '\n')), rows + 1);
+}
+
+TEST(OutputFiles, ConcurrentWritersEachLeaveATruthfulPair) {
+  ScratchDir dir("concurrent-writers");
+  const fs::path csv = dir.path() / "out.csv", log_a = dir.path() / "a", log_b = dir.path() / "b";
+  fs::create_directory(log_a);
+  fs::create_directory(log_b);
+  for (int trial = 0; trial < 3; ++trial) {
+    Child a(log_a, simulate(csv, "3")), b(log_b, simulate(csv, "5"));
+    EXPECT_EQ(a.wait(std::chrono::seconds(60)).exit_code, 0);
+    EXPECT_EQ(b.wait(std::chrono::seconds(60)).exit_code, 0);
+    ASSERT_GT(recorded_size(csv), 0);
+    expect_truthful_pair(csv);
+    EXPECT_EQ(parts_in(dir), std::vector<std::string>{});
+  }
+}
+
+TEST(OutputFiles, KillDuringALongWriteNeverLeavesAMismatch) {
+  ScratchDir dir("kill-during-write");
+  const fs::path csv = dir.path() / "out.csv";
+  ASSERT_EQ(run_lagrange(dir.path(), simulate(csv, "1")).exit_code, 0);
+  const long long old_size = size_of(csv);
+  // One full long run (100 000 rows, ~15 MB) to time it and to know the new file's size.
+  const fs::path full = dir.path() / "full.csv";
+  const RunResult timed = run_lagrange(dir.path(), simulate(full, "20", "0.0002"));
+  ASSERT_EQ(timed.exit_code, 0) << timed.err;
+  const long long new_size = size_of(full);
+  fs::remove(full);
+  fs::remove(full.string() + ".json");
+  // Kills spread over the run, dense towards its end where the files are written.
+  for (const double at : {0.3, 0.6, 0.8, 0.9, 0.95, 1.0}) {
+    SCOPED_TRACE(at);
+    Child child(dir.path(), simulate(csv, "20", "0.0002"));
+    std::this_thread::sleep_for(std::chrono::duration<double>(at * timed.seconds));
+    child.signal(SIGKILL);
+    child.wait();
+    const long long now = size_of(csv);
+    EXPECT_TRUE(now == old_size || now == new_size) << "a partial CSV under the final name";
+    expect_truthful_pair(csv);
+  }
+  // The next run removes what the killed ones left.
+  ASSERT_EQ(run_lagrange(dir.path(), simulate(csv, "1")).exit_code, 0);
+  EXPECT_EQ(parts_in(dir), std::vector<std::string>{});
+  expect_truthful_pair(csv);
+}
+
+TEST(OutputFiles, UnwritableLocationFailsBeforeTheRun) {
+  ScratchDir dir("unwritable");
+  spit(dir.path() / "file", "x");
+  std::vector<fs::path> places{dir.path() / "file" / "out.csv", "/proc/self/out.csv"};
+  if (geteuid() != 0) {  // root writes read-only directories anyway
+    fs::create_directory(dir.path() / "ro");
+    chmod((dir.path() / "ro").c_str(), 0500);
+    places.push_back(dir.path() / "ro" / "out.csv");
+  }
+  for (const fs::path& csv : places) {
+    SCOPED_TRACE(csv.string());
+    // A long run: failing before it means failing at once.
+    const RunResult r = run_lagrange(dir.path(), simulate(csv, "2000", "0.0002"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("lagrange: -o: cannot "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(csv.filename().string()), std::string::npos) << r.err;
+    EXPECT_LT(r.seconds, 5.0);
+  }
+}
+
+TEST(OutputFiles, FullDiskSaysSoAndKeepsTheOldPair) {
+  ScratchDir dir("full-disk");
+  const fs::path mnt = dir.path() / "small";
+  fs::create_directory(mnt);
+  if (mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=64k") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
+  struct Unmount {
+    fs::path at;
+    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
+  } unmount{mnt};
+  const fs::path csv = mnt / "out.csv";
+  ASSERT_EQ(run_lagrange(dir.path(), simulate(csv, "1")).exit_code, 0);
+  const std::string old_csv = slurp(csv), old_sidecar = slurp(csv.string() + ".json");
+  const RunResult r = run_lagrange(dir.path(), simulate(csv, "10", "0.001"));  // ~1.5 MB
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("cannot write '" + csv.string() + "': no space left on device"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(slurp(csv), old_csv);
+  EXPECT_EQ(slurp(csv.string() + ".json"), old_sidecar);
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(mnt)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"out.csv", "out.csv.json"}));
+}
+
+}  // namespace
+}  // namespace lagrange::hardening
