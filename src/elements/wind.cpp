@@ -113,16 +113,27 @@ void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContex
   if (node["roughness"]) {
     w.roughness = reader.scalar_expr(node["roughness"], kParams, "wind roughness length z0");
     reader.check_sign(w.roughness, node["roughness"], true, "roughness length z0");
+  }
+  // ln(h/z0)/ln(h_ref/z0) reverses the wind for h_ref < z0 and divides by 0 at h_ref = z0
+  // (issue 25 item 5): checked whichever of the two was given, defaults included.
+  if (w.profile == Wind::Profile::Logarithmic) {
     const auto z0 = reader.evaluate(w.roughness), href = reader.evaluate(w.reference_height);
     if (z0 && href && *z0 >= *href)
-      reader.fail(node["roughness"],
-                  fmt::format("expected a roughness length z0 below the reference height {:g}, "
-                              "got {:g}",
-                              *href, *z0));
+      reader.fail(node["roughness"] ? node["roughness"] : node["reference_height"],
+                  fmt::format("expected a roughness length z0 below the reference height, got "
+                              "z0 = {:g} and reference height {:g}",
+                              *z0, *href));
   }
   if (node["exponent"]) {
     w.exponent = reader.scalar_expr(node["exponent"], kParams, "wind power-law exponent");
     reader.check_sign(w.exponent, node["exponent"], false, "power-law exponent");
+    // (h/h_ref)^a with a ≥ 100 vanishes below h_ref and overflows above it: no wind shear is
+    // that steep (open sea ≈ 0.1, cities ≈ 0.4).
+    if (const auto a = reader.evaluate(w.exponent); a && *a > 1)
+      reader.fail(node["exponent"],
+                  fmt::format("expected a power-law exponent between 0 and 1 (0.1 over open "
+                              "water to 0.4 over cities), got {:g}",
+                              *a));
   }
   ctx.wind = w;
 }

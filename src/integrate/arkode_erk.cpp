@@ -7,6 +7,7 @@
 #include "integrate/callbacks.hpp"
 #include "integrate/erk_tables.hpp"
 #include "integrate/hermite_dense.hpp"
+#include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 #include "integrate/sundials_handles.hpp"
@@ -160,7 +161,9 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
     }
     ok(ERKStepSetStopTime(mem.get(), t_end), "ERKStepSetStopTime", t);  // both forget it
   };
-  walk_dense(grid, observer, options.after_step, false, y, step, interpolate, restart);
+  keeping_stats(
+      [&] { walk_dense(grid, observer, options.after_step, false, y, step, interpolate, restart); },
+      [&] { return before_restart + erk_stats(mem.get(), t_reached, log); });
   return before_restart + erk_stats(mem.get(), t_reached, log);
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "integrate/callbacks.hpp"
+#include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 #include "integrate/sundials_handles.hpp"
@@ -80,7 +81,9 @@ IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptio
   };
   // BDF restarts at order 1 with a small step: drift is corrected once per output interval, after
   // the first step past each sample, not after every step.
-  walk_dense(grid, observer, options.after_step, true, y, step, interpolate, restart);
+  keeping_stats(
+      [&] { walk_dense(grid, observer, options.after_step, true, y, step, interpolate, restart); },
+      [&] { return before_restart + cvode_stats(mem.get(), t_reached, log); });
   return before_restart + cvode_stats(mem.get(), t_reached, log);
 }
 

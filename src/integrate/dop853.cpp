@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrate/dop853_coefficients.hpp"
+#include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 #include "integrate/walk_grid.hpp"
@@ -277,7 +278,9 @@ IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOpti
     t_reached = t;
     method.start(t, keep_step);
   };
-  walk_dense(grid, observer, options.after_step, false, y, step, interpolate, restart);
+  keeping_stats(
+      [&] { walk_dense(grid, observer, options.after_step, false, y, step, interpolate, restart); },
+      [&] { return method.stats(); });
   return method.stats();
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "integrate/callbacks.hpp"
+#include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 #include "integrate/sundials_handles.hpp"
@@ -87,7 +88,8 @@ IntegratorStats integrate_ida(const DaeProblem& problem, const IntegratorOptions
     ok(IDAReInit(mem.get(), t, y_vec.get(), yp_vec.get()), "IDAReInit", t);
     consistent_start(t, next_time(t));
   };
-  walk_grid(grid, observer, y.data(), yp.data(), advance, restart);
+  keeping_stats([&] { walk_grid(grid, observer, y.data(), yp.data(), advance, restart); },
+                [&] { return before_restart + ida_stats(mem.get(), t_reached, log); });
   return before_restart + ida_stats(mem.get(), t_reached, log);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrate/fixed_steps.hpp"
+#include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 #include "lagrange/error.hpp"
@@ -63,7 +64,7 @@ IntegratorStats integrate_midpoint(const OdeProblem& problem, const IntegratorOp
     }
     ++stats.steps;
   };
-  walk_fixed_steps(grid, options, observer, y, step);
+  keeping_stats([&] { walk_fixed_steps(grid, options, observer, y, step); }, [&] { return stats; });
   return stats;
 }
 

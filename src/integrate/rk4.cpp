@@ -1,4 +1,5 @@
 #include "integrate/fixed_steps.hpp"
+#include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
 
@@ -28,7 +29,7 @@ IntegratorStats integrate_rk4(const OdeProblem& problem, const IntegratorOptions
     for (size_t i = 0; i < n; ++i) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     ++stats.steps;
   };
-  walk_fixed_steps(grid, options, observer, y, step);
+  keeping_stats([&] { walk_fixed_steps(grid, options, observer, y, step); }, [&] { return stats; });
   return stats;
 }
 

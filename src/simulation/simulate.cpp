@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "lagrange/error.hpp"
+#include "lagrange/integration_failure.hpp"
 #include "lagrange/simulation.hpp"
 
 namespace lagrange {
@@ -266,6 +267,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       traj.stats = integrate(ode, integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
   } catch (const SimulationError& e) {
+    if (const auto* failure = dynamic_cast<const IntegrationFailure*>(&e))
+      traj.stats = failure->stats();  // the work done until the failure (issue 25 item 10)
     traj.status = Trajectory::Status::Failed;
     traj.message = e.what();
     if (last.valid && !last.reported) traj.message += "; " + last.describe(cm);

@@ -49,6 +49,16 @@ std::vector<BadModel> bad_elements() {
       {"roughness negative",
        tether(kOk) + "wind: {profile: logarithmic, speed: 5, roughness: -0.1}\n",
        "expected a positive roughness length z0"},
+      {"roughness above the reference height",
+       tether(kOk) + "wind: {profile: logarithmic, speed: 5, reference_height: 0.05}\n",
+       "expected a roughness length z0 below the reference height, got z0 = 0.1 and reference "
+       "height 0.05"},
+      {"roughness at the reference height",
+       tether(kOk) + "wind: {profile: logarithmic, speed: 5, roughness: 2, reference_height: 2}\n",
+       "expected a roughness length z0 below the reference height, got z0 = 2"},
+      {"power-law exponent of 100",
+       tether(kOk) + "wind: {profile: power_law, speed: 5, exponent: 100}\n",
+       "expected a power-law exponent between 0 and 1"},
       {"unknown wind profile", tether(kOk) + "wind: {profile: gusty, speed: 5}\n",
        "expected 'uniform', 'logarithmic' or 'power_law'"},
   };

@@ -75,6 +75,12 @@ Failure run_failing(const ScratchDir& dir, const std::string& yaml,
   if (!m.empty()) {
     EXPECT_DOUBLE_EQ(std::stod(m[1].str()), f.sidecar.at("failure_time").get<double>());
   }
+  // The work done until a mid-run failure is kept (issue 25 item 10: it read 0 and 0).
+  if (f.sidecar.at("failure_time").get<double>() > 0) {
+    EXPECT_GT(f.sidecar.at("steps").get<long>(), 0) << f.sidecar.dump();
+    EXPECT_GT(f.sidecar.at("rhs_evaluations").get<long>(), f.sidecar.at("steps").get<long>())
+        << f.sidecar.dump();
+  }
   return f;
 }
 
@@ -105,6 +111,14 @@ TEST(RuntimeFailure, NanInTheStateWithFixedStepRk4) {
   const Failure f = run_failing(dir, kSqrtThroughZero, {"--integrator", "rk4"});
   EXPECT_NE(f.result.err.find("the acceleration of 'x' is not finite"), std::string::npos)
       << f.result.err;
+}
+
+TEST(RuntimeFailure, EveryIntegratorKeepsItsStatisticsOnFailure) {
+  for (const char* method : {"dop853", "arkode", "cvode", "rk4", "midpoint", "ida"}) {
+    SCOPED_TRACE(method);
+    ScratchDir dir(std::string("stats-") + method);
+    (void)run_failing(dir, kSqrtThroughZero, {"--integrator", method});
+  }
 }
 
 TEST(RuntimeFailure, InfiniteAccelerationOnACollapse) {
