@@ -44,8 +44,8 @@ Residual residual_at(Dynamics& dyn, double t, std::vector<double>& q,
 }  // namespace
 
 // docs/theory.md §5.5: solve a(x, v = 0) = 0 for the free tangent coordinates x: Newton steps
-// (∂a/∂x)_free δ = −a (least squares when fewer unknowns than equations), each shortened by
-// halving until ‖a‖₂ decreases by the Armijo fraction 1e-4·s.
+// (∂a/∂x)_free Z ξ = −a, δ = Z ξ along the constraint manifold (least squares), each shortened
+// by halving until ‖a‖₂ decreases by the Armijo fraction 1e-4·s.
 TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
                 const TrimOptions& options) {
   const CompiledModel& cm = jac.model();
@@ -81,24 +81,37 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
           "trim: the Jacobian ∂a/∂q is not finite at iteration {} (the dynamics are not "
           "differentiable there); stopped at {}",
           it, describe(cm, result.q)));
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Af);
+    // Constrained models: Newton moves along the manifold, δ = Z ξ with Z an orthonormal basis
+    // of the null space of (∂C/∂x)_free; on C = 0 at v = 0, a lies in G's null space too.
+    Eigen::MatrixXd Z = Eigen::MatrixXd::Identity(Af.cols(), Af.cols());
+    if (cm.m > 0) {
+      const Eigen::MatrixXd Cx = J.C_q * chart.T;
+      Eigen::MatrixXd Cf(Cx.rows(), Af.cols());
+      for (size_t k = 0; k < unknowns.size(); ++k)
+        Cf.col(static_cast<long>(k)) = Cx.col(unknowns[k]);
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> cq(Cf.transpose());
+      const Eigen::MatrixXd Q = cq.householderQ();
+      Z = Q.rightCols(Af.cols() - cq.rank());
+    }
+    const Eigen::MatrixXd Ar = Af * Z;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Ar);
     qr.setThreshold(1e-10);
-    if (qr.rank() < Af.cols()) {
+    if (qr.rank() < Ar.cols()) {
       // The direction in which the accelerations do not change: what makes it singular.
-      const Eigen::MatrixXd N = Eigen::FullPivLU<Eigen::MatrixXd>(Af).kernel();
+      const Eigen::MatrixXd N = Eigen::FullPivLU<Eigen::MatrixXd>(Ar).kernel();
       std::string along;
-      if (N.cols() > 0) {
+      if (N.cols() > 0 && N.col(0).norm() > 0) {
         Eigen::Index top = 0;
-        N.col(0).cwiseAbs().maxCoeff(&top);
+        (Z * N.col(0)).cwiseAbs().maxCoeff(&top);
         along = fmt::format(" (the accelerations do not change along '{}')",
                             chart.names[static_cast<size_t>(unknowns[static_cast<size_t>(top)])]);
       }
       throw AnalysisError(fmt::format(
           "trim: the Jacobian ∂a/∂q is singular at iteration {} (rank {} of {}){}: no isolated "
           "equilibrium here; stopped at {} with max |acceleration| = {:.3g}",
-          it, qr.rank(), Af.cols(), along, describe(cm, result.q), result.residual));
+          it, qr.rank(), Ar.cols(), along, describe(cm, result.q), result.residual));
     }
-    const Eigen::VectorXd step = qr.solve(Eigen::VectorXd(-r.a));
+    const Eigen::VectorXd step = Z * qr.solve(Eigen::VectorXd(-r.a));
     Eigen::VectorXd dx = Eigen::VectorXd::Zero(n);
     for (size_t k = 0; k < unknowns.size(); ++k) dx[unknowns[k]] = step[static_cast<long>(k)];
     double s = 1.0;

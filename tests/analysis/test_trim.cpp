@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/analysed.hpp"
@@ -87,6 +88,48 @@ kinetic: m/2*der(x)^2
 potential: m*(x^3/3 + x)
 )");
   EXPECT_THROW((void)trim(*s.jac, *s.dyn, 0.0, s.q), AnalysisError);
+}
+
+}  // namespace
+}  // namespace lagrange
+
+namespace lagrange {
+namespace {
+
+// The lumped chain hung between (0, 0) and (span, 0) from a start that is not its rest shape:
+// at a discrete catenary the horizontal tension H is the same in every link and each node's
+// weight w steps the vertical one, so the links' slopes tan φ_k = V_k/H fall by the same w/H
+// from link to link, and the shape is symmetric about the middle.
+TEST(Trim, HangingChainReachesTheDiscreteCatenary) {
+  auto s = testing::analyse_example("hanging_chain.yaml");
+  const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q);
+  EXPECT_LE(r.residual, 1e-9);
+  const CompiledModel& cm = *s.cm;
+  const auto at = [&](const std::string& name) {
+    const auto it = std::find(cm.coordinate_names.begin(), cm.coordinate_names.end(), name);
+    return r.q[static_cast<size_t>(it - cm.coordinate_names.begin())];
+  };
+  const int N = 20;
+  const double span = 8.0;
+  std::vector<double> x{0.0}, z{0.0};
+  for (int k = 1; k < N; ++k) {
+    x.push_back(at("chain.node" + std::to_string(k) + ".x"));
+    z.push_back(at("chain.node" + std::to_string(k) + ".z"));
+    EXPECT_NEAR(at("chain.node" + std::to_string(k) + ".y"), 0.0, 1e-12);
+  }
+  x.push_back(span);
+  z.push_back(0.0);
+  std::vector<double> slope;
+  for (int k = 0; k < N; ++k) slope.push_back((z[k + 1] - z[k]) / (x[k + 1] - x[k]));
+  const double step = slope[1] - slope[0];
+  EXPECT_GT(step, 0.0);  // sagging: slopes rise from −… to +…
+  for (int k = 1; k < N; ++k) EXPECT_NEAR(slope[k] - slope[k - 1], step, 1e-9) << "link " << k;
+  for (int k = 0; k <= N; ++k) {
+    EXPECT_NEAR(x[k] + x[N - k], span, 1e-9);
+    EXPECT_NEAR(z[k], z[N - k], 1e-9);
+  }
+  for (int k = 0; k < N; ++k)  // every link has its length L/N
+    EXPECT_NEAR(std::hypot(x[k + 1] - x[k], z[k + 1] - z[k]), 10.0 / N, 1e-12);
 }
 
 }  // namespace
