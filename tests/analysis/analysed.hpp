@@ -40,7 +40,7 @@ inline Analysed analyse(std::unique_ptr<Model> model, const std::vector<std::str
   a.eq = derive(*a.model);
   a.cm = compile(a.eq);
   a.dyn = std::make_unique<Dynamics>(a.cm, a.cm->parameter_defaults);
-  a.dyn->set_baumgarte(a.model->stabilization.alpha);
+  a.dyn->set_baumgarte(baumgarte_rate(a.model->stabilization, a.model->simulate.integrator));
   a.jac = std::make_unique<DynamicsJacobian>(a.eq, a.cm, inputs, outputs);
   a.q = a.cm->q0;
   a.v = a.cm->v0;
