@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "symbolic/expansion_bound.hpp"
 #include "symbolic/printed_size.hpp"
 
 namespace lagrange::io {
@@ -11,11 +12,13 @@ namespace lagrange::io {
 namespace {
 
 // Small expressions are shown in their shortest form among: as derived, expanded, and
-// simplified with sin² + cos² = 1 (lagrange::simplify).
+// simplified with sin² + cos² = 1 (lagrange::simplify); only those whose expansion is bounded.
 GiNaC::ex tidy(const GiNaC::ex& e) {
   using symbolic::printed_size;
   size_t best_size = printed_size(e);
-  if (best_size > 600) return e;
+  // Short text can still expand without bound ((a + b + c)^40): ask before expanding.
+  constexpr size_t kTidyTerms = 400;
+  if (best_size > 600 || !symbolic::expands_within(e, kTidyTerms)) return e;
   GiNaC::ex best = e;
   const GiNaC::ex simplified = simplify(e);
   for (const GiNaC::ex& c : {e.expand(), simplified, simplified.expand()}) {

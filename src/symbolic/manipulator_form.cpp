@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "lagrange/manipulator.hpp"
+#include "symbolic/expansion_bound.hpp"
 #include "symbolic/printed_size.hpp"
 
 namespace lagrange {
@@ -47,7 +48,7 @@ struct ExpandTrig : GiNaC::map_function {
 /// are left as derived).
 GiNaC::ex tidy(const GiNaC::ex& e) {
   const size_t size = printed_size(e);
-  if (size > 4000) return e;
+  if (size > 4000 || !symbolic::expands_within(e, 2000)) return e;  // no unbounded expansion
   const GiNaC::ex s = trig_simplify(e);
   return printed_size(s) < size ? s : e;
 }
