@@ -43,13 +43,13 @@ Vec3 unit_axis(const ModelReader& r, const JointSpec& j) {
   for (const GiNaC::ex& c : j.axis) {
     const auto v = r.evaluate(c);
     if (!v)
-      throw ModelError(j.loc, fmt::format("expected the axis of joint '{}' as numbers or "
-                                          "expressions of parameters",
-                                          j.name));
+      throw ModelError(j.axis_loc, fmt::format("expected the axis of joint '{}' as numbers or "
+                                               "expressions of parameters",
+                                               j.name));
     n2 += *v * *v;
   }
   if (!(n2 > 0) || !std::isfinite(n2))
-    throw ModelError(j.loc,
+    throw ModelError(j.axis_loc,
                      fmt::format("expected a non-zero axis for joint '{}', got [0, 0, 0]", j.name));
   const GiNaC::ex len = GiNaC::pow(
       j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2], GiNaC::numeric(1, 2));
@@ -183,8 +183,9 @@ void declare_chain(ModelReader& r, LinkChain& chain) {
       b.position = f.r;
       b.rotation = f.R;
       b.angular_velocity = f.w;
-      b.loc = link.loc;
+      b.loc = link.inertia_loc;
       check_body_inertia(r.model(), b, f.spin_axis);
+      b.loc = link.loc;
       r.add_body(b);
     }
     TreeJoint t =

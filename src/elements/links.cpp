@@ -48,7 +48,11 @@ JointSpec read_joint(const ModelReader& r, const std::string& link, const YAML::
       r.fail(node, fmt::format("expected 'name' (its coordinate's name) in {}, got none", what));
     j.name = r.scalar(node["name"], "name of " + what);
     j.loc = r.source().at(node["name"]);
-    if (node["axis"]) j.axis = r.vector_expr(node["axis"], model::kParams, "axis of " + what);
+    j.axis_loc = j.loc;
+    if (node["axis"]) {
+      j.axis = r.vector_expr(node["axis"], model::kParams, "axis of " + what);
+      j.axis_loc = r.source().at(node["axis"]);
+    }
     if (node["initial"])
       j.initial = r.number(node["initial"], model::kParams, "initial value of joint " + j.name);
     if (node["rate"]) j.rate = r.number(node["rate"], model::kParams, "rate of joint " + j.name);
@@ -142,6 +146,9 @@ void declare_links(ModelReader& r, const YAML::Node& node, LinkChain& chain) {
     shape_of.name = link.name;
     shape_of.mass = link.mass;
     link.inertia = r.read_inertia(shape_of, spec);
+    link.inertia_loc = r.source().at(spec["inertia"] ? spec["inertia"]
+                                     : spec["shape"] ? spec["shape"]
+                                                     : spec["mass"]);
     if (const YAML::Node points = spec["points"]) {
       r.expect_map(points, "points of " + what + " (a map name: [x, y, z])");
       r.check_keys(points, {}, "points of " + what);

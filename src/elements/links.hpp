@@ -30,6 +30,7 @@ struct JointSpec {
   std::optional<GiNaC::ex> torque;  ///< joint torque (force for prismatic), read when lowered
   GiNaC::ex damping = 0;            ///< viscous joint damping: adds −b q̇
   SourceLoc loc;
+  SourceLoc axis_loc;  ///< where the axis is written (loc when it is not)
 };
 
 /// Denavit–Hartenberg parameters of a link (`dh:`), θ and d the constant parts (the joint adds q
@@ -53,11 +54,13 @@ struct LinkSpec {
   std::optional<DhSpec> dh;                          ///< joint placed by DH parameters
   YAML::Node key, spec;                              ///< YAML source (null for URDF links)
   SourceLoc loc;
+  SourceLoc inertia_loc;  ///< where the mass properties are written (loc when they are not)
 };
 
 /// A chain after lowering: the coordinate of each link's joint (or −1) and where torques go.
 struct LinkChain {
   std::string title;
+  std::string robot;  ///< a URDF's <robot name> (empty for `links:`)
   std::vector<LinkSpec> links;
   std::vector<int> coordinate;  ///< per link: index in Model::coordinates, −1 for fixed joints
 };

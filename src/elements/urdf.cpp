@@ -86,6 +86,51 @@ struct Joint {
   std::string name, parent, child;
 };
 
+/// What tinyxml2 found wrong, in words: "ErrorID=14 (0xe) … XMLElement name=inertial" becomes
+/// "the element <inertial> is not closed before its parent's closing tag".
+std::string xml_error_words(const tinyxml2::XMLDocument& doc) {
+  const std::string raw = doc.ErrorStr() ? doc.ErrorStr() : "";
+  std::string subject;  // the element or attribute tinyxml2 names after "Line number=N: "
+  const size_t detail = raw.find(": ", raw.find("Line number="));
+  if (detail != std::string::npos) {
+    const std::string tail = raw.substr(detail + 2);
+    for (const char* kind : {"XMLElement name=", "XMLAttribute name=", "XMLText name=",
+                             "XMLComment name=", "XMLDeclaration name=", "XMLUnknown name="}) {
+      const std::string k = kind;
+      if (tail.rfind(k, 0) == 0) subject = tail.substr(k.size());
+    }
+  }
+  const std::string element = subject.empty() ? "an element" : "the element <" + subject + ">";
+  switch (doc.ErrorID()) {
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      return element + " is not closed before its parent's closing tag (a missing </" +
+             (subject.empty() ? std::string("…") : subject) + "> or '/>', or a misspelt tag)";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      return element + " is malformed or never closed (expected <name …/> or <name …>…</name>)";
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      return "a malformed attribute" + (subject.empty() ? "" : " of <" + subject + ">") +
+             " (expected name=\"value\" with both quotes)";
+    case tinyxml2::XML_ERROR_PARSING_TEXT:
+      return "malformed text (a stray '<' or '&'?)";
+    case tinyxml2::XML_ERROR_PARSING_CDATA:
+      return "an unterminated <![CDATA[ section";
+    case tinyxml2::XML_ERROR_PARSING_COMMENT:
+      return "an unterminated comment (expected '-->')";
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION:
+      return "a malformed <?xml …?> declaration (expected '?>')";
+    case tinyxml2::XML_ERROR_PARSING_UNKNOWN:
+      return "a malformed <!…> construct";
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
+      return "an empty file (expected <robot …>)";
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
+      return "elements nested too deeply";
+    case tinyxml2::XML_ERROR_FILE_READ_ERROR:
+      return "a file that cannot be read";
+    default:
+      return "malformed XML (" + raw + ")";
+  }
+}
+
 }  // namespace
 
 LinkChain read_urdf(const std::string& path) {
@@ -96,7 +141,7 @@ LinkChain read_urdf(const std::string& path) {
         doc.ErrorID() == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED)
       throw ModelError(SourceLoc{path}, "cannot open the URDF file");
     throw ModelError(SourceLoc{path, doc.ErrorLineNum(), 0},
-                     fmt::format("expected well-formed XML, got: {}", doc.ErrorStr()));
+                     "expected well-formed XML: " + xml_error_words(doc));
   }
   const XMLElement* robot = doc.FirstChildElement("robot");
   if (!robot) throw ModelError(SourceLoc{path}, "expected a <robot> element at the top");
@@ -150,6 +195,7 @@ LinkChain read_urdf(const std::string& path) {
                                         "no joint's child)",
                                         roots[0], roots[1]));
   LinkChain chain;
+  chain.robot = robot->Attribute("name") ? robot->Attribute("name") : "";
   chain.title =
       fmt::format("URDF robot '{}' ({})", robot->Attribute("name") ? robot->Attribute("name") : "?",
                   std::filesystem::path(path).filename().string());
@@ -161,6 +207,7 @@ LinkChain read_urdf(const std::string& path) {
     LinkSpec link;
     link.name = n;
     link.loc = u.loc(le);
+    link.inertia_loc = link.loc;
     if (parent_joint.count(n)) {
       const Joint& j = joints[parent_joint[n]];
       const XMLElement* e = j.element;
@@ -185,8 +232,9 @@ LinkChain read_urdf(const std::string& path) {
           u.triple(origin, "rpy", {0, 0, 0}, "the origin rpy of joint '" + j.name + "'");
       link.joint.rpy = {UrdfReader::angle(rpy[0]), UrdfReader::angle(rpy[1]),
                         UrdfReader::angle(rpy[2])};
-      link.joint.axis = u.triple(e->FirstChildElement("axis"), "xyz", {1, 0, 0},
-                                 "the axis of joint '" + j.name + "'");
+      const XMLElement* axis = e->FirstChildElement("axis");
+      link.joint.axis = u.triple(axis, "xyz", {1, 0, 0}, "the axis of joint '" + j.name + "'");
+      link.joint.axis_loc = u.loc(axis ? axis : e);
       if (const XMLElement* dyn = e->FirstChildElement("dynamics")) {
         if (const char* d = dyn->Attribute("damping")) {
           link.joint.damping = u.decimal(d, dyn, "the damping of joint '" + j.name + "'");
@@ -216,6 +264,7 @@ LinkChain read_urdf(const std::string& path) {
       const Vec3 rpy =
           u.triple(origin, "rpy", {0, 0, 0}, "the inertial origin rpy of link '" + n + "'");
       const XMLElement* inertia = in->FirstChildElement("inertia");
+      link.inertia_loc = u.loc(inertia ? inertia : in);
       if (!inertia && !link.mass.is_zero())
         u.fail(in, fmt::format("expected <inertia ixx=\"…\" …/> in the inertial of link '{}'", n));
       Mat3 I{Vec3{0, 0, 0}, Vec3{0, 0, 0}, Vec3{0, 0, 0}};
@@ -268,6 +317,9 @@ void declare_urdf(model::ModelReader& r, const YAML::Node& node, LinkChain& chai
   std::filesystem::path p = r.scalar(file, "URDF file");
   if (p.is_relative()) p = std::filesystem::path(r.source().file()).parent_path() / p;
   chain = read_urdf(p.lexically_normal().string());
+  // A URDF given on its own (model/yaml_reader.cpp) is named after its <robot name>.
+  if (std::filesystem::path(r.source().file()).extension() == ".urdf" && !chain.robot.empty())
+    r.model().name = chain.robot;
   for (const auto& [values, what] : {std::pair{initial, "initial"}, std::pair{rate, "rate"}}) {
     if (!values || values.IsNull()) continue;
     r.expect_map(values, fmt::format("urdf {} (a map joint: value)", what));

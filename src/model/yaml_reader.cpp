@@ -123,8 +123,10 @@ Model read_model_file(const std::string& path, const ParameterOverrides& overrid
   if (std::filesystem::is_directory(path, ec))
     throw ModelError(SourceLoc{path}, "expected a model file, got a directory");
   if (std::filesystem::path(path).extension() == ".urdf") {
-    // A URDF robot on its own: zero torques, gravity −9.81 along z (docs/model-language.md).
-    std::string quoted = std::filesystem::absolute(path).string(), escaped;
+    // A URDF robot on its own: zero torques, gravity −9.81 along z, named after <robot name>
+    // (docs/model-language.md).
+    // Relative to the file itself, so that messages name the path as typed.
+    std::string quoted = std::filesystem::path(path).filename().string(), escaped;
     for (char c : quoted) escaped += c == '\'' ? std::string("''") : std::string(1, c);
     return read_model_string(fmt::format("name: '{}'\nurdf: '{}'\ngravity: [0, 0, -9.81]\n",
                                          std::filesystem::path(path).stem().string(), escaped),

@@ -169,6 +169,22 @@ std::vector<BadUrdf> bad_urdfs() {
        "  <link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" "
        "iyy=\"1\" iyz=\"0\" izz=\"3\"/></inertial></link>",
        "body 'b': non-physical inertia", 6},
+      // Mass-property and axis errors point at the offending element's own line.
+      {"inertia on its own line", joint("revolute", "a", "b"),
+       "  <link name=\"b\"><inertial><mass value=\"1\"/>\n    <inertia ixx=\"1\" ixy=\"0\" "
+       "ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"3\"/></inertial></link>",
+       "body 'b': non-physical inertia", 7},
+      {"zero axis", joint("revolute", "a", "b", "\n    <axis xyz=\"0 0 0\"/>"), kLinkB,
+       "expected a non-zero axis for joint 'j2', got [0, 0, 0]", 6},
+      // Malformed XML is described in words, not as tinyxml2's error number.
+      {"unclosed element", joint("revolute", "a", "b"),
+       "  <link name=\"b\"><inertial><mass value=\"1\"/></link>",
+       "expected well-formed XML: the element <inertial> is not closed before its parent's "
+       "closing tag",
+       6},
+      {"unquoted attribute", joint("revolute", "a", "b"),
+       "  <link name=\"b\"><inertial><mass value=1/></inertial></link>",
+       "expected well-formed XML: a malformed attribute of <mass>", 6},
   };
 }
 
@@ -187,6 +203,25 @@ TEST_P(BadUrdfFile, ExitsOneWithTheFileAndLine) {
   EXPECT_NE(r.err.find(where), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(bad.fragment), std::string::npos) << r.err;
   EXPECT_EQ(dir.files(), std::vector<std::string>{"robot.urdf"});
+}
+
+// A URDF given on its own is named after its <robot name>, and messages name its path as typed
+// (relative to the working directory), as they do for model files.
+TEST(UrdfFile, IsNamedAfterItsRobotAndItsPathPrintsAsTyped) {
+  ScratchDir dir(std::string("urdf-name-") + std::to_string(getpid()));
+  BadUrdf fine{"fine", joint("revolute", "a", "b"), kLinkB, "", 0};
+  spit(dir.path() / "robot.urdf", urdf(fine));
+  const std::string typed = fs::relative(dir.path() / "robot.urdf").string();  // from our cwd
+  const RunResult ok =
+      run_lagrange(dir.path(), {"simulate", typed, "-o", (dir.path() / "out.csv").string()});
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(ok.out.rfind("r: ", 0), 0U) << ok.out;  // <robot name="r">, not the file's stem
+  BadUrdf zero{"zero", joint("revolute", "a", "b", "<axis xyz=\"0 0 0\"/>"), kLinkB, "", 0};
+  spit(dir.path() / "robot.urdf", urdf(zero));
+  const RunResult bad =
+      run_lagrange(dir.path(), {"simulate", typed, "-o", (dir.path() / "bad.csv").string()});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.err.rfind(typed + ":5: error: expected a non-zero axis", 0), 0U) << bad.err;
 }
 
 INSTANTIATE_TEST_SUITE_P(Urdf, BadUrdfFile, ::testing::ValuesIn(bad_urdfs()), [](const auto& info) {
