@@ -122,6 +122,8 @@ GiNaC::ex air_density(ModelReader& r, const KiteSpec& k, const GiNaC::ex& height
   if (n.IsScalar() && n.Scalar() == "isa") return isa_density(height);
   GiNaC::ex rho = r.scalar_expr(n, model::kParams, "air density of kite " + k.name + " (or isa)");
   r.check_sign(rho, n, false, "air density of kite " + k.name);  // 0: aerodynamics off
+  r.warn_implausible(rho, n, ModelReader::Quantity::AirDensity,
+                     "the air density of kite '" + k.name + "'");
   return rho;
 }
 

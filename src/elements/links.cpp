@@ -53,8 +53,12 @@ JointSpec read_joint(const ModelReader& r, const std::string& link, const YAML::
       j.axis = r.vector_expr(node["axis"], model::kParams, "axis of " + what);
       j.axis_loc = r.source().at(node["axis"]);
     }
-    if (node["initial"])
+    if (node["initial"]) {
       j.initial = r.number(node["initial"], model::kParams, "initial value of joint " + j.name);
+      if (j.type == JointSpec::Type::Revolute)
+        r.warn_implausible(j.initial, node["initial"], ModelReader::Quantity::Angle,
+                           "the initial angle of revolute joint '" + j.name + "'");
+    }
     if (node["rate"]) j.rate = r.number(node["rate"], model::kParams, "rate of joint " + j.name);
     if (node["damping"]) {
       j.damping = r.scalar_expr(node["damping"], model::kParams, "damping of joint " + j.name);

@@ -236,7 +236,11 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
       t.diameter = required_positive(r, spec, "diameter", what, true);
     if (spec["cd"]) t.cd = required_positive(r, spec, "cd", what, false);
     t.air_density = GiNaC::numeric(49, 40);  // 1.225 kg/m³, sea level (ISA)
-    if (spec["air_density"]) t.air_density = required_positive(r, spec, "air_density", what, false);
+    if (spec["air_density"]) {
+      t.air_density = required_positive(r, spec, "air_density", what, false);
+      r.warn_implausible(t.air_density, spec["air_density"], ModelReader::Quantity::AirDensity,
+                         "the air density of " + what);
+    }
     if (spec["damping"]) t.damping = required_positive(r, spec, "damping", what, false);
 
     // The length: a winch's coordinate, or a constant / ℓ(t) written here.

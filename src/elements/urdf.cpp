@@ -335,6 +335,9 @@ void declare_urdf(model::ModelReader& r, const YAML::Node& node, LinkChain& chai
       const double v = r.number(kv.second, model::kParams,
                                 fmt::format("{} of joint {}", what, kv.first.Scalar()));
       (std::string(what) == "initial" ? found->joint.initial : found->joint.rate) = v;
+      if (std::string(what) == "initial" && found->joint.type == JointSpec::Type::Revolute)
+        r.warn_implausible(v, kv.second, model::ModelReader::Quantity::Angle,
+                           "the initial angle of joint '" + found->joint.name + "'");
     }
   }
   declare_chain(r, chain);

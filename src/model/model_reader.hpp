@@ -105,6 +105,15 @@ class ModelReader {
                   const std::string& what) const;
   std::string point_name(const YAML::Node& node, const std::string& what) const;
 
+  // plausibility.cpp — warnings (not errors) for values far outside physical ranges, printed as
+  // "file:line:column: warning: …" on stderr; the model is read as written.
+  enum class Quantity { AirDensity, Angle, Gravity };
+  /// Warns at `node` when `e` evaluates to a value implausible for `q` (kg/m³, rad, m/s²).
+  void warn_implausible(const GiNaC::ex& e, const YAML::Node& node, Quantity q,
+                        const std::string& what) const;
+  /// Warns for each parameter above one turn that enters only as an angle (sin(p), cos(q + p), …).
+  void warn_angle_parameters() const;
+
   // read_declarations.cpp
   void read_parameters(const YAML::Node& node);
   /// Every override names a parameter (ParameterOverrideError otherwise).

@@ -66,8 +66,12 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "bodies")) read_bodies(*n);
   if (auto n = section(root, "points")) read_points(*n);
   m_.points.insert(m_.points.end(), body_points_.begin(), body_points_.end());
-  if (auto n = section(root, "gravity"))
+  if (auto n = section(root, "gravity")) {
     m_.gravity = vector_expr(*n, kParams | kTime | kInputs, "gravity");
+    const Vec3& g = *m_.gravity;
+    warn_implausible(GiNaC::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]), *n, Quantity::Gravity,
+                     "the magnitude of gravity");
+  }
   elements::ElementContext elements;
   elements::declare_elements(*this, root, elements);
   const bool has_free_body =
@@ -89,6 +93,7 @@ Model ModelReader::read(const YAML::Node& root) {
   elements::lower_elements(*this, root, elements);
   if (auto n = section(root, "stabilization")) read_stabilization(*n);
   if (auto n = section(root, "simulate")) read_simulate(*n);
+  warn_angle_parameters();
   return m_;
 }
 
