@@ -28,6 +28,7 @@ struct CompiledModel {
   std::vector<double> q0, v0;     ///< initial state from the model (nq, nv)
   std::vector<bool> fixed;        ///< nq: coordinates kept by the initial-state projection
   std::vector<size_t> rotations;  ///< per free body, the index in q of R11 (R row-major, 9 entries)
+  std::vector<StopSpec> stop_when;  ///< the model's stop conditions (lagrange/stop_conditions.hpp)
 
   /// Structural non-zeros: M lower triangle (i ≥ j), G (row, velocity column) and ∂C/∂q
   /// (row, coordinate column), in tape output order.

@@ -160,6 +160,13 @@ struct ElementSummary {
   std::vector<std::string> notes;
 };
 
+/// A `stop_when:` condition as written, `lhs < rhs` or `lhs > rhs` over trajectory columns;
+/// compiled once the columns are known (lagrange/stop_conditions.hpp).
+struct StopSpec {
+  std::string name, text;
+  SourceLoc loc;  ///< of the condition's text
+};
+
 /// Constraint stabilisation settings (docs/theory.md §4.3).
 struct Stabilization {
   /// Baumgarte: both eigenvalues of the constraint error at −α; unset, baumgarte_rate() chooses.
@@ -208,6 +215,7 @@ struct Model {
   std::vector<ElementSummary> element_summaries;
   Stabilization stabilization;
   SimulateOptions simulate;
+  std::vector<StopSpec> stop_when;  ///< `stop_when:` conditions, in file order
 
   /// Index of a named entity, or -1.
   int coordinate_index(const std::string& name) const;

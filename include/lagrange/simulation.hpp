@@ -26,6 +26,10 @@ struct Trajectory {
   /// bodies).
   double rotation_drift = 0.0;
   IntegratorStats stats;
+  /// The `stop_when` condition that ended the run (empty when none did) and when it became true;
+  /// the last row is at that time.
+  std::string stopped_by;
+  double stop_time = 0.0;
 
   size_t rows() const { return columns.empty() ? 0 : data.size() / columns.size(); }
   /// Value at row r of the named column; throws std::out_of_range for an unknown name.

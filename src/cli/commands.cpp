@@ -199,6 +199,13 @@ int run_simulate(const Options& opt) {
                             traj.at(rows - 1, cm->coordinate_names[i]));
       if (shown < cm->nq) last += fmt::format(", … ({} more in the CSV)", cm->nq - shown);
       fmt::print("  final state: {}\n", last);
+      if (!traj.stopped_by.empty()) {
+        const StopSpec* fired = nullptr;
+        for (const StopSpec& s : cm->stop_when)
+          if (s.name == traj.stopped_by) fired = &s;
+        fmt::print("  stopped at t = {:.10g}: stop_when '{}' ({}) became true\n", traj.stop_time,
+                   traj.stopped_by, fired ? fired->text : "?");
+      }
       if (cm->m > 0) {
         double worst = 0;
         for (size_t r = 0; r < rows; ++r)

@@ -46,6 +46,7 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
     cm->reaction_constraints.push_back(r.constraint);
   }
   cm->output_names = eq.output_names;
+  cm->stop_when = model.stop_when;
   for (const auto& u : model.inputs) cm->input_names.push_back(u.name);
   for (const auto& p : model.parameters) {
     cm->parameter_names.push_back(p.name);

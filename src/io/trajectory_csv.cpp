@@ -22,6 +22,10 @@ void write_trajectory_csv(const Trajectory& traj, const std::string& path) {
   side["status"] = traj.status_name();
   if (!traj.message.empty()) side["reason"] = traj.message;
   if (traj.status == Trajectory::Status::Failed) side["failure_time"] = traj.failure_time;
+  if (!traj.stopped_by.empty()) {
+    side["stopped_by"] = traj.stopped_by;
+    side["stop_time"] = traj.stop_time;
+  }
   side["rows"] = traj.rows();
   if (traj.rows() > 0) side["t_last"] = traj.data[(traj.rows() - 1) * nc];
   side["steps"] = traj.stats.steps;

@@ -159,6 +159,9 @@ class ModelReader {
   // read_settings.cpp
   void read_stabilization(const YAML::Node& node);
   void read_simulate(const YAML::Node& node);
+  /// `stop_when: {name: "lhs < rhs"}`: the texts, checked for one comparison; their names are
+  /// checked against the trajectory columns once the model is compiled.
+  void read_stop_when(const YAML::Node& node);
 
   // read_generated.cpp — names and state that elements generate (docs/model-language.md).
   Model& model() { return m_; }

@@ -47,4 +47,21 @@ void ModelReader::read_simulate(const YAML::Node& node) {
   }
 }
 
+void ModelReader::read_stop_when(const YAML::Node& node) {
+  expect_map(node, "stop_when (a map name: condition, e.g. touchdown: kite.z < 0)");
+  check_keys(node, {}, "stop_when");
+  for (const auto& kv : node) {
+    const std::string name = scalar(kv.first, "name of a stop condition");
+    const std::string what = fmt::format("stop condition '{}'", name);
+    const std::string text = scalar(kv.second, what);
+    size_t comparisons = 0;
+    for (char c : text) comparisons += c == '<' || c == '>';
+    if (comparisons != 1)
+      fail(kv.second, fmt::format("expected one comparison 'lhs < rhs' or 'lhs > rhs' for {}, "
+                                  "got {} in '{}'",
+                                  what, comparisons == 0 ? "none" : "several", clip(text)));
+    m_.stop_when.push_back(StopSpec{name, text, src_.at(kv.second)});
+  }
+}
+
 }  // namespace lagrange::model

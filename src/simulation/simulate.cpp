@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include "lagrange/error.hpp"
 #include "lagrange/integration_failure.hpp"
 #include "lagrange/simulation.hpp"
+#include "lagrange/stop_conditions.hpp"
 
 namespace lagrange {
 
@@ -67,8 +69,12 @@ class RowWriter {
         Cdot_(cm.m) {}
 
   void append(Dynamics& dyn, double t, const double* q, const double* v, Trajectory& traj) {
+    write(dyn, t, q, v, traj.data);
+  }
+
+  /// The row appended to `d`.
+  void write(Dynamics& dyn, double t, const double* q, const double* v, std::vector<double>& d) {
     const CompiledModel& cm = dyn.model();
-    std::vector<double>& d = traj.data;
     d.push_back(t);
     d.insert(d.end(), q, q + cm.nq);
     d.insert(d.end(), v, v + cm.nv);
@@ -163,6 +169,77 @@ struct LastEvaluation {
   }
 };
 
+// docs/model-language.md, "Stop conditions": g of every condition at each output sample; one
+// that was not positive at the previous sample and is now fired in between. Its first positive
+// time is located by re-integrating from the previous sample with DOP853 at the run's tolerances
+// to times chosen by the Illinois variant of regula falsi on g, until the bracket is below
+// 1e-12 (1 + |t|).
+class StopWatch {
+ public:
+  /// State y (q, v) at t: integrated from the previous sample.
+  using Advance =
+      std::function<std::vector<double>(double t_from, const std::vector<double>& y, double t)>;
+  /// g at a state: the row's conditions.
+  using Evaluate = std::function<void(double t, const double* y, double* g)>;
+
+  StopWatch(size_t conditions, size_t n) : g_prev_(conditions), g_(conditions), y_prev_(n) {}
+
+  /// At a sample: true when a condition fired since the previous one; then `which`, `when` and
+  /// `state` are the earliest located crossing.
+  bool fired(double t, const double* y, const Evaluate& evaluate, const Advance& advance) {
+    evaluate(t, y, g_.data());
+    bool fired = false;
+    if (started_) {
+      when = HUGE_VAL;
+      for (size_t i = 0; i < g_.size(); ++i) {
+        if (!(g_prev_[i] <= 0 && g_[i] > 0)) continue;
+        auto [t_i, y_i] = locate(i, t, y, evaluate, advance);
+        if (t_i < when) {
+          when = t_i, which = i, state = std::move(y_i);
+          fired = true;
+        }
+      }
+    }
+    started_ = true;
+    t_prev_ = t;
+    g_prev_ = g_;
+    std::copy(y, y + y_prev_.size(), y_prev_.begin());
+    return fired;
+  }
+
+  size_t which = 0;
+  double when = 0.0;
+  std::vector<double> state;
+
+ private:
+  std::pair<double, std::vector<double>> locate(size_t i, double t, const double* y,
+                                                const Evaluate& evaluate, const Advance& advance) {
+    double a = t_prev_, ga = g_prev_[i], b = t, gb = g_[i];
+    std::vector<double> yb(y, y + y_prev_.size()), g(g_.size());
+    int side = 0;  // Illinois: halve the weight of an end kept twice in a row
+    for (int it = 0; it < 100 && b - a > 1e-12 * (1 + std::abs(b)); ++it) {
+      double c = ga == gb ? (a + b) / 2 : b - gb * (b - a) / (gb - ga);
+      if (!(c > a && c < b)) c = (a + b) / 2;
+      std::vector<double> yc = advance(t_prev_, y_prev_, c);
+      evaluate(c, yc.data(), g.data());
+      if (g[i] > 0) {
+        b = c, gb = g[i], yb = std::move(yc);
+        if (side == 1) ga /= 2;
+        side = 1;
+      } else {
+        a = c, ga = g[i];
+        if (side == -1) gb /= 2;
+        side = -1;
+      }
+    }
+    return {b, yb};
+  }
+
+  bool started_ = false;
+  double t_prev_ = 0.0;
+  std::vector<double> g_prev_, g_, y_prev_;
+};
+
 }  // namespace
 
 Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<double> q0,
@@ -205,6 +282,35 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   // at samples instead (StateChanged below).
   IntegratorOptions integrator = opt.integrator;
   if (!dae) integrator.after_step = correct_drift;
+  OdeProblem ode;
+  ode.size = n;
+  ode.rhs = [&dyn, nq, &lambda, &last](double t, const double* yy, double* yd) {
+    last.reported = true;
+    dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
+    last.reported = false;
+    last.record(t, yy, yy + nq, yd + nq);
+  };
+  const StopConditions stop(cm, traj.columns);
+  StopWatch watch(stop.size(), n);
+  std::vector<double> stop_row;
+  const StopWatch::Evaluate stop_values = [&](double t, const double* yy, double* g) {
+    stop_row.clear();
+    rows.write(dyn, t, yy, yy + nq, stop_row);
+    stop.evaluate(stop_row.data(), dyn.parameters().data(), g);
+  };
+  const StopWatch::Advance advance = [&](double t_from, const std::vector<double>& y0,
+                                         double t_to) {
+    IntegratorOptions refine = opt.integrator;
+    refine.method = "dop853";
+    refine.step = 0.0;
+    refine.after_step = correct_drift;
+    std::vector<double> y = y0;
+    integrate(ode, refine, t_from, y0, t_to, t_to - t_from, [&](double t, double* yy, double*) {
+      if (t == t_to) std::copy(yy, yy + n, y.begin());
+      return ObserverAction::Continue;
+    });
+    return y;
+  };
   // At each output sample: check the state is finite, correct the drift (the sample of an ODE
   // method is its dense output, corrected for the row only), record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
@@ -220,6 +326,14 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
       std::fill(yp + n, yp + n + m, 0.0);
       action = ObserverAction::StateChanged;
+    }
+    if (!stop.empty() && watch.fired(t, yy, stop_values, advance)) {
+      const double* y = watch.state.data();
+      rows.append(dyn, watch.when, y, y + nq, traj);
+      traj.stopped_by = stop.spec(watch.which).name;
+      traj.stop_time = watch.when;
+      if (opt.progress) opt.progress(watch.when);
+      return ObserverAction::Stop;
     }
     rows.append(dyn, t, yy, yy + nq, traj);
     if (opt.progress) opt.progress(t);
@@ -256,14 +370,6 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::vector<double> y(n);
       std::copy(q0.begin(), q0.end(), y.begin());
       std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
-      OdeProblem ode;
-      ode.size = n;
-      ode.rhs = [&dyn, nq, &lambda, &last](double t, const double* yy, double* yd) {
-        last.reported = true;
-        dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
-        last.reported = false;
-        last.record(t, yy, yy + nq, yd + nq);
-      };
       traj.stats = integrate(ode, integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
   } catch (const SimulationError& e) {
