@@ -46,7 +46,10 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
     cm->reaction_constraints.push_back(r.constraint);
   }
   cm->output_names = eq.output_names;
-  for (const auto& u : model.inputs) cm->input_names.push_back(u.name);
+  for (const auto& u : model.inputs) {
+    cm->input_names.push_back(u.name);
+    cm->external_inputs.push_back(u.external);
+  }
   for (const auto& p : model.parameters) {
     cm->parameter_names.push_back(p.name);
     cm->parameter_defaults.push_back(p.value);
