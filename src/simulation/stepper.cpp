@@ -63,8 +63,10 @@ struct Stepper::State {
     record.rotation_drift = drift.largest_rotation_drift();
   }
 
-  // DOP853 across calls: integrate_dop853's walk (src/integrate/walk_grid.hpp, walk_dense) cut
-  // at each target, with the drift correction of a step applied before the next step.
+  // docs/theory.md §8.1, Stepping with a controller in the loop: DOP853 across calls,
+  // integrate_dop853's walk (src/integrate/walk_grid.hpp, walk_dense) cut at each target, with
+  // the drift correction of a step applied before the next step; after new inputs, a restart from
+  // the state at t, and steps that land on the targets.
   void advance_dop853(double target) {
     if (restart || changed) {  // from the state the caller sees, with the dynamics now in force
       y = sample;
