@@ -15,7 +15,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 python=/usr/bin/python3  # Debian's python3 has sympy and numpy (docs/benchmarks.md, Peers)
 out=${LAGRANGE_BENCH_OUT:-$build/bench-results}
 
-for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite long_run work_precision; do
+for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite bench_stepper long_run work_precision; do
   if [[ ! -x $build/bench/$exe ]]; then
     echo "$0: $build/bench/$exe not found; build it first: cmake --build $build --target benchmarks" >&2
     exit 1
@@ -41,6 +41,14 @@ echo "== lagrange: tether element (tethered balloon, N = 10 ... 200 segments) ==
 echo
 echo "== lagrange: kite flight (rigid AP2 on a 50-segment tether, logarithmic wind, 60 s) =="
 "$build/bench/bench_kite" | tee "$out/kite.md"
+echo
+echo "== lagrange: a controller in the loop at 20 Hz (figure-eight kite; C++ and Python) =="
+"$build/bench/bench_stepper" | tee "$out/stepper.md"
+if [[ -d $build/python/lagrange ]]; then
+  PYTHONPATH="$build/python" "$python" "$here/python_stepper.py" | tee -a "$out/stepper.md"
+else
+  echo "(the Python stepper is not measured: build the _lagrange target)"
+fi
 echo
 echo "== lagrange: long run, memory (10^7 right-hand-side evaluations) =="
 "$build/bench/long_run" 1e7

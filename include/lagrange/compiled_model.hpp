@@ -21,6 +21,7 @@ struct CompiledModel {
   std::vector<std::string> velocity_names;  ///< nv: `<name>_dot`, then `<body>.vx`, `<body>.wx`, …
   std::vector<std::string> constraint_names, output_names, input_names, parameter_names;
   std::vector<double> parameter_defaults;
+  std::vector<bool> external_inputs;  ///< k: inputs a caller may set (Dynamics::hold_input)
   /// Reaction columns λ_c · scale (Model::reactions): names and constraint indices; their
   /// scales are the last observables.
   std::vector<std::string> reaction_names;

@@ -2,8 +2,10 @@
 // Numeric forward dynamics: one KKT path for constrained and unconstrained systems.
 
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagrange/compiled_model.hpp"
@@ -71,6 +73,16 @@ class Dynamics {
   /// microsecond, less than a compiler run could ever win back in a typical simulation.
   static constexpr size_t kBackgroundMinInstructions = 400;
 
+  /// Every evaluation from now on takes input `index` (into model().input_names) as `value`
+  /// with u̇ = ü = 0 instead of its declared expression: a caller-set input held between calls.
+  void hold_input(size_t index, double value);
+  /// A caller's law for some inputs, evaluated at every evaluation: law(t, q, v, u) writes
+  /// u[j] for input indices[j] (u̇ = ü = 0 as for held inputs); an empty law removes it.
+  using InputLaw = std::function<void(double t, const double* q, const double* v, double* u)>;
+  void set_input_law(std::vector<size_t> indices, InputLaw law);
+  /// The inputs follow their declared expressions again (no held values, no law).
+  void release_inputs();
+
   /// Baumgarte rate α (docs/theory.md §4.3): constraint errors decay like exp(−α t).
   void set_baumgarte(double alpha) { alpha_ = alpha; }
   double baumgarte() const { return alpha_; }
@@ -118,6 +130,10 @@ class Dynamics {
 
   std::shared_ptr<const CompiledModel> model_;
   std::vector<double> params_;
+  std::vector<std::pair<size_t, double>> held_;  // inputs set by the caller: index, value
+  std::vector<size_t> law_inputs_;               // inputs the law sets
+  std::vector<double> law_values_;
+  InputLaw law_;
   double alpha_ = 0.0;
   Tape dyn_, obs_, sig_;
   std::vector<double> in_, out_, obs_out_, sig_out_, work_;

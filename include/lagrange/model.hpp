@@ -40,8 +40,9 @@ struct Coordinate {
 struct Input {
   std::string name;
   GiNaC::symbol u, ud, udd;
-  GiNaC::ex expr;
+  GiNaC::ex expr;  ///< u(t); for an external input, its value when no caller sets it
   SourceLoc loc;
+  bool external = false;  ///< set by a caller between steps (include/lagrange/stepper.hpp)
 };
 
 /// A named point (position vector in the world frame as a function of q, t, u, p).

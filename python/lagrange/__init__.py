@@ -10,8 +10,9 @@ from ._lagrange import (  # noqa: F401  (the package's public API)
     ModelError,
     Run,
     SimulationError,
+    Stepper,
     load,
     loads,
 )
 
-__all__ = ["Equations", "Model", "ModelError", "Run", "SimulationError", "load", "loads"]
+__all__ = ["Equations", "Model", "ModelError", "Run", "SimulationError", "Stepper", "load", "loads"]

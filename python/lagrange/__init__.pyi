@@ -1,6 +1,6 @@
 """Type stubs of the lagrange module (docs/python.md)."""
 
-from typing import Dict, List, Mapping, Optional, Tuple, Union
+from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -82,6 +82,34 @@ class Run:
     def to_pandas(self) -> "pandas.DataFrame":  # type: ignore[name-defined]  # noqa: F821
         """A pandas DataFrame of the samples (pandas is imported only here)."""
 
+class Stepper:
+    """A controller in the loop: advances the model to t + dt with inputs set between calls,
+    keeping the integrator's state (docs/python.md, "A controller in the loop")."""
+
+    @property
+    def t(self) -> float:
+        """The time of the state."""
+    @property
+    def state(self) -> Tuple[Vector, Vector]:
+        """(q, v) at t, new arrays."""
+    @property
+    def outputs(self) -> Dict[str, float]:
+        """The model's outputs at t by name."""
+    @property
+    def inputs(self) -> List[str]:
+        """Names of the inputs step() may set (declared external in the model)."""
+    def step(self, dt: float, inputs: Optional[Mapping[str, float]] = None) -> None:
+        """Hold the given external inputs from t on, then advance to t + dt (GIL released).
+
+        Raises SimulationError (with .time and .run, the record up to t) when the integration
+        fails; t and state are then unchanged. ValueError for an input that is not external.
+        """
+    def set_law(self, law: Optional[Callable[[float, Vector, Vector], Sequence[float]]]) -> None:
+        """Evaluate law(t, q, v) -> values of the external inputs (in the order of `inputs`)
+        at every evaluation of the dynamics instead of held values; None: held values again."""
+    def trajectory(self) -> Run:
+        """The states so far (t0 and each step's end) as a Run with the model's columns."""
+
 class Model:
     """A model read, derived, compiled and checked as `lagrange simulate` does."""
 
@@ -139,6 +167,21 @@ class Model:
         self, Q: ArrayLike, V: ArrayLike, t: float = 0.0
     ) -> Union[npt.NDArray[np.float64], Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
         """forward for each row of Q (rows x nq) and V (rows x nv), GIL released."""
+    def stepper(
+        self,
+        t_end: Optional[float] = None,
+        integrator: Optional[str] = None,
+        rtol: Optional[float] = None,
+        atol: Optional[float] = None,
+        step: Optional[float] = None,
+        compile: str = "auto",
+    ) -> "Stepper":
+        """A Stepper from the initial state; unset settings keep the file's simulate: values.
+
+        t_end is where dop853 lands its last step, as in simulate (stepping past it is allowed):
+        with dop853 and no input set, the states at t0 + k*dt equal simulate(t_end, output_step=dt)
+        rows bit for bit.
+        """
     def export_c(self, dir: str) -> None:
         """Write lagrange_model.h and lagrange_model.c into dir (as `lagrange export`)."""
     def __reduce__(self) -> object: ...

@@ -12,6 +12,7 @@
 #include "errors.hpp"
 #include "lagrange/io.hpp"
 #include "run.hpp"
+#include "stepper.hpp"
 
 namespace py = pybind11;
 
@@ -240,6 +241,12 @@ void bind_model(py::module_& m) {
       .def("forward_batch", &forward_batch, py::arg("Q"), py::arg("V"), py::arg("t") = 0.0,
            "forward for each row of Q (rows × nq) and V (rows × nv) with the GIL released: "
            "rows × nv accelerations, or (accelerations, rows × m multipliers).")
+      .def("stepper", &make_stepper, py::arg("t_end") = py::none(),
+           py::arg("integrator") = py::none(), py::arg("rtol") = py::none(),
+           py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("compile") = "auto",
+           "A Stepper from the initial state (unset settings keep the file's simulate: values; "
+           "t_end is where dop853 lands its last step, as in simulate, and stepping past it is "
+           "allowed).")
       .def(
           "export_c",
           [](const PyModel& pm, const std::string& dir) { export_c(*prepared(pm).compiled, dir); },

@@ -47,7 +47,10 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   }
   cm->output_names = eq.output_names;
   cm->stop_when = model.stop_when;
-  for (const auto& u : model.inputs) cm->input_names.push_back(u.name);
+  for (const auto& u : model.inputs) {
+    cm->input_names.push_back(u.name);
+    cm->external_inputs.push_back(u.external);
+  }
   for (const auto& p : model.parameters) {
     cm->parameter_names.push_back(p.name);
     cm->parameter_defaults.push_back(p.value);

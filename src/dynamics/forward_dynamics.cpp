@@ -109,7 +109,42 @@ void Dynamics::load_inputs(double t, const double* q, const double* v) {
   if (cm.k > 0) {
     run(dynamics::kInputsTape, sig_, sig_out_.data());
     std::copy(sig_out_.begin(), sig_out_.end(), in_.begin() + static_cast<long>(cm.u_offset()));
+    if (law_) law_(t, q, v, law_values_.data());
+    const auto set = [&](size_t i, double value) {
+      in_[cm.u_offset() + i] = value;
+      in_[cm.u_offset() + cm.k + i] = 0.0;
+      in_[cm.u_offset() + 2 * cm.k + i] = 0.0;
+    };
+    for (const auto& [i, value] : held_) set(i, value);
+    for (size_t j = 0; j < law_inputs_.size(); ++j) set(law_inputs_[j], law_values_[j]);
   }
+}
+
+void Dynamics::set_input_law(std::vector<size_t> indices, InputLaw law) {
+  for (size_t i : indices)
+    if (i >= model_->k)
+      throw std::out_of_range(
+          fmt::format("set_input_law: input {} of a model with {} inputs", i, model_->k));
+  law_values_.assign(law ? indices.size() : 0, 0.0);
+  law_inputs_ = law ? std::move(indices) : std::vector<size_t>{};
+  law_ = std::move(law);
+}
+
+void Dynamics::release_inputs() {
+  held_.clear();
+  set_input_law({}, nullptr);
+}
+
+void Dynamics::hold_input(size_t index, double value) {
+  if (index >= model_->k)
+    throw std::out_of_range(
+        fmt::format("hold_input: input {} of a model with {} inputs", index, model_->k));
+  for (auto& held : held_)
+    if (held.first == index) {
+      held.second = value;
+      return;
+    }
+  held_.emplace_back(index, value);
 }
 
 void Dynamics::eval_dynamics(double t, const double* q, const double* v) {

@@ -1,6 +1,8 @@
 // DOP853: Dormand and Prince's explicit Runge–Kutta pair of order 8 with Hairer's error estimate,
 // step-size control and continuous extension of order 7 (docs/theory.md §8, "DOP853").
 
+#include "integrate/dop853.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,7 +10,6 @@
 #include <limits>
 #include <vector>
 
-#include "integrate/dop853_coefficients.hpp"
 #include "integrate/keeping_stats.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/solver_errors.hpp"
@@ -38,226 +39,199 @@ double rms(const std::vector<double>& v, const std::vector<double>& scale) {
   return std::sqrt(sum / static_cast<double>(v.size()));
 }
 
-/// One DOP853 integration: the state y (owned by the caller), its stages and the last step's
-/// interpolant.
-class Dop853 {
- public:
-  Dop853(const OdeProblem& problem, const IntegratorOptions& options, std::vector<double>& y,
-         double t_end)
-      : problem_(problem),
-        options_(options),
-        table_(dop853()),
-        n_(y.size()),
-        t_end_(t_end),
-        y_(y),
-        k_(kAllStages, std::vector<double>(n_)),
-        y_old_(n_),
-        y_new_(n_),
-        stage_(n_),
-        scale_(n_),
-        dense_(7, std::vector<double>(n_)) {}
-
-  /// Starts at (t, y): f(t, y), and with `keep_step` false a first step from Hairer's heuristic.
-  void start(double t, bool keep_step) {
-    t_ = t;
-    f(t, y_.data(), k_[0]);
-    first_is_last_ = false;
-    if (keep_step && h_ > 0.0) return;
-    h_ = options_.step > 0.0 ? options_.step : initial_step();
-    previous_error_ = 1e-4;
-  }
-
-  /// One accepted step from t toward t_end (the last one lands on it); returns the time reached.
-  double step() {
-    if (first_is_last_) k_[0].swap(k_[kStages]);  // f(t, y) from the last step's end
-    first_is_last_ = false;
-    y_old_ = y_;
-    t_old_ = t_;
-    const bool fixed = options_.step > 0.0;
-    double h = h_;
-    for (;;) {
-      const bool last = t_ + (fixed ? (1.0 + 1e-9) * h : 1.01 * h) >= t_end_;
-      if (last) h = t_end_ - t_;
-      if (!(h > 16.0 * std::numeric_limits<double>::epsilon() * std::abs(t_)) || !(h > 0.0))
-        throw SimulationError(
-            t_, fmt::format("dop853: the step size fell to {:.3g} at t = {:.17g}, below the "
-                            "rounding of t ({} error-test failures in this step); the equations "
-                            "may be stiff or singular here: try --integrator cvode",
-                            h, t_, rejections_));
-      stages(h);
-      if (fixed) {
-        accept(h, last, h);
-        return t_;
-      }
-      const double err = error(h);
-      const double grow = std::pow(err, 0.125 - 0.2 * kBeta);  // err ~ h⁸
-      if (err <= 1.0) {
-        const double shrink = grow / std::pow(previous_error_, kBeta) / kSafety;
-        double h_next = h / std::clamp(shrink, 1.0 / kLargestFactor, 1.0 / kSmallestFactor);
-        if (rejections_ > 0) h_next = std::min(h_next, h);  // no growth right after a rejection
-        previous_error_ = std::max(err, 1e-4);
-        accept(h, last, h_next);
-        return t_;
-      }
-      ++stats_.failed_steps;
-      ++rejections_;
-      h /= std::min(1.0 / kSmallestFactor, grow / kSafety);
-    }
-  }
-
-  /// y(t) for t in the last step into out: the continuous extension (its three stages are
-  /// evaluated on the first call of the step).
-  void interpolate(double t, double* out) {
-    if (!dense_ready_) build_dense();
-    const double s = (t - t_old_) / h_old_, s1 = 1.0 - s;
-    const std::vector<double>* d = dense_.data();
-    for (size_t i = 0; i < n_; ++i) {
-      const double inner = d[3][i] + s * (d[4][i] + s1 * (d[5][i] + s * d[6][i]));
-      out[i] = y_old_[i] + s * (d[0][i] + s1 * (d[1][i] + s * (d[2][i] + s1 * inner)));
-    }
-  }
-
-  IntegratorStats stats() const { return stats_; }
-
- private:
-  void f(double t, const double* y, std::vector<double>& out) {
-    problem_.rhs(t, y, out.data());
-    ensure_finite(t, out.data(), n_, "right-hand side ydot");
-    ++stats_.rhs_evals;
-  }
-
-  /// stage_ = y_old + h Σⱼ a[j] kⱼ over the row's stages.
-  void stage_state(const std::vector<double>& a, double h) {
-    stage_ = y_old_;
-    for (size_t j = 0; j < a.size(); ++j) {
-      if (a[j] == 0.0) continue;
-      const double w = h * a[j];
-      const double* kj = k_[j].data();
-      for (size_t i = 0; i < n_; ++i) stage_[i] += w * kj[i];
-    }
-  }
-
-  /// Stages 2–12 and the eighth-order solution y_new.
-  void stages(double h) {
-    const ButcherCoefficients& m = table_.main;
-    for (size_t s = 1; s < kStages; ++s) {
-      stage_state(m.a[s], h);
-      f(t_ + m.c[s] * h, stage_.data(), k_[s]);
-    }
-    y_new_ = y_old_;
-    for (size_t j = 0; j < kStages; ++j) {
-      if (m.b[j] == 0.0) continue;
-      for (size_t i = 0; i < n_; ++i) y_new_[i] += h * m.b[j] * k_[j][i];
-    }
-  }
-
-  // docs/theory.md §8, DOP853: err = |h| ‖e₅‖² / √(‖e₅‖² + 0.01 ‖e₃‖²) in the root-mean-square norm
-  // scaled by atol + rtol · max(|y₀|, |y₁|).
-  double error(double h) {
-    double sum5 = 0.0, sum3 = 0.0;
-    for (size_t i = 0; i < n_; ++i) {
-      double e5 = 0.0, e3 = 0.0;
-      for (size_t j = 0; j < kStages; ++j) {
-        e5 += table_.e5[j] * k_[j][i];
-        e3 += table_.e3[j] * k_[j][i];
-      }
-      const double sk = weight(i, std::max(std::abs(y_old_[i]), std::abs(y_new_[i])));
-      sum5 += (e5 / sk) * (e5 / sk);
-      sum3 += (e3 / sk) * (e3 / sk);
-    }
-    double denominator = sum5 + 0.01 * sum3;
-    if (denominator <= 0.0) denominator = 1.0;
-    return std::abs(h) * sum5 / std::sqrt(static_cast<double>(n_) * denominator);
-  }
-
-  /// The scale atol + rtol · size of component i's error; with atol = 0 a component that is 0
-  /// has none, and the run stops saying so rather than dividing by it.
-  double weight(size_t i, double size) const {
-    const double w = options_.atol + options_.rtol * size;
-    if (!(w > 0.0))
-      throw SimulationError(t_, fmt::format("dop853: y[{}] = 0 with atol = 0 leaves its error "
-                                            "nothing to be relative to: give atol > 0",
-                                            i));
-    return w;
-  }
-
-  void accept(double h, bool last, double h_next) {
-    y_ = y_new_;
-    t_ = last ? t_end_ : t_old_ + h;
-    f(t_, y_.data(), k_[kStages]);
-    first_is_last_ = true;
-    h_old_ = h;
-    h_ = h_next;
-    rejections_ = 0;
-    dense_ready_ = false;
-    ++stats_.steps;
-  }
-
-  // Hairer's starting step: an Euler step of 0.01 in the scaled norm, refined by the change of f
-  // over it so that the first local error is about 0.01 (h⁸ ∼ 0.01 / ‖f'‖); at most 100 times
-  // the Euler guess and at most the whole interval.
-  double initial_step() {
-    const double span = t_end_ - t_;
-    for (size_t i = 0; i < n_; ++i) scale_[i] = weight(i, std::abs(y_[i]));
-    const double d0 = rms(y_, scale_), d1 = rms(k_[0], scale_);
-    double h = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
-    h = std::min(h, span);
-    for (size_t i = 0; i < n_; ++i) stage_[i] = y_[i] + h * k_[0][i];
-    f(t_ + h, stage_.data(), k_[1]);
-    for (size_t i = 0; i < n_; ++i) stage_[i] = k_[1][i] - k_[0][i];
-    const double d2 = rms(stage_, scale_) / h;
-    const double d12 = std::max(d2, d1);
-    const double h1 = d12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / d12, 0.125);
-    return std::min({100.0 * h, h1, span});
-  }
-
-  // docs/theory.md §8, DOP853: y(t₀ + θh) = y₀ + θ(F₀ + (1−θ)(F₁ + θ(F₂ + (1−θ)(F₃ + θ(F₄ +
-  // (1−θ)(F₅ + θF₆)))))) with F₀ = Δy, F₁ = h f₀ − Δy, F₂ = 2Δy − h(f₀ + f₁) and
-  // F₃…F₆ = h Σⱼ dⱼ kⱼ over the 16 stages.
-  void build_dense() {
-    const double h = h_old_;
-    for (size_t s = 0; s < table_.extra_c.size(); ++s) {
-      stage_state(table_.extra_a[s], h);
-      f(t_old_ + table_.extra_c[s] * h, stage_.data(), k_[kStages + 1 + s]);
-    }
-    const std::vector<double>& f0 = k_[0];
-    const std::vector<double>& f1 = k_[kStages];
-    for (size_t i = 0; i < n_; ++i) {
-      const double dy = y_[i] - y_old_[i];
-      dense_[0][i] = dy;
-      dense_[1][i] = h * f0[i] - dy;
-      dense_[2][i] = 2.0 * dy - h * (f0[i] + f1[i]);
-    }
-    for (size_t r = 0; r < table_.dense.size(); ++r) {
-      std::vector<double>& out = dense_[3 + r];
-      std::fill(out.begin(), out.end(), 0.0);
-      for (size_t j = 0; j < kAllStages; ++j) {
-        const double w = table_.dense[r][j];
-        if (w == 0.0) continue;
-        for (size_t i = 0; i < n_; ++i) out[i] += h * w * k_[j][i];
-      }
-    }
-    dense_ready_ = true;
-  }
-
-  const OdeProblem& problem_;
-  const IntegratorOptions& options_;
-  const Dop853Coefficients& table_;
-  size_t n_;
-  double t_end_;
-  std::vector<double>& y_;
-  std::vector<std::vector<double>> k_;  // the 16 stage derivatives
-  std::vector<double> y_old_, y_new_, stage_, scale_;
-  std::vector<std::vector<double>> dense_;  // F₀ … F₆ of the last step
-  double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_old_ = 0.0;
-  bool first_is_last_ = false;  // k_[12] holds f at y_, the next step's first stage
-  bool dense_ready_ = false;
-  long rejections_ = 0;
-  double previous_error_ = 1e-4;
-  IntegratorStats stats_;
-};
-
 }  // namespace
+
+Dop853::Dop853(const OdeProblem& problem, const IntegratorOptions& options, std::vector<double>& y,
+               double t_end)
+    : problem_(problem),
+      options_(options),
+      table_(dop853()),
+      n_(y.size()),
+      t_end_(t_end),
+      y_(y),
+      k_(kAllStages, std::vector<double>(n_)),
+      y_old_(n_),
+      y_new_(n_),
+      stage_(n_),
+      scale_(n_),
+      dense_(7, std::vector<double>(n_)) {}
+
+void Dop853::start(double t, bool keep_step) {
+  t_ = t;
+  f(t, y_.data(), k_[0]);
+  first_is_last_ = false;
+  if (keep_step && h_ > 0.0) return;
+  h_ = options_.step > 0.0 ? options_.step : initial_step();
+  previous_error_ = 1e-4;
+}
+
+double Dop853::step() {
+  if (first_is_last_) k_[0].swap(k_[kStages]);  // f(t, y) from the last step's end
+  first_is_last_ = false;
+  y_old_ = y_;
+  t_old_ = t_;
+  const bool fixed = options_.step > 0.0;
+  double h = h_;
+  for (;;) {
+    const bool last = t_ + (fixed ? (1.0 + 1e-9) * h : 1.01 * h) >= t_end_;
+    const double wanted = h;  // the step a shortened last one replaces, kept for the next
+    if (last) h = t_end_ - t_;
+    if (!(h > 16.0 * std::numeric_limits<double>::epsilon() * std::abs(t_)) || !(h > 0.0))
+      throw SimulationError(
+          t_, fmt::format("dop853: the step size fell to {:.3g} at t = {:.17g}, below the "
+                          "rounding of t ({} error-test failures in this step); the equations "
+                          "may be stiff or singular here: try --integrator cvode",
+                          h, t_, rejections_));
+    stages(h);
+    if (fixed) {
+      accept(h, last, wanted);
+      return t_;
+    }
+    const double err = error(h);
+    const double grow = std::pow(err, 0.125 - 0.2 * kBeta);  // err ~ h⁸
+    if (err <= 1.0) {
+      const double shrink = grow / std::pow(previous_error_, kBeta) / kSafety;
+      double h_next = h / std::clamp(shrink, 1.0 / kLargestFactor, 1.0 / kSmallestFactor);
+      if (rejections_ > 0) h_next = std::min(h_next, h);  // no growth right after a rejection
+      previous_error_ = std::max(err, 1e-4);
+      accept(h, last, last ? std::max(h_next, wanted) : h_next);
+      return t_;
+    }
+    ++stats_.failed_steps;
+    ++rejections_;
+    h /= std::min(1.0 / kSmallestFactor, grow / kSafety);
+  }
+}
+
+void Dop853::interpolate(double t, double* out) {
+  if (!dense_ready_) build_dense();
+  const double s = (t - t_old_) / h_old_, s1 = 1.0 - s;
+  const std::vector<double>* d = dense_.data();
+  for (size_t i = 0; i < n_; ++i) {
+    const double inner = d[3][i] + s * (d[4][i] + s1 * (d[5][i] + s * d[6][i]));
+    out[i] = y_old_[i] + s * (d[0][i] + s1 * (d[1][i] + s * (d[2][i] + s1 * inner)));
+  }
+}
+
+void Dop853::f(double t, const double* y, std::vector<double>& out) {
+  problem_.rhs(t, y, out.data());
+  ensure_finite(t, out.data(), n_, "right-hand side ydot");
+  ++stats_.rhs_evals;
+}
+
+/// stage_ = y_old + h Σⱼ a[j] kⱼ over the row's stages.
+void Dop853::stage_state(const std::vector<double>& a, double h) {
+  stage_ = y_old_;
+  for (size_t j = 0; j < a.size(); ++j) {
+    if (a[j] == 0.0) continue;
+    const double w = h * a[j];
+    const double* kj = k_[j].data();
+    for (size_t i = 0; i < n_; ++i) stage_[i] += w * kj[i];
+  }
+}
+
+/// Stages 2–12 and the eighth-order solution y_new.
+void Dop853::stages(double h) {
+  const ButcherCoefficients& m = table_.main;
+  for (size_t s = 1; s < kStages; ++s) {
+    stage_state(m.a[s], h);
+    f(t_ + m.c[s] * h, stage_.data(), k_[s]);
+  }
+  y_new_ = y_old_;
+  for (size_t j = 0; j < kStages; ++j) {
+    if (m.b[j] == 0.0) continue;
+    for (size_t i = 0; i < n_; ++i) y_new_[i] += h * m.b[j] * k_[j][i];
+  }
+}
+
+// docs/theory.md §8, DOP853: err = |h| ‖e₅‖² / √(‖e₅‖² + 0.01 ‖e₃‖²) in the root-mean-square norm
+// scaled by atol + rtol · max(|y₀|, |y₁|).
+double Dop853::error(double h) {
+  double sum5 = 0.0, sum3 = 0.0;
+  for (size_t i = 0; i < n_; ++i) {
+    double e5 = 0.0, e3 = 0.0;
+    for (size_t j = 0; j < kStages; ++j) {
+      e5 += table_.e5[j] * k_[j][i];
+      e3 += table_.e3[j] * k_[j][i];
+    }
+    const double sk = weight(i, std::max(std::abs(y_old_[i]), std::abs(y_new_[i])));
+    sum5 += (e5 / sk) * (e5 / sk);
+    sum3 += (e3 / sk) * (e3 / sk);
+  }
+  double denominator = sum5 + 0.01 * sum3;
+  if (denominator <= 0.0) denominator = 1.0;
+  return std::abs(h) * sum5 / std::sqrt(static_cast<double>(n_) * denominator);
+}
+
+/// The scale atol + rtol · size of component i's error; with atol = 0 a component that is 0
+/// has none, and the run stops saying so rather than dividing by it.
+double Dop853::weight(size_t i, double size) const {
+  const double w = options_.atol + options_.rtol * size;
+  if (!(w > 0.0))
+    throw SimulationError(t_, fmt::format("dop853: y[{}] = 0 with atol = 0 leaves its error "
+                                          "nothing to be relative to: give atol > 0",
+                                          i));
+  return w;
+}
+
+void Dop853::accept(double h, bool last, double h_next) {
+  y_ = y_new_;
+  t_ = last ? t_end_ : t_old_ + h;
+  f(t_, y_.data(), k_[kStages]);
+  first_is_last_ = true;
+  h_old_ = h;
+  h_ = h_next;
+  rejections_ = 0;
+  dense_ready_ = false;
+  ++stats_.steps;
+}
+
+// Hairer's starting step: an Euler step of 0.01 in the scaled norm, refined by the change of f
+// over it so that the first local error is about 0.01 (h⁸ ∼ 0.01 / ‖f'‖); at most 100 times
+// the Euler guess and at most the whole interval.
+double Dop853::initial_step() {
+  const double span = t_end_ - t_;
+  for (size_t i = 0; i < n_; ++i) scale_[i] = weight(i, std::abs(y_[i]));
+  const double d0 = rms(y_, scale_), d1 = rms(k_[0], scale_);
+  double h = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+  h = std::min(h, span);
+  for (size_t i = 0; i < n_; ++i) stage_[i] = y_[i] + h * k_[0][i];
+  f(t_ + h, stage_.data(), k_[1]);
+  for (size_t i = 0; i < n_; ++i) stage_[i] = k_[1][i] - k_[0][i];
+  const double d2 = rms(stage_, scale_) / h;
+  const double d12 = std::max(d2, d1);
+  const double h1 = d12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / d12, 0.125);
+  return std::min({100.0 * h, h1, span});
+}
+
+// docs/theory.md §8, DOP853: y(t₀ + θh) = y₀ + θ(F₀ + (1−θ)(F₁ + θ(F₂ + (1−θ)(F₃ + θ(F₄ +
+// (1−θ)(F₅ + θF₆)))))) with F₀ = Δy, F₁ = h f₀ − Δy, F₂ = 2Δy − h(f₀ + f₁) and
+// F₃…F₆ = h Σⱼ dⱼ kⱼ over the 16 stages.
+void Dop853::build_dense() {
+  const double h = h_old_;
+  for (size_t s = 0; s < table_.extra_c.size(); ++s) {
+    stage_state(table_.extra_a[s], h);
+    f(t_old_ + table_.extra_c[s] * h, stage_.data(), k_[kStages + 1 + s]);
+  }
+  const std::vector<double>& f0 = k_[0];
+  const std::vector<double>& f1 = k_[kStages];
+  for (size_t i = 0; i < n_; ++i) {
+    const double dy = y_[i] - y_old_[i];
+    dense_[0][i] = dy;
+    dense_[1][i] = h * f0[i] - dy;
+    dense_[2][i] = 2.0 * dy - h * (f0[i] + f1[i]);
+  }
+  for (size_t r = 0; r < table_.dense.size(); ++r) {
+    std::vector<double>& out = dense_[3 + r];
+    std::fill(out.begin(), out.end(), 0.0);
+    for (size_t j = 0; j < kAllStages; ++j) {
+      const double w = table_.dense[r][j];
+      if (w == 0.0) continue;
+      for (size_t i = 0; i < n_; ++i) out[i] += h * w * k_[j][i];
+    }
+  }
+  dense_ready_ = true;
+}
 
 IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOptions& options,
                                  const OutputGrid& grid, std::vector<double>& y,

@@ -14,9 +14,8 @@
 
 namespace lagrange {
 
-namespace {
+namespace integration {
 
-/// Throws std::invalid_argument unless the tolerances, step and step limit make sense.
 void validate_options(const IntegratorOptions& options) {
   if (!std::isfinite(options.rtol) || !std::isfinite(options.atol) || options.rtol < 0.0 ||
       options.atol < 0.0 || options.rtol + options.atol <= 0.0) {
@@ -33,6 +32,10 @@ void validate_options(const IntegratorOptions& options) {
         fmt::format("integrator: expected max_steps > 0, got {}", options.max_steps));
   }
 }
+
+}  // namespace integration
+
+namespace {
 
 /// Throws std::invalid_argument unless a state vector has the problem's (non-zero) size.
 void validate_size(size_t size, size_t got, const char* what) {
@@ -55,7 +58,7 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
         "integrator: unknown ODE method '{}', expected one of {}{}", method,
         integrator_method_list(), method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
   }
-  validate_options(options);
+  integration::validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
   const integration::OutputGrid grid(t0, t_end, dt);
@@ -86,7 +89,7 @@ IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions
   }
   if (options.after_step)
     throw std::invalid_argument("integrator: ida takes no step hook (it restarts at samples)");
-  validate_options(options);
+  integration::validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   validate_size(problem.size, yp0.size(), "yp0");
   validate_size(problem.size, problem.differential.size(), "differential");

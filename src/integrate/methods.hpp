@@ -9,6 +9,9 @@
 
 namespace lagrange::integration {
 
+/// Throws std::invalid_argument unless the tolerances, step and step limit make sense.
+void validate_options(const IntegratorOptions& options);
+
 /// ARKODE ERKStep, explicit adaptive Runge–Kutta with the table options.method names (`arkode`:
 /// the default for the tolerance, erk_tables.hpp); samples from ARKODE's interpolant.
 IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOptions& options,

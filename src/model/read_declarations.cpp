@@ -71,10 +71,23 @@ void ModelReader::read_inputs(const YAML::Node& node) {
                               GiNaC::symbol(name + "_ddot", latex_name(name, "\\ddot")), 0,
                               src_.at(kv.first)});
   }
+  // `name: expression`, or `name: {value: expression, external: true}` for an input that a
+  // caller sets between steps (the expression is its value when none does).
   size_t i = 0;
-  for (const auto& kv : node)
-    m_.inputs[i++].expr =
-        scalar_expr(kv.second, kParams | kTime, fmt::format("input '{}'", kv.first.Scalar()));
+  for (const auto& kv : node) {
+    Input& u = m_.inputs[i++];
+    const std::string what = fmt::format("input '{}'", u.name);
+    const YAML::Node& spec = kv.second;
+    if (!spec.IsMap()) {
+      u.expr = scalar_expr(spec, kParams | kTime, what);
+      continue;
+    }
+    check_keys(spec, {"value", "external"}, what);
+    if (!spec["value"]) fail(kv.first, fmt::format("expected 'value' in {}, got none", what));
+    u.expr = scalar_expr(spec["value"], kParams | kTime, fmt::format("value of {}", what));
+    if (spec["external"])
+      u.external = boolean(spec["external"], fmt::format("'external' of {}", what));
+  }
 }
 
 }  // namespace lagrange::model

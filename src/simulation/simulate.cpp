@@ -9,6 +9,9 @@
 #include "lagrange/integration_failure.hpp"
 #include "lagrange/simulation.hpp"
 #include "lagrange/stop_conditions.hpp"
+#include "simulation/drift_correction.hpp"
+#include "simulation/row_writer.hpp"
+#include "simulation/start_state.hpp"
 
 namespace lagrange {
 
@@ -49,80 +52,6 @@ const char* Trajectory::status_name() const {
 }
 
 namespace {
-
-double max_abs(const std::vector<double>& x) {
-  double r = 0.0;
-  for (double v : x) r = std::max(r, std::abs(v));
-  return r;
-}
-
-// One output row: t, q, v, T, U, T + U, outputs, λ, max|C|, max|Ċ|. Buffers are sized once;
-// one forward() gives λ together with C and Ċ.
-class RowWriter {
- public:
-  explicit RowWriter(const CompiledModel& cm)
-      : obs_(cm.observables.num_outputs()),
-        qdot_(cm.nq),
-        a_(cm.nv),
-        lambda_(cm.m),
-        C_(cm.m),
-        Cdot_(cm.m) {}
-
-  void append(Dynamics& dyn, double t, const double* q, const double* v, Trajectory& traj) {
-    write(dyn, t, q, v, traj.data);
-  }
-
-  /// The row appended to `d`.
-  void write(Dynamics& dyn, double t, const double* q, const double* v, std::vector<double>& d) {
-    const CompiledModel& cm = dyn.model();
-    d.push_back(t);
-    d.insert(d.end(), q, q + cm.nq);
-    d.insert(d.end(), v, v + cm.nv);
-    dyn.observe(t, q, v, obs_.data());
-    d.insert(d.end(), {obs_[0], obs_[1], obs_[0] + obs_[1]});
-    const auto reactions = obs_.end() - static_cast<long>(cm.reaction_names.size());
-    d.insert(d.end(), obs_.begin() + 2, reactions);
-    if (cm.m > 0) {
-      dyn.forward(t, q, v, qdot_.data(), a_.data(), lambda_.data());
-      dyn.last_constraints(C_.data(), Cdot_.data());
-      d.insert(d.end(), lambda_.begin(), lambda_.end());
-      d.push_back(max_abs(C_));
-      d.push_back(max_abs(Cdot_));
-      for (size_t r = 0; r < cm.reaction_names.size(); ++r)
-        d.push_back(lambda_[cm.reaction_constraints[r]] * reactions[static_cast<long>(r)]);
-    }
-  }
-
- private:
-  std::vector<double> obs_, qdot_, a_, lambda_, C_, Cdot_;
-};
-
-// Initial state: check C = 0 and Ċ = 0, project if needed (docs/theory.md §4.3) and say what moved.
-void make_consistent(Dynamics& dyn, const SimulationOptions& opt, std::vector<double>& q,
-                     std::vector<double>& v, Trajectory& traj) {
-  const CompiledModel& cm = dyn.model();
-  if (cm.m == 0) return;
-  if (!opt.project_initial) {
-    std::vector<double> C(cm.m), Cdot(cm.m);
-    dyn.constraints(opt.t0, q.data(), v.data(), C.data(), Cdot.data());
-    const double err = max_abs(C), rate_err = max_abs(Cdot);
-    if (err <= opt.projection_tol && rate_err <= opt.projection_tol) return;
-    throw SimulationError(opt.t0,
-                          fmt::format("the initial state is inconsistent: max |C| = {:.3g}, "
-                                      "max |Ċ| = {:.3g}",
-                                      err, rate_err));
-  }
-  const InitialConsistency ic =
-      make_initial_state_consistent(dyn, opt.t0, q, v, opt.projection_tol);
-  if (!ic.consistent)
-    throw SimulationError(
-        opt.t0,
-        fmt::format("the initial state cannot be made consistent: after projection max "
-                    "|C| = {:.3g}, max |Ċ| = {:.3g} (at the start {:.3g} and {:.3g}){}",
-                    max_abs(ic.C), max_abs(ic.Cdot), max_abs(ic.C0), max_abs(ic.Cdot0),
-                    ic.blocked_by_fixed ? "; the coordinates marked fixed stand in the way" : ""));
-  if (!ic.was_consistent) traj.notes.push_back(ic.note());
-}
 
 // The state the integrator last asked about, kept so that a failure inside the integrator (too
 // much work, step size too small, convergence) can say where it happened.
@@ -253,8 +182,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         fmt::format("simulate: expected {} positions and {} velocities, "
                     "got {} and {}",
                     nq, nv, q0.size(), v0.size()));
-  std::vector<double> C(m), Cdot(m), lambda(m);
-  const std::vector<bool> none_fixed(nq, false);  // drift projection may move every coordinate
+  std::vector<double> lambda(m);
   RowWriter rows(cm);
   const bool dae = opt.integrator.method == "ida";
   LastEvaluation last;
@@ -263,19 +191,10 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   last.a.resize(nv);
   // Drift correction (docs/theory.md §4.3, §4.4): free bodies' R back onto SO(3), then the
   // constraints (which may involve R) onto C = 0, Ċ = 0; true when the state moved.
+  DriftCorrection drift(dyn, opt);
   const auto correct_drift = [&](double t, double* yy) {
-    const double drift =
-        orthonormalize_rotations(cm, yy, opt.project ? opt.projection_tol : HUGE_VAL);
-    traj.rotation_drift = std::max(traj.rotation_drift, drift);
-    if (!opt.project) return false;
-    bool moved = drift > opt.projection_tol;
-    if (m > 0) {
-      dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
-      if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
-        dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
-        moved = true;
-      }
-    }
+    const bool moved = drift(t, yy);
+    traj.rotation_drift = drift.largest_rotation_drift();
     return moved;
   };
   // ODE methods correct their own state after every internal step (the step hook); IDA restarts

@@ -78,3 +78,19 @@ def test_a_process_pool_runs_pickled_models(pendulum):
     with ProcessPoolExecutor(max_workers=1) as pool:
         remote = pool.submit(final_theta, pendulum).result(timeout=60)
     assert remote == final_theta(pendulum)
+
+
+def test_stepper_releases_the_gil(examples_dir):
+    # As for simulate: one long step on another thread leaves this thread running Python.
+    tether = lagrange.load(str(examples_dir / "tether_in_wind.yaml"))
+    s = tether.stepper(compile="off")
+    worker = threading.Thread(target=s.step, args=(10.0,))
+    ticks = [time.perf_counter()]
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+    worker.join()
+    duration = ticks[-1] - ticks[0]
+    assert duration > 0.05, "the step is too short to show anything"
+    assert len(ticks) > 100
+    assert max(np.diff(ticks)) < duration / 2

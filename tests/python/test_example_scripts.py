@@ -42,3 +42,12 @@ def test_forward_batch_script(tmp_path):
     assert "10201 states" in stdout
     # (0, 0), (0, ±π), (±π, 0), (±π, ±π): the grid's corners and edges at rest
     assert "(0.0, 0.0)" in stdout
+
+
+def test_controller_in_loop_script(tmp_path):
+    stdout = run_script("controller_in_loop.py", 10, cwd=tmp_path)
+    assert "200 control steps of 0.05 s" in stdout
+    # the Python law flies the file's orbit: the azimuth stays within the loops' ±0.5 rad
+    line = next(x for x in stdout.splitlines() if x.startswith("azimuth range"))
+    low, high = (float(x) for x in line.split("Python law ")[1].split(" rad")[0].split(" .. "))
+    assert -0.7 < low < -0.2 and 0.2 < high < 0.7, line

@@ -30,7 +30,7 @@ def test_the_stubbed_names_are_the_modules():
     assert set(classes) | functions == set(lagrange.__all__)
 
 
-@pytest.mark.parametrize("name", ["Equations", "Run", "Model"])
+@pytest.mark.parametrize("name", ["Equations", "Run", "Model", "Stepper"])
 def test_class_members_match(name):
     _, classes = stub_classes()
     methods, _ = members(classes[name])

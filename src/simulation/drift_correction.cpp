@@ -1,0 +1,34 @@
+#include "simulation/drift_correction.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "simulation/max_abs.hpp"
+
+namespace lagrange {
+
+DriftCorrection::DriftCorrection(Dynamics& dynamics, const SimulationOptions& options)
+    : dynamics_(dynamics),
+      options_(options),
+      C_(dynamics.model().m),
+      Cdot_(dynamics.model().m),
+      none_fixed_(dynamics.model().nq, false) {}
+
+bool DriftCorrection::operator()(double t, double* y) {
+  const CompiledModel& cm = dynamics_.model();
+  const double drift =
+      orthonormalize_rotations(cm, y, options_.project ? options_.projection_tol : HUGE_VAL);
+  rotation_drift_ = std::max(rotation_drift_, drift);
+  if (!options_.project) return false;
+  bool moved = drift > options_.projection_tol;
+  if (cm.m > 0) {
+    dynamics_.constraints(t, y, y + cm.nq, C_.data(), Cdot_.data());
+    if (max_abs(C_) > options_.projection_tol || max_abs(Cdot_) > options_.projection_tol) {
+      dynamics_.project(t, y, y + cm.nq, none_fixed_, 1e-13);
+      moved = true;
+    }
+  }
+  return moved;
+}
+
+}  // namespace lagrange

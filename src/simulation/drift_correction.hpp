@@ -1,0 +1,31 @@
+#pragma once
+// The drift correction a run applies after every internal step and at output samples: free
+// bodies' R back onto SO(3), then the state onto C = 0, Ċ = 0 (docs/theory.md §4.3, §4.4).
+// simulate() and the Stepper share it.
+
+#include <vector>
+
+#include "lagrange/dynamics.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange {
+
+/// Corrects a state y = (q, v) in place as `options` ask (project, projection_tol).
+class DriftCorrection {
+ public:
+  DriftCorrection(Dynamics& dynamics, const SimulationOptions& options);
+  /// docs/theory.md §4.3, §4.4: R ← nearest rotation where ‖RᵀR − 1‖_F > tol, then a projection
+  /// onto C = 0, Ċ = 0 where max |C| or |Ċ| > tol (every coordinate may move); true when y moved.
+  bool operator()(double t, double* y);
+  /// Largest ‖RᵀR − 1‖_F seen before a correction (Trajectory::rotation_drift).
+  double largest_rotation_drift() const { return rotation_drift_; }
+
+ private:
+  Dynamics& dynamics_;
+  const SimulationOptions& options_;
+  std::vector<double> C_, Cdot_;
+  std::vector<bool> none_fixed_;
+  double rotation_drift_ = 0.0;
+};
+
+}  // namespace lagrange
