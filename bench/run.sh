@@ -50,6 +50,13 @@ else
   echo "(the Python stepper is not measured: build the _lagrange target)"
 fi
 echo
+echo "== lagrange from Python against sympy.physics.mechanics (N-link pendulum, same run) =="
+if [[ -d $build/python/lagrange ]]; then
+  PYTHONPATH="$build/python" "$python" "$here/python_vs_sympy.py" | tee "$out/python_sympy.md"
+else
+  echo "(not measured: build the _lagrange target)"
+fi
+echo
 echo "== lagrange: long run, memory (10^7 right-hand-side evaluations) =="
 "$build/bench/long_run" 1e7
 echo
