@@ -5,6 +5,7 @@ compiled tapes and integrators, so a run gives the numbers the command writes to
 """
 
 from ._lagrange import (  # noqa: F401  (the package's public API)
+    AnalysisError,
     Equations,
     Model,
     ModelError,
@@ -15,4 +16,4 @@ from ._lagrange import (  # noqa: F401  (the package's public API)
     loads,
 )
 
-__all__ = ["Equations", "Model", "ModelError", "Run", "SimulationError", "Stepper", "load", "loads"]
+__all__ = ["AnalysisError", "Equations", "Model", "ModelError", "Run", "SimulationError", "Stepper", "load", "loads"]

@@ -2,6 +2,8 @@
 
 from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
+from types import SimpleNamespace
+
 import numpy as np
 import numpy.typing as npt
 
@@ -27,6 +29,9 @@ class SimulationError(RuntimeError):
     """The time at which the run failed."""
     run: Optional["Run"]
     """The trajectory computed up to the failure (None when raised by forward)."""
+
+class AnalysisError(RuntimeError):
+    """A numerical failure of linearize or trim: a singular Jacobian, Newton stalled."""
 
 class Equations:
     """Euler-Lagrange equations as `lagrange derive` prints them (Lagrangian form)."""
@@ -167,6 +172,30 @@ class Model:
         self, Q: ArrayLike, V: ArrayLike, t: float = 0.0
     ) -> Union[npt.NDArray[np.float64], Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
         """forward for each row of Q (rows x nq) and V (rows x nv), GIL released."""
+    def linearize(
+        self,
+        q: Optional[ArrayLike] = None,
+        v: Optional[ArrayLike] = None,
+        inputs: Sequence[str] = (),
+        outputs: Sequence[str] = (),
+        discrete: Optional[float] = None,
+        t: float = 0.0,
+    ) -> SimpleNamespace:
+        """The linear model about (q, v) (default: the initial state) on the constraint
+        manifold, as `lagrange linearize`: A, B, C, D (numpy), states, inputs, outputs, modes
+        (dicts: eigenvalue, frequency_hz, damping, time_constant, shape), full_states, basis,
+        dependent, equilibrium_residual, dt (discrete > 0: the zero-order-hold model), q, v."""
+    def trim(
+        self,
+        q: Optional[ArrayLike] = None,
+        free: Sequence[str] = (),
+        fix: Sequence[str] = (),
+        tol: float = 1e-10,
+        max_iterations: int = 50,
+        t: float = 0.0,
+    ) -> SimpleNamespace:
+        """An equilibrium (v = 0, a = 0) by Newton's method from q (default: the initial
+        state), as `lagrange trim`: q, v, coordinates, iterations, residual."""
     def stepper(
         self,
         t_end: Optional[float] = None,

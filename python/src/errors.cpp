@@ -1,6 +1,7 @@
 #include "errors.hpp"
 
 #include "cli/commands.hpp"
+#include "lagrange/analysis.hpp"
 #include "lagrange/error.hpp"
 
 namespace py = pybind11;
@@ -12,6 +13,7 @@ namespace {
 // The exception types, created once at import and kept for the life of the interpreter.
 PyObject* model_error_type = nullptr;
 PyObject* simulation_error_type = nullptr;
+PyObject* analysis_error_type = nullptr;
 
 // Sets `type(message)` with the given attributes as the current Python error.
 void set_error(PyObject* type, const std::string& message, const py::dict& attributes) {
@@ -39,7 +41,13 @@ void bind_errors(py::module_& m) {
       "happened, .run the trajectory computed up to there (None outside simulate).",
       PyExc_RuntimeError, nullptr);
   m.add_object("ModelError", py::handle(model_error_type));
+  analysis_error_type = PyErr_NewExceptionWithDoc(
+      "lagrange.AnalysisError",
+      "A numerical failure of linearize or trim (a singular Jacobian, Newton stalled); the "
+      "message says why and where.",
+      PyExc_RuntimeError, nullptr);
   m.add_object("SimulationError", py::handle(simulation_error_type));
+  m.add_object("AnalysisError", py::handle(analysis_error_type));
 
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -51,6 +59,8 @@ void bind_errors(py::module_& m) {
     } catch (const lagrange::SimulationError& e) {
       set_error(simulation_error_type, e.what(),
                 py::dict(py::arg("time") = e.time(), py::arg("run") = py::none()));
+    } catch (const lagrange::AnalysisError& e) {
+      PyErr_SetString(analysis_error_type, e.what());
     } catch (const cli::UsageError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "analysis.hpp"
 #include "arrays.hpp"
 #include "errors.hpp"
 #include "lagrange/io.hpp"
@@ -241,6 +242,21 @@ void bind_model(py::module_& m) {
       .def("forward_batch", &forward_batch, py::arg("Q"), py::arg("V"), py::arg("t") = 0.0,
            "forward for each row of Q (rows × nq) and V (rows × nv) with the GIL released: "
            "rows × nv accelerations, or (accelerations, rows × m multipliers).")
+      .def("linearize", &linearize_model, py::arg("q") = py::none(), py::arg("v") = py::none(),
+           py::arg("inputs") = std::vector<std::string>{},
+           py::arg("outputs") = std::vector<std::string>{}, py::arg("discrete") = py::none(),
+           py::arg("t") = 0.0,
+           "The linear model about (q, v) (default: the initial state) on the constraint "
+           "manifold, as `lagrange linearize`: a namespace with A, B, C, D (numpy), states, "
+           "inputs (model inputs or parameters), outputs, modes, basis, dt (discrete > 0: "
+           "zero-order hold). Raises AnalysisError when the KKT matrix is singular.")
+      .def("trim", &trim_model, py::arg("q") = py::none(),
+           py::arg("free") = std::vector<std::string>{},
+           py::arg("fix") = std::vector<std::string>{}, py::arg("tol") = 1e-10,
+           py::arg("max_iterations") = 50, py::arg("t") = 0.0,
+           "An equilibrium (v = 0, a = 0) by Newton's method from q (default: the initial "
+           "state), as `lagrange trim`: a namespace with q, v, coordinates, iterations and "
+           "residual. Raises AnalysisError saying why when Newton stalls.")
       .def("stepper", &make_stepper, py::arg("t_end") = py::none(),
            py::arg("integrator") = py::none(), py::arg("rtol") = py::none(),
            py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("compile") = "auto",

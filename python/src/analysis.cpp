@@ -1,0 +1,157 @@
+#include "analysis.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "arrays.hpp"
+#include "cli/commands.hpp"
+#include "lagrange/analysis.hpp"
+
+namespace py = pybind11;
+
+namespace lagrange::python {
+
+namespace {
+
+/// The Lagrangian form of a loaded model (the exact Jacobians need it; a model loaded in the
+/// recursive form is derived again, once per call), with a workspace at the model's parameters.
+struct LagrangianForm {
+  std::shared_ptr<const Equations> equations;
+  std::shared_ptr<const CompiledModel> compiled;
+  std::unique_ptr<Dynamics> dynamics;
+};
+
+LagrangianForm lagrangian_form(const cli::Prepared& p) {
+  LagrangianForm f;
+  if (p.equations.recursive) {
+    f.equations = std::make_shared<const Equations>(derive(*p.model, Formulation::Lagrangian));
+    f.compiled = compile(*f.equations);
+  } else {
+    f.equations = std::shared_ptr<const Equations>(&p.equations, [](const Equations*) {});
+    f.compiled = p.compiled;
+  }
+  f.dynamics = std::make_unique<Dynamics>(f.compiled, p.dynamics->parameters());
+  f.dynamics->set_baumgarte(p.dynamics->baumgarte());
+  return f;
+}
+
+/// The operating point: the model's consistent initial state, or the caller's (q, v) made
+/// consistent with the constraints as a run's start is.
+void operating_point(const cli::Prepared& p, Dynamics& dyn, double t,
+                     const std::optional<py::object>& q_in, const std::optional<py::object>& v_in,
+                     std::vector<double>& q, std::vector<double>& v) {
+  const CompiledModel& cm = dyn.model();
+  q = p.q;
+  v = p.v;
+  if (q_in && !q_in->is_none()) {
+    const DoubleArray a = q_in->cast<DoubleArray>();
+    const double* d = vector_data(a, cm.nq, "q");
+    q.assign(d, d + cm.nq);
+  }
+  if (v_in && !v_in->is_none()) {
+    const DoubleArray a = v_in->cast<DoubleArray>();
+    const double* d = vector_data(a, cm.nv, "v");
+    v.assign(d, d + cm.nv);
+  }
+  if (cm.m == 0 || (!q_in && !v_in)) return;
+  const InitialConsistency ic = make_initial_state_consistent(dyn, t, q, v);
+  if (!ic.consistent)
+    throw py::value_error("the operating point cannot be put on the constraints: " + ic.note());
+}
+
+py::object mode_dicts(const std::vector<Mode>& ms) {
+  py::list out;
+  for (const Mode& mode : ms) {
+    py::list shape;
+    for (const auto& c : mode.shape) shape.append(py::make_tuple(c.name, c.magnitude, c.phase_deg));
+    out.append(py::dict(py::arg("eigenvalue") = mode.eigenvalue,
+                        py::arg("frequency_hz") = mode.frequency_hz,
+                        py::arg("damping") = mode.damping,
+                        py::arg("time_constant") = mode.time_constant, py::arg("shape") = shape));
+  }
+  return std::move(out);
+}
+
+py::object namespace_of(const py::dict& fields) {
+  return py::module_::import("types").attr("SimpleNamespace")(**fields);
+}
+
+}  // namespace
+
+// docs/theory.md §5.3–5.4 through the library: the CLI's `linearize` and this share linearize(),
+// modes() and discretize().
+py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
+                           std::optional<py::object> v_in, const std::vector<std::string>& inputs,
+                           const std::vector<std::string>& outputs,
+                           std::optional<double> discrete, double t) {
+  if (discrete && !(*discrete > 0)) throw py::value_error("discrete: expected a positive dt");
+  const cli::Prepared& p = *m.prepared;
+  LagrangianForm f = lagrangian_form(p);
+  std::vector<std::string> model_outputs;  // only the named model outputs are differentiated
+  for (const auto& name : outputs)
+    if (std::count(f.compiled->output_names.begin(), f.compiled->output_names.end(), name) &&
+        !std::count(model_outputs.begin(), model_outputs.end(), name))
+      model_outputs.push_back(name);
+  std::unique_ptr<DynamicsJacobian> jac;
+  try {
+    jac = std::make_unique<DynamicsJacobian>(*f.equations, f.compiled, inputs, model_outputs);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("inputs: ") + e.what());
+  }
+  std::vector<double> q, v;
+  operating_point(p, *f.dynamics, t, q_in, v_in, q, v);
+  LinearModel lin;
+  try {
+    lin = linearize(*jac, *f.dynamics, t, q.data(), v.data(), outputs);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("outputs: ") + e.what());
+  }
+  const std::vector<Mode> ms = modes(lin);
+  if (discrete) lin = discretize(lin, *discrete);
+  return namespace_of(py::dict(
+      py::arg("A") = lin.A, py::arg("B") = lin.B, py::arg("C") = lin.C, py::arg("D") = lin.D,
+      py::arg("states") = lin.state_names, py::arg("inputs") = lin.input_names,
+      py::arg("outputs") = lin.output_names, py::arg("dt") = lin.dt,
+      py::arg("modes") = mode_dicts(ms), py::arg("full_states") = lin.full_state_names,
+      py::arg("basis") = lin.basis, py::arg("dependent") = lin.dependent,
+      py::arg("equilibrium_residual") = lin.equilibrium_residual, py::arg("q") = to_array(q),
+      py::arg("v") = to_array(v)));
+}
+
+// docs/theory.md §5.5 through the library, as `lagrange trim`.
+py::object trim_model(const PyModel& m, std::optional<py::object> q_in,
+                      const std::vector<std::string>& free, const std::vector<std::string>& fix,
+                      double tol, int max_iterations, double t) {
+  if (!(tol > 0)) throw py::value_error("tol: expected a positive tolerance");
+  const cli::Prepared& p = *m.prepared;
+  LagrangianForm f = lagrangian_form(p);
+  std::vector<double> q, v;
+  operating_point(p, *f.dynamics, t, q_in, std::nullopt, q, v);
+  const CompiledModel& cm = *f.compiled;
+  const TangentChart chart = tangent_chart(cm, q.data(), v.data());
+  const auto index = [&](const char* what, const std::string& name) {
+    const auto it = std::find(chart.names.begin(), chart.names.end(), name);
+    if (it == chart.names.end())
+      throw py::value_error(std::string(what) + ": no coordinate '" + name + "' in the model");
+    return static_cast<size_t>(it - chart.names.begin());
+  };
+  TrimOptions options;
+  options.free.assign(chart.names.size(), free.empty());
+  for (const auto& name : free) options.free[index("free", name)] = true;
+  for (const auto& name : fix) options.free[index("fix", name)] = false;
+  if (std::none_of(options.free.begin(), options.free.end(), [](bool b) { return b; }))
+    throw py::value_error("free/fix leave no coordinate for trim to vary");
+  options.tol = tol;
+  options.max_iterations = max_iterations;
+  const DynamicsJacobian jac(*f.equations, f.compiled);
+  const TrimResult r = trim(jac, *f.dynamics, t, q, options);
+  return namespace_of(py::dict(py::arg("q") = to_array(r.q), py::arg("v") = to_array(r.v),
+                               py::arg("coordinates") = cm.coordinate_names,
+                               py::arg("iterations") = r.iterations,
+                               py::arg("residual") = r.residual));
+}
+
+}  // namespace lagrange::python

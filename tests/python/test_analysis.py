@@ -1,0 +1,110 @@
+"""Model.linearize and Model.trim from Python: the CLI's numbers, the pendulum's exact modes, a
+trim against its closed form, and an LQR designed on the linear model that balances the
+nonlinear cart-pole stepped from Python."""
+
+import json
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+import lagrange
+
+# A cart (mass M) with a pole (point mass m at length l), pushed by an external force F; theta = 0
+# is upright, so the upright equilibrium is unstable.
+CART_POLE = """
+name: cart-pole
+parameters: {M: 1.0, m: 0.2, l: 0.6, g: 9.81}
+inputs:
+  F: {value: 0, external: true}
+coordinates:
+  x: {initial: 0}
+  theta: {initial: 0}
+points:
+  cart: [x, 0, 0]
+  bob: [x + l*sin(theta), l*cos(theta), 0]
+particles: {cart: M, bob: m}
+gravity: [0, -g, 0]
+generalized_forces: {x: F}
+"""
+
+
+def test_pendulum_modes_are_exact_and_match_the_cli(examples_dir, cli):
+    m = lagrange.load(str(examples_dir / "pendulum.yaml"))
+    lin = m.linearize(q=[0.0], v=[0.0])
+    assert lin.states == ["theta", "theta_dot"]
+    omega = math.sqrt(9.81 / 1.0)
+    assert np.allclose(lin.A, [[0, 1], [-omega**2, 0]], atol=1e-14)
+    assert len(lin.modes) == 1
+    assert lin.modes[0]["frequency_hz"] == pytest.approx(omega / (2 * math.pi), rel=1e-14)
+    assert lin.modes[0]["damping"] == pytest.approx(0.0, abs=1e-14)
+    out = subprocess.run([str(cli), "linearize", str(examples_dir / "pendulum.yaml"), "--at",
+                          "theta=0", "--format", "json"], check=True, capture_output=True, text=True)
+    assert np.array_equal(np.array(json.loads(out.stdout)["A"]), lin.A)
+
+
+def test_cartesian_pendulum_has_only_the_physical_modes(examples_dir):
+    m = lagrange.load(str(examples_dir / "cartesian_pendulum.yaml"))
+    lin = m.linearize(q=[0.0, -1.0], v=[0.0, 0.0])
+    assert lin.A.shape == (2, 2)  # on the manifold: one coordinate and its rate
+    eig = np.linalg.eigvals(lin.A)
+    assert np.allclose(sorted(eig.imag), [-math.sqrt(9.81), math.sqrt(9.81)], rtol=1e-12)
+    assert np.allclose(eig.real, 0, atol=1e-12)
+
+
+def test_trim_finds_the_hanging_equilibrium():
+    # A constant horizontal force F on the bob holds the pendulum at tan(theta) = F/(m g).
+    m = lagrange.loads("parameters: {m: 1.0, l: 1.0, g: 9.81, F: 3.0}\n"
+                       "coordinates: {theta: {initial: 0.1}}\n"
+                       "points: {bob: [l*sin(theta), -l*cos(theta), 0]}\n"
+                       "particles: {bob: m}\ngravity: [0, -g, 0]\nforces: {bob: [F, 0, 0]}\n",
+                       label="<pendulum in a side force>")
+    r = m.trim()
+    assert r.q[0] == pytest.approx(math.atan2(3.0, 9.81), abs=1e-12)
+    assert r.residual <= 1e-10
+    assert np.array_equal(r.v, [0.0])
+    with pytest.raises(ValueError, match="no coordinate 'phi'"):
+        m.trim(free=["phi"])
+
+
+def lqr_gain(A, B, Q, R, iterations=5000):
+    """Discrete LQR gain by iterating the Riccati difference equation to its fixed point."""
+    P = Q.copy()
+    for _ in range(iterations):
+        K = np.linalg.solve(R + B.T @ P @ B, B.T @ P @ A)
+        P_next = Q + A.T @ P @ (A - B @ K)
+        if np.max(np.abs(P_next - P)) < 1e-12 * np.max(np.abs(P)):
+            break
+        P = P_next
+    return np.linalg.solve(R + B.T @ P @ B, B.T @ P @ A)
+
+
+def test_lqr_on_the_linear_model_balances_the_nonlinear_cart_pole():
+    m = lagrange.loads(CART_POLE, label="<cart-pole>")
+    dt = 0.02
+    lin = m.linearize(inputs=["F"], discrete=dt)
+    assert lin.states == ["x", "theta", "x_dot", "theta_dot"]
+    assert max(abs(e) for e in np.linalg.eigvals(lin.A)) > 1  # upright is unstable
+    K = lqr_gain(lin.A, lin.B, np.diag([1.0, 10.0, 1.0, 1.0]), np.array([[0.1]]))
+    assert max(abs(e) for e in np.linalg.eigvals(lin.A - lin.B @ K)) < 1  # stable, linear
+
+    # The stepper starts from the file's state: tip the pole there.
+    tipped = CART_POLE.replace("theta: {initial: 0}", "theta: {initial: 0.15}")
+    m = lagrange.loads(tipped, label="<cart-pole tipped>")
+
+    def fly(controlled):
+        s = m.stepper(integrator="dop853", rtol=1e-9)
+        x, largest = np.array([0.0, 0.15, 0.0, 0.0]), 0.15
+        for _ in range(int(6 / dt)):
+            u = float(-(K @ x)[0]) if controlled else 0.0
+            s.step(dt, inputs={"F": u})
+            q, v = s.state
+            x = np.concatenate([q, v])
+            largest = max(largest, abs(x[1]))
+        return x, largest
+
+    (balanced, tilt), (_, fall) = fly(True), fly(False)
+    assert np.max(np.abs(balanced)) < 1e-3  # back upright and at rest over the origin
+    assert tilt < 0.3
+    assert fall > 1.5  # left alone, it falls over
