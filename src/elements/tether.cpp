@@ -285,9 +285,9 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
     if (!b.free) {
       b0 = initial_position(r, b.pos, between[1], "the second end of " + what);
       const double span = norm({b0[0] - a0[0], b0[1] - a0[1], b0[2] - a0[2]});
-      if (span > length0 * (1 + 1e-9))
+      if (!t.elasticity && span > length0 * (1 + 1e-9))
         r.fail(between, fmt::format("expected ends of {} at most its length {:g} apart at t = 0, "
-                                    "got {:g}",
+                                    "got {:g} (an elastic tether may start stretched)",
                                     what, length0, span));
     }
     const std::vector<Num3> shape = initial_shape(r, t, a0, b.free ? nullptr : &b0, length0);
