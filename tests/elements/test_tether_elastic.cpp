@@ -188,6 +188,47 @@ TEST(ElasticTether, DampedSlackSegmentsCarryNothing) {
   EXPECT_GT(slack, 10u);
 }
 
+// The seed's winch (examples/winch.yaml) with an elastic line: its free drum unreels the hanging
+// line. The segments' pull on the reeled-out length, Q_ℓ (docs/theory.md §4.10), is what turns
+// the drum: without damping the total energy (drum, line, gravity, elastic) stays constant, and a
+// stiff line follows the rigid line's ℓ(t) = ℓ(0) cosh(ωt), ω² = μ g R²/(J + μ L R²), to within
+// its strain (≈ 2·10⁻³).
+TEST(ElasticTether, AFreeDrumUnreelsAnElasticLineAsARigidOneAndKeepsTheEnergy) {
+  auto sys = testing::load_string(R"(parameters: {R: 0.2, J: 0.05, mu: 0.4, L: 30, g: 9.81}
+gravity: [0, 0, -g]
+winches:
+  drum:
+    tether: line
+    radius: R
+    inertia: J
+    total_length: L
+    initial: {reeled_out: 1, rate: 0}
+tethers:
+  line:
+    between: [[0, 0, 0], free]
+    segments: 5
+    mass_per_length: mu
+    elasticity: {EA: 1.0e4}
+)");
+  SimulationOptions so = sys.options();
+  so.t_end = 1.5;
+  so.output_step = 0.01;
+  so.integrator.rtol = 1e-10;
+  so.integrator.atol = 1e-12;
+  const Trajectory tr = sys.run(so);
+  ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
+  const double e0 = tr.at(0, "energy") + tr.at(0, "line.elastic_energy");
+  double worst = 0;
+  for (size_t r = 0; r < tr.rows(); ++r)
+    worst = std::max(worst, std::abs(tr.at(r, "energy") + tr.at(r, "line.elastic_energy") - e0));
+  EXPECT_LT(worst, 1e-7 * std::max(1.0, std::abs(e0)));
+  const double omega = std::sqrt(0.4 * 9.81 * 0.04 / (0.05 + 0.4 * 30 * 0.04));
+  const size_t last = tr.rows() - 1;
+  const double rigid = std::cosh(omega * tr.at(last, "t"));
+  EXPECT_NEAR(tr.at(last, "drum.reeled_out"), rigid, 1e-3 * rigid);  // measured: 5·10⁻⁵
+  EXPECT_GT(tr.at(last, "drum.reeled_out"), 1.3);                    // it did unreel
+}
+
 /// The hanging chain of tether_models.hpp made elastic with stiffness EA.
 std::string elastic_chain(int segments, double ea) {
   return testing::hanging_chain(segments) + fmt::format("    elasticity: {{EA: {}}}\n", ea);
