@@ -1,11 +1,12 @@
 // KPS4-like case of issue 22: the rigid AP2 of examples/rigid_kite_ap2.yaml, its control laws
 // unchanged, on a 6-segment *elastic* Dyneema tether (docs/theory.md §4.10) with simple drag in
-// a logarithmic wind (6 m/s at 10 m, z₀ = 0.1 m). Line data from /work/shared/KITES.md: d = 2 mm,
-// μ = 4.6 g/m [A3], E = 100 GPa [A2], so EA = E π d²/4 = 314 kN; the damping D = 1000 N·s (on the
-// strain rate) is this benchmark's choice. It flies 60 s against a reference run at rtol 1e-12 and
-// reports, per rtol (1e-3, 1e-6), the CPU seconds of this process, the real-time factor and the
-// largest error over the output samples (every 0.05 s) of the kite's position and the ground
-// tension. KiteModels.jl's KPS4 on 6 segments: 117× (reeling) to 239× (parked), issue 22.
+// a logarithmic wind (6 m/s at 10 m, z₀ = 0.1 m). Line data: d = 2 mm, μ = 4.6 g/m
+// (awebox opts/kite_data/ampyx_ap2_settings.py), E = 100 GPa (awebox opts/default.py), so EA = E π
+// d²/4 = 314 kN; the damping D = 1000 N·s (on the strain rate) is this benchmark's choice. It flies
+// 60 s against a reference run at rtol 1e-12 and reports, per rtol (1e-3, 1e-6), the CPU seconds of
+// this process, the real-time factor and the largest error over the output samples (every 0.05 s)
+// of the kite's position and the ground tension. KiteModels.jl's KPS4 on 6 segments: 117× (reeling)
+// to 239× (parked), issue 22.
 //   bench_elastic_kite [--quick] [--integrator METHOD]   (--quick: 5 s of flight)
 
 #include <fmt/format.h>

@@ -17,7 +17,7 @@ namespace lagrange {
 namespace {
 
 constexpr double kM = 20, kG = 9.81, kL = 100, kMu = 0.0046;
-constexpr double kEA = 314159.0;  // E = 100 GPa, d = 2 mm (/work/shared/KITES.md [A2, A3])
+constexpr double kEA = 314159.0;  // E = 100 GPa, d = 2 mm (awebox's AP2 tether)
 
 /// A load M on an elastic line of length L hung from the origin along −z.
 std::string hanging_load(int segments, double ea, double damping, double z0, double zdot,
