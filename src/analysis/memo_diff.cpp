@@ -26,11 +26,6 @@ const std::vector<size_t>& MemoDiff::columns_in(const GiNaC::ex& e) {
 }
 
 GiNaC::ex MemoDiff::partial(const GiNaC::ex& f, size_t i) {
-  // |u|' = u/|u| for the real u of a model (the kinks of max and min, docs/theory.md §4.10):
-  // GiNaC's rule is for complex u and brings in conjugate(), which the tape does not evaluate.
-  if (GiNaC::is_a<GiNaC::function>(f) &&
-      GiNaC::ex_to<GiNaC::function>(f).get_serial() == GiNaC::abs_SERIAL::serial)
-    return f.op(0) / f;
   // f(s₁…s_n) differentiated by sᵢ with fresh symbols, then the arguments put back: GiNaC's
   // own rule for the function, applied to a node of size n.
   GiNaC::exmap back;

@@ -482,13 +482,13 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
     for (size_t k = 0; k < 3; ++k)
       if (!force[0][k].is_zero() || !force[1][k].is_zero())
         summary.equations.emplace_back(fmt::format("F_node1.{}", "xyz"[k]), force[1][k]);
-    summary.notes.push_back(
-        fmt::format("{}.tension_j = {} (N); drag: {}", t.name,
-                    t.elasticity ? "max(0, EA eps+ + g D eps'), elastic (docs/theory.md §4.10)"
-                                 : "lambda_j * l_s",
-                    t.drag == Tether::Drag::None     ? "none"
-                    : t.drag == Tether::Drag::Simple ? "simple"
-                                                     : "fine"));
+    summary.notes.push_back(fmt::format(
+        "{}.tension_j = {} (N); drag: {}", t.name,
+        t.elasticity ? "EA eps+ + g max(D eps', -EA eps+), elastic (docs/theory.md §4.10)"
+                     : "lambda_j * l_s",
+        t.drag == Tether::Drag::None     ? "none"
+        : t.drag == Tether::Drag::Simple ? "simple"
+                                         : "fine"));
     if (t.variable_length)
       summary.notes.push_back(
           "T and U use the material velocity r_j' + l' (1 - j/N) t_j "

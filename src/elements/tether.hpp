@@ -40,7 +40,7 @@ struct ElasticSegments {
   std::vector<Vec3> force;         ///< per node: the pull of the segments on either side
   GiNaC::ex length_force = 0;      ///< Q_ℓ on the winch's coordinate (0 without one)
   std::vector<GiNaC::ex> strain;   ///< per segment: ε = |rⱼ − rⱼ₋₁|/ℓ₀ − 1
-  std::vector<GiNaC::ex> tension;  ///< per segment: T = max(0, EA ε⁺ + g(ε) D ε̇), N
+  std::vector<GiNaC::ex> tension;  ///< per segment: T = EA ε⁺ + g(ε) max(D ε̇, −EA ε⁺), N
   GiNaC::ex energy = 0;            ///< Σ ½ EA ℓ₀ (ε⁺)², J
 };
 

@@ -11,9 +11,10 @@ using model::sub;
 
 // docs/theory.md §4.10, Elastic tethers. Segment j between rⱼ₋₁ and rⱼ has the unstretched length
 // ℓ₀ = ℓ/N (ℓ may be a winch's coordinate or ℓ(t)) and the strain ε = |rⱼ − rⱼ₋₁|/ℓ₀ − 1. Its
-// tension is T = max(0, EA ε⁺ + g(ε) D ε̇) with ε⁺ = max(ε, 0) and the gate g = min(1, ε⁺/δ),
-// δ = 10⁻⁶: a slack segment (ε ≤ 0) carries nothing, a taut one is a spring EA/ℓ₀ in parallel
-// with a dashpot D/ℓ₀ whose sum never pushes. T pulls rⱼ₋₁ towards rⱼ and back; on the reeled-out
+// tension is T = EA ε⁺ + g(ε) max(D ε̇, −EA ε⁺) with ε⁺ = max(ε, 0) and the gate
+// g = min(1, ε⁺/δ), δ = 10⁻⁶: a slack segment (ε ≤ 0) carries nothing, a taut one
+// (ε ≥ δ) is a spring EA/ℓ₀ in parallel with a dashpot D/ℓ₀ whose sum never pushes,
+// T = max(0, EA ε + D ε̇). T pulls rⱼ₋₁ towards rⱼ and back; on the reeled-out
 // length ℓ it does the virtual work Q_ℓ = (1/N) Σ [T (1 + ε) − ½ EA (ε⁺)²], so that without
 // damping the forces derive from U = Σ ½ EA ℓ₀ (ε⁺)².
 ElasticSegments elastic_segments(const Model& m, const Tether& t) {
@@ -31,9 +32,9 @@ ElasticSegments elastic_segments(const Model& m, const Tether& t) {
     const GiNaC::ex strain = stretched / l0 - 1;
     const GiNaC::ex taut = max_of(strain, 0);
     GiNaC::ex tension = EA * taut;
-    if (!D.is_zero()) {
+    if (!D.is_zero()) {  // g max(D ε̇, −EA ε⁺): its kinks lie off the slack state (T ≡ 0)
       const GiNaC::ex gate = min_of(1, taut / delta);
-      tension = max_of(0, tension + gate * D * m.time_derivative(strain));
+      tension += gate * max_of(D * m.time_derivative(strain), -tension);
     }
     const Vec3 pull = scale(tension / stretched, d);
     for (size_t k = 0; k < 3; ++k) {
