@@ -15,7 +15,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 python=/usr/bin/python3  # Debian's python3 has sympy and numpy (docs/benchmarks.md, Peers)
 out=${LAGRANGE_BENCH_OUT:-$build/bench-results}
 
-for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite bench_stepper long_run work_precision; do
+for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite bench_stepper \
+  bench_elastic_kite long_run work_precision; do
   if [[ ! -x $build/bench/$exe ]]; then
     echo "$0: $build/bench/$exe not found; build it first: cmake --build $build --target benchmarks" >&2
     exit 1
@@ -56,6 +57,9 @@ if [[ -d $build/python/lagrange ]]; then
 else
   echo "(not measured: build the _lagrange target)"
 fi
+echo
+echo "== lagrange: KPS4-like case (rigid AP2 on a 6-segment elastic Dyneema tether, 60 s) =="
+"$build/bench/bench_elastic_kite" | tee "$out/elastic_kite.md"
 echo
 echo "== lagrange: long run, memory (10^7 right-hand-side evaluations) =="
 "$build/bench/long_run" 1e7

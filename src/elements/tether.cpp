@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "model/model_reader.hpp"
+#include "model/vec3_algebra.hpp"
 
 namespace lagrange::elements {
 
@@ -18,18 +20,10 @@ namespace {
 using model::ModelReader;
 using Num3 = std::array<double, 3>;
 
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 add(const Vec3& a, const Vec3& b) {
-  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-Vec3 scale(const GiNaC::ex& s, const Vec3& a) {
-  return {s * a[0], s * a[1], s * a[2]};
-}
-GiNaC::ex dot3(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+using model::add;
+using model::dot3;
+using model::scale;
+using model::sub;
 double norm(const Num3& a) {
   return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
@@ -186,9 +180,9 @@ bool moves(const Model& m, const Vec3& pos) {
 }  // namespace
 
 void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx) {
-  const std::vector<std::string> keys{"between",         "segments", "model", "length",
-                                      "mass_per_length", "diameter", "cd",    "drag",
-                                      "air_density",     "damping"};
+  const std::vector<std::string> keys{"between",         "segments", "model",     "length",
+                                      "mass_per_length", "diameter", "cd",        "drag",
+                                      "air_density",     "damping",  "elasticity"};
   for (const ElementEntry& entry : element_entries(
            r, node, "tethers", "tether", keys, "{between, segments, length, mass_per_length, …}")) {
     Tether t;
@@ -242,6 +236,15 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
                          "the air density of " + what);
     }
     if (spec["damping"]) t.damping = required_positive(r, spec, "damping", what, false);
+    if (const YAML::Node el = spec["elasticity"]) {
+      const std::string of = "the elasticity of " + what;
+      r.expect_map(el, of + " ({EA, damping})");
+      r.check_keys(el, {"EA", "damping"}, of);
+      Tether::Elasticity e;
+      e.EA = required_positive(r, el, "EA", of, true);
+      if (el["damping"]) e.damping = required_positive(r, el, "damping", of, false);
+      t.elasticity = e;
+    }
 
     // The length: a winch's coordinate, or a constant / ℓ(t) written here.
     const Winch* winch = nullptr;
@@ -259,6 +262,7 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
         r.fail(spec["length"],
                fmt::format("expected no 'length' in {}: winch '{}' sets it", what, winch->name));
       t.length = r.model().coordinates[winch->coordinate].q;
+      t.length_coordinate = static_cast<int>(winch->coordinate);
       t.variable_length = true;
       length0 = winch->initial;
       rate0 = winch->rate;
@@ -285,9 +289,9 @@ void declare_tethers(ModelReader& r, const YAML::Node& node, ElementContext& ctx
     if (!b.free) {
       b0 = initial_position(r, b.pos, between[1], "the second end of " + what);
       const double span = norm({b0[0] - a0[0], b0[1] - a0[1], b0[2] - a0[2]});
-      if (span > length0 * (1 + 1e-9))
+      if (!t.elasticity && span > length0 * (1 + 1e-9))
         r.fail(between, fmt::format("expected ends of {} at most its length {:g} apart at t = 0, "
-                                    "got {:g}",
+                                    "got {:g} (an elastic tether may start stretched)",
                                     what, length0, span));
     }
     const std::vector<Num3> shape = initial_shape(r, t, a0, b.free ? nullptr : &b0, length0);
@@ -396,6 +400,36 @@ void add_constant_length_masses(ModelReader& r, const Tether& t) {
   }
 }
 
+// docs/theory.md §4.5: Cⱼ = ½(|rⱼ − rⱼ₋₁|² − (ℓ/N)²); the segment's tension is λⱼ ℓ/N.
+void add_length_constraints(Model& m, const Tether& t, const SourceLoc& loc) {
+  const GiNaC::ex seg = t.length / GiNaC::numeric(static_cast<int>(t.segments));
+  for (size_t j = 1; j <= t.segments; ++j) {
+    const Vec3 d = sub(m.find_point(t.nodes[j])->pos, m.find_point(t.nodes[j - 1])->pos);
+    m.constraints.push_back(
+        NamedExpr{fmt::format("{}.segment{}", t.name, j), (dot3(d, d) - seg * seg) / 2, loc});
+    m.reactions.push_back(
+        Reaction{fmt::format("{}.tension_{}", t.name, j), m.constraints.size() - 1, seg, loc});
+    if (j == 1)
+      m.reactions.push_back(
+          Reaction{t.name + ".tension_ground", m.constraints.size() - 1, seg, loc});
+  }
+}
+
+// docs/theory.md §4.10: Q_ℓ on the winch's coordinate; strain, tension and elastic energy as
+// outputs. The segments' pulls are returned, to join the node forces (virtual work, §4.2).
+ElasticSegments add_elastic_segments(Model& m, const Tether& t, const SourceLoc& loc) {
+  ElasticSegments el = elastic_segments(m, t);
+  if (t.length_coordinate >= 0)
+    m.generalized_forces[static_cast<size_t>(t.length_coordinate)] += el.length_force;
+  for (size_t j = 1; j <= t.segments; ++j) {
+    m.outputs.push_back(NamedExpr{fmt::format("{}.strain_{}", t.name, j), el.strain[j - 1], loc});
+    m.outputs.push_back(NamedExpr{fmt::format("{}.tension_{}", t.name, j), el.tension[j - 1], loc});
+  }
+  m.outputs.push_back(NamedExpr{t.name + ".tension_ground", el.tension[0], loc});
+  m.outputs.push_back(NamedExpr{t.name + ".elastic_energy", el.energy, loc});
+  return el;
+}
+
 }  // namespace
 
 void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& ctx) {
@@ -408,19 +442,13 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
       add_variable_length_energy(r, t);
     else
       add_constant_length_masses(r, t);
-    // docs/theory.md §4.5: Cⱼ = ½(|rⱼ − rⱼ₋₁|² − (ℓ/N)²); the segment's tension is λⱼ ℓ/N.
-    for (size_t j = 1; j <= n; ++j) {
-      const Vec3 d = sub(m.find_point(t.nodes[j])->pos, m.find_point(t.nodes[j - 1])->pos);
-      m.constraints.push_back(
-          NamedExpr{fmt::format("{}.segment{}", t.name, j), (dot3(d, d) - seg * seg) / 2, loc});
-      m.reactions.push_back(
-          Reaction{fmt::format("{}.tension_{}", t.name, j), m.constraints.size() - 1, seg, loc});
-      if (j == 1)
-        m.reactions.push_back(
-            Reaction{t.name + ".tension_ground", m.constraints.size() - 1, seg, loc});
-    }
     std::vector<Vec3> force = tether_drag(m, t, ctx.wind ? &*ctx.wind : nullptr);
-    GiNaC::ex power = 0;  // of drag and damping: Σ Fⱼ·ṙⱼ
+    std::optional<ElasticSegments> elastic;
+    if (t.elasticity)
+      elastic = add_elastic_segments(m, t, loc);
+    else
+      add_length_constraints(m, t, loc);
+    GiNaC::ex power = 0;  // of drag and node damping: Σ Fⱼ·ṙⱼ (not of the elastic segments)
     for (size_t j = 0; j <= n; ++j) {
       const Vec3& pos = m.find_point(t.nodes[j])->pos;
       const bool own = m.coordinate_index(fmt::format("{}.node{}.x", t.name, j)) >= 0;
@@ -428,31 +456,43 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
         const GiNaC::ex c = t.damping * seg;
         for (size_t k = 0; k < 3; ++k) force[j][k] -= c * m.time_derivative(pos[k]);
       }
-      bool any = false;
-      for (const auto& f : force[j]) any = any || !f.is_zero();
-      if (!any) continue;
-      m.forces.push_back(PointForce{t.nodes[j], force[j], loc});
       for (size_t k = 0; k < 3; ++k) power += force[j][k] * m.time_derivative(pos[k]);
+      Vec3 total = elastic ? model::add(force[j], elastic->force[j]) : force[j];
+      bool any = false;
+      for (const auto& f : total) any = any || !f.is_zero();
+      if (any) m.forces.push_back(PointForce{t.nodes[j], total, loc});
     }
-    ElementSummary summary{
-        fmt::format("Tether '{}': {} segments, {} model{}", t.name, n, t.full ? "full" : "lumped",
-                    t.variable_length ? ", varying length" : ""),
-        {},
-        {}};
+    ElementSummary summary{fmt::format("Tether '{}': {} {}segments, {} model{}", t.name, n,
+                                       t.elasticity ? "elastic " : "", t.full ? "full" : "lumped",
+                                       t.variable_length ? ", varying length" : ""),
+                           {},
+                           {}};
     summary.notes.push_back(fmt::format("nodes r_0 = {}, r_{} = {}; segment 1 of {} shown",
                                         t.nodes[0], n, t.nodes[n], n));
     summary.equations.emplace_back("l_s", seg);
     summary.equations.emplace_back(
         t.full ? "m_segment" : "m_node",
         t.mass_per_length * t.length / GiNaC::numeric(static_cast<int>(t.full ? n : n + 1)));
-    summary.equations.emplace_back("C_1", m.constraints[m.constraints.size() - n].expr);
+    if (elastic) {
+      summary.equations.emplace_back("eps_1", elastic->strain[0]);
+      summary.equations.emplace_back("T_1", elastic->tension[0]);
+      if (t.length_coordinate >= 0)
+        summary.equations.emplace_back(
+            "Q_" + m.coordinates[static_cast<size_t>(t.length_coordinate)].name,
+            elastic->length_force);
+    } else {
+      summary.equations.emplace_back("C_1", m.constraints[m.constraints.size() - n].expr);
+    }
     for (size_t k = 0; k < 3; ++k)
       if (!force[0][k].is_zero() || !force[1][k].is_zero())
         summary.equations.emplace_back(fmt::format("F_node1.{}", "xyz"[k]), force[1][k]);
-    summary.notes.push_back(fmt::format("{}.tension_j = lambda_j * l_s (N); drag: {}", t.name,
-                                        t.drag == Tether::Drag::None     ? "none"
-                                        : t.drag == Tether::Drag::Simple ? "simple"
-                                                                         : "fine"));
+    summary.notes.push_back(fmt::format(
+        "{}.tension_j = {} (N); drag: {}", t.name,
+        t.elasticity ? "EA eps+ + g max(D eps', -EA eps+), elastic (docs/theory.md §4.10)"
+                     : "lambda_j * l_s",
+        t.drag == Tether::Drag::None     ? "none"
+        : t.drag == Tether::Drag::Simple ? "simple"
+                                         : "fine"));
     if (t.variable_length)
       summary.notes.push_back(
           "T and U use the material velocity r_j' + l' (1 - j/N) t_j "

@@ -4,19 +4,14 @@
 
 #include "elements/elements.hpp"
 #include "model/model_reader.hpp"
+#include "model/vec3_algebra.hpp"
 
 namespace lagrange::elements {
 
 namespace {
 
-GiNaC::ex dot3(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-// max(a, b) written with abs, which the tape and the C exporter evaluate without branches.
-GiNaC::ex max_of(const GiNaC::ex& a, const GiNaC::ex& b) {
-  return (a + b + GiNaC::abs(a - b)) / 2;
-}
+using model::dot3;
+using model::max_of;
 
 // A component of a unit vector as an exact fraction when one with a small denominator matches
 // it to rounding (0, ±1, 3/5, …): rounded numbers in a sum would make the tape's order of

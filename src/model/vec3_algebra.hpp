@@ -1,10 +1,42 @@
 #pragma once
 // 3-vector and 3×3-matrix products of expressions, shared by the elements' joint frames
-// (docs/theory.md §4.8), the rigid-body terms (§4.4) and the recursive formulation (§4.9).
+// (docs/theory.md §4.8), the rigid-body terms (§4.4), the recursive formulation (§4.9), the
+// tethers (§4.5, §4.10) and the wind (§4.5); and the branch-free max and min of two scalars.
 
 #include "lagrange/model.hpp"
 
 namespace lagrange::model {
+
+/// a + b.
+inline Vec3 add(const Vec3& a, const Vec3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+
+/// a − b.
+inline Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+/// s a.
+inline Vec3 scale(const GiNaC::ex& s, const Vec3& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+
+/// a · b.
+inline GiNaC::ex dot3(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// max(a, b) = (a + b + |a − b|)/2, written with abs, which the tape and the C exporter evaluate
+/// without branches.
+inline GiNaC::ex max_of(const GiNaC::ex& a, const GiNaC::ex& b) {
+  return (a + b + GiNaC::abs(a - b)) / 2;
+}
+
+/// min(a, b) = (a + b − |a − b|)/2, as max_of.
+inline GiNaC::ex min_of(const GiNaC::ex& a, const GiNaC::ex& b) {
+  return (a + b - GiNaC::abs(a - b)) / 2;
+}
 
 /// a × b.
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
