@@ -185,8 +185,9 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   last.v.resize(nv);
   last.a.resize(nv);
   // Drift correction (docs/theory.md §4.3, §4.4): free bodies' R back onto SO(3), then the
-  // constraints (which may involve R) onto C = 0, Ċ = 0; true when the state moved.
-  const auto correct_drift = [&](double t, double* yy) {
+  // constraints (which may involve R) onto C = 0, Ċ = 0 when max |C| or max |Ċ| exceeds
+  // `allowed`; true when the state moved.
+  const auto correct_drift = [&](double t, double* yy, double allowed) {
     const double drift =
         orthonormalize_rotations(cm, yy, opt.project ? opt.projection_tol : HUGE_VAL);
     traj.rotation_drift = std::max(traj.rotation_drift, drift);
@@ -194,7 +195,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     bool moved = drift > opt.projection_tol;
     if (m > 0) {
       dyn.constraints(t, yy, yy + nq, C.data(), Cdot.data());
-      if (max_abs(C) > opt.projection_tol || max_abs(Cdot) > opt.projection_tol) {
+      if (max_abs(C) > allowed || max_abs(Cdot) > allowed) {
         dyn.project(t, yy, yy + nq, none_fixed, 1e-13);
         moved = true;
       }
@@ -203,8 +204,14 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   };
   // ODE methods correct their own state after every internal step (the step hook); IDA restarts
   // at samples instead (StateChanged below).
+  // docs/theory.md §4.3, "Projecting when the drift matters": between samples only a drift
+  // the error control could resolve is removed; samples are corrected to projection_tol.
+  const double step_drift_tol = step_drift_tolerance(opt);
   IntegratorOptions integrator = opt.integrator;
-  if (!dae) integrator.after_step = correct_drift;
+  if (!dae)
+    integrator.after_step = [&](double t, double* yy) {
+      return correct_drift(t, yy, step_drift_tol);
+    };
   // At each output sample: check the state is finite, correct the drift (the sample of an ODE
   // method is its dense output, corrected for the row only), record the row, honour interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
@@ -216,7 +223,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
             t, fmt::format("the state is not finite ({} = {})",
                            i < nq ? cm.coordinate_names[i] : cm.velocity_names[i - nq], yy[i]));
       }
-    if (correct_drift(t, yy) && dae) {  // keep (λ, y') consistent with the projected state
+    if (correct_drift(t, yy, opt.projection_tol) &&
+        dae) {  // keep (λ, y') consistent with the projected state
       dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
       std::fill(yp + n, yp + n + m, 0.0);
       action = ObserverAction::StateChanged;

@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "lagrange/simulation.hpp"
 
 namespace lagrange {
@@ -7,6 +9,12 @@ double baumgarte_rate(const Stabilization& stabilization, const std::string& met
   if (stabilization.alpha) return *stabilization.alpha;
   const bool projects_after_steps = method != "cvode" && method != "ida";
   return stabilization.project && projects_after_steps ? 0.0 : kDefaultBaumgarte;
+}
+
+// docs/theory.md §4.3, "Projecting when the drift matters".
+double step_drift_tolerance(const SimulationOptions& options) {
+  if (options.step_drift_tol > 0.0) return options.step_drift_tol;
+  return std::max(options.projection_tol, options.integrator.atol);
 }
 
 }  // namespace lagrange
