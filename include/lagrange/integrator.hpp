@@ -10,10 +10,23 @@
 
 namespace lagrange {
 
+/// An exact Jacobian ∂f/∂y with a fixed sparsity pattern in compressed columns: the non-zeros
+/// of column j are rows[column_starts[j] .. column_starts[j + 1]).
+struct OdeJacobian {
+  std::vector<long> column_starts;  ///< size + 1 entries, the first 0
+  std::vector<long> rows;           ///< row of each non-zero, ascending within a column
+  /// Writes ∂f/∂y at (t, y) in the pattern's order (rows.size() values).
+  std::function<void(double t, const double* y, double* values)> values;
+  size_t nonzeros() const { return rows.size(); }
+};
+
 /// y' = f(t, y). `rhs` may throw lagrange::SimulationError; it is propagated unchanged.
 struct OdeProblem {
   size_t size = 0;
   std::function<void(double t, const double* y, double* ydot)> rhs;
+  /// Optional; required by `cvode:jacobian` (Newton matrices from it instead of difference
+  /// quotients of rhs).
+  OdeJacobian jacobian;
 };
 
 /// F(t, y, y') = 0 (IDA). `differential[i]` is true for components whose derivative appears.
@@ -39,7 +52,7 @@ struct IntegratorOptions {
 
 /// Every method name integrate() and integrate_dae() accept, in the order help texts list them:
 /// dop853 (the default), arkode (its default table), arkode:<table> for each named ARKODE explicit
-/// table, cvode, rk4, midpoint, ida.
+/// table, cvode, cvode:jacobian (CVODE on the problem's exact sparse Jacobian), rk4, midpoint, ida.
 const std::vector<std::string>& integrator_methods();
 
 /// integrator_methods() joined by ", " (for messages that list the valid names).

@@ -48,6 +48,9 @@ struct SimulationOptions {
   double t_end = 10.0;
   double output_step = 0.01;
   IntegratorOptions integrator;
+  /// The exact Jacobian of the first-order form (ode_jacobian in analysis.hpp), handed to the
+  /// integrator as OdeProblem::jacobian; cvode:jacobian needs it.
+  OdeJacobian jacobian;
   /// After each internal step (ODE methods; IDA: at output samples) and at output samples,
   /// project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds projection_tol, and replace a free
   /// body's R by the nearest rotation when ‖RᵀR − 1‖_F exceeds it.

@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "cli/prepare.hpp"
 #include "cli/report_command.hpp"
+#include "lagrange/analysis.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
@@ -159,6 +161,22 @@ int run_simulate(const Options& opt) {
   if (!choose_evaluation(*p.dynamics, opt.compile))
     fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
                p.dynamics->machine_code_error());
+  // cvode:jacobian integrates on the exact Jacobian, derived here (docs/theory.md §5.6).
+  std::unique_ptr<DynamicsJacobian> jacobian;
+  if (so.integrator.method == "cvode:jacobian") {
+    if (p.equations.recursive)
+      throw UsageError(
+          "--integrator cvode:jacobian needs the Lagrangian formulation: add "
+          "--dynamics lagrangian");
+    try {
+      jacobian = std::make_unique<DynamicsJacobian>(p.equations, p.compiled);
+      std::vector<double> y0 = p.q;
+      y0.insert(y0.end(), p.v.begin(), p.v.end());
+      so.jacobian = ode_jacobian(*jacobian, *p.dynamics, so.t0, y0);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(fmt::format("--integrator cvode:jacobian: {}", e.what()));
+    }
+  }
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);

@@ -60,7 +60,10 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
   if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
   const integration::OutputGrid grid(t0, t_end, dt);
   IntegratorStats stats;
-  if (method == "cvode") {
+  if (method == "cvode:jacobian" && !problem.jacobian.values)
+    throw std::invalid_argument(
+        "integrator: cvode:jacobian needs the problem's exact Jacobian (OdeProblem::jacobian)");
+  if (method == "cvode" || method == "cvode:jacobian") {
     stats = integration::integrate_cvode(problem, options, grid, y0, observer);
   } else if (method == "dop853") {
     stats = integration::integrate_dop853(problem, options, grid, y0, observer);

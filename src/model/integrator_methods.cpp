@@ -22,6 +22,7 @@ const std::vector<std::string>& integrator_methods() {
                                               "arkode:fehlberg78",
                                               "arkode:verner87",
                                               "cvode",
+                                              "cvode:jacobian",
                                               "rk4",
                                               "midpoint",
                                               "ida"};

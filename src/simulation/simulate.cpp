@@ -266,6 +266,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
       OdeProblem ode;
       ode.size = n;
+      ode.jacobian = opt.jacobian;
       ode.rhs = [&dyn, nq, &lambda, &last](double t, const double* yy, double* yd) {
         last.reported = true;
         dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
