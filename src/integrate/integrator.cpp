@@ -45,9 +45,14 @@ void validate_size(size_t size, size_t got, const char* what) {
 
 }  // namespace
 
-IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& options, double t0,
+IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& given, double t0,
                           std::vector<double> y0, double t_end, double dt,
                           const Observer& observer) {
+  IntegratorOptions options = given;
+  if (options.method == "auto") {
+    validate_size(problem.size, y0.size(), "y0");
+    options.method = choose_ode_method(problem.jacobian, t0, y0, dt);
+  }
   const std::string& method = options.method;
   const std::vector<std::string>& known = integrator_methods();
   if (method == "ida" || std::find(known.begin(), known.end(), method) == known.end()) {

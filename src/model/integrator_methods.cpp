@@ -23,6 +23,7 @@ const std::vector<std::string>& integrator_methods() {
                                               "arkode:verner87",
                                               "cvode",
                                               "cvode:jacobian",
+                                              "auto",
                                               "rk4",
                                               "midpoint",
                                               "ida"};

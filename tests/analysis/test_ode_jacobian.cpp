@@ -117,5 +117,57 @@ TEST(CvodeJacobian, PointMassKiteAgreesWithDop853) {
   check_against_dop853("pointmass_kite.yaml", 2.0, 1e-6);
 }
 
+// docs/theory.md §5.6, "Choosing the method": an overdamped spring–mass–damper with rates 1 and
+// 1e4 s⁻¹ (k = 1e4, c = 10001, m = 1: y'' + 10001 y' + 1e4 y = 0; ρ·Δt = 1e4 · 0.02 = 200) goes
+// to cvode:jacobian, whose run then matches the closed form y = A e^(−t) + B e^(−1e4 t),
+// A + B = y0, A + 1e4 B = 0.
+constexpr const char* kStiffDamper = R"(
+name: stiff damper
+parameters: {m: 1.0, k: 1.0e4, c: 10001.0}
+coordinates:
+  y: {initial: 1.0, rate: 0.0}
+points:
+  anchor: [0, 0, 0]
+  mass: [0, y, 0]
+particles:
+  - {point: mass, mass: m}
+springs:
+  - {between: [anchor, mass], k: k, l0: 0}
+dampers:
+  - {between: [anchor, mass], c: c}
+simulate: {t_end: 1, output_step: 0.02}
+)";
+
+TEST(AutoMethod, StiffDamperGoesImplicit) {
+  Analysed s = testing::analyse_string(kStiffDamper);
+  const std::vector<double> y0 = state(s);
+  const OdeJacobian jac = ode_jacobian(*s.jac, *s.dyn, 0.0, y0);
+  EXPECT_NEAR(spectral_radius_estimate(jac, 0.0, y0), 1e4, 1e2);
+  EXPECT_EQ(choose_ode_method(jac, 0.0, y0, 0.02), "cvode:jacobian");
+  SimulationOptions so;
+  so.t_end = 1.0;
+  so.output_step = 0.02;
+  so.integrator.method = "auto";
+  so.integrator.rtol = 1e-10;
+  so.integrator.atol = 1e-12;
+  so.jacobian = jac;
+  const Trajectory tr = simulate(*s.dyn, so, s.q, s.v);
+  ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
+  EXPECT_EQ(tr.stats.method, "cvode:jacobian");
+  const double A = 1.0 / (1.0 - 1e-4), B = 1.0 - A;
+  for (size_t r = 0; r < tr.rows(); ++r) {
+    const double t = tr.at(r, "t");
+    EXPECT_NEAR(tr.at(r, "y"), A * std::exp(-t) + B * std::exp(-1e4 * t), 1e-8) << "t = " << t;
+  }
+}
+
+TEST(AutoMethod, DoublePendulumStaysExplicit) {
+  Analysed s = testing::analyse_example("double_pendulum.yaml");
+  const std::vector<double> y0 = state(s);
+  const OdeJacobian jac = ode_jacobian(*s.jac, *s.dyn, 0.0, y0);
+  EXPECT_LT(spectral_radius_estimate(jac, 0.0, y0), 50.0);
+  EXPECT_EQ(choose_ode_method(jac, 0.0, y0, s.model->simulate.output_step), "dop853");
+}
+
 }  // namespace
 }  // namespace lagrange
