@@ -100,9 +100,10 @@ int main(int argc, char** argv) {
       std::vector<double> y0 = cm.q0;
       y0.insert(y0.end(), cm.v0.begin(), cm.v0.end());
       so.jacobian = ode_jacobian(*jacobian, *b.dynamics, 0.0, y0);
-      notes += fmt::format("N = {}: exact Jacobian derived in {:.3f} CPU s, {} non-zeros of {}\n",
-                           n, clock.now().cpu - j0.cpu, so.jacobian.nonzeros(),
-                           (cm.nq + cm.nv) * (cm.nq + cm.nv));
+      notes += fmt::format(
+          "N = {}: exact Jacobian derived in {:.3f} CPU s, {} non-zeros of {}; ρ·Δt_out = {:.3g}\n",
+          n, clock.now().cpu - j0.cpu, so.jacobian.nonzeros(), (cm.nq + cm.nv) * (cm.nq + cm.nv),
+          spectral_radius_estimate(so.jacobian, 0.0, y0) * so.output_step);
     }
     const auto s0 = clock.now();
     const Trajectory tr = simulate(*b.dynamics, so, cm.q0, cm.v0);
