@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libginac-dev libcln-dev libeigen3-dev libsundials-dev libyaml-cpp-dev
+  libginac-dev libcln-dev libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libtinyxml2-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox python3 python3-sympy

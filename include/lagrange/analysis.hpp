@@ -13,6 +13,7 @@
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
+#include "lagrange/integrator.hpp"
 #include "lagrange/tape.hpp"
 
 namespace lagrange {
@@ -69,6 +70,13 @@ class DynamicsJacobian {
   std::vector<std::pair<size_t, size_t>> pattern_;  ///< (value index, column) per derivative
   Tape tape_;
 };
+
+/// The exact Jacobian of y' = f(y), y = (q, v), q̇ = v: [0 I; ∂a/∂q ∂a/∂v] from `jac`, for
+/// cvode:jacobian (OdeProblem::jacobian), on the pattern of the entries non-zero at y0 or at two
+/// states nearby (docs/theory.md §5.6). Refers to `jac` and `dyn`, which must outlive it;
+/// std::invalid_argument for models with free bodies (their q̇ is not v).
+OdeJacobian ode_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
+                         const std::vector<double>& y0);
 
 /// Tangent coordinates of the positions (docs/theory.md §5.2): nv of them, one per velocity:
 /// plain coordinates themselves, a free body's r and a local rotation vector δθ with

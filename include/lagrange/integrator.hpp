@@ -10,10 +10,23 @@
 
 namespace lagrange {
 
+/// An exact Jacobian ∂f/∂y with a fixed sparsity pattern in compressed columns: the non-zeros
+/// of column j are rows[column_starts[j] .. column_starts[j + 1]).
+struct OdeJacobian {
+  std::vector<long> column_starts;  ///< size + 1 entries, the first 0
+  std::vector<long> rows;           ///< row of each non-zero, ascending within a column
+  /// Writes ∂f/∂y at (t, y) in the pattern's order (rows.size() values).
+  std::function<void(double t, const double* y, double* values)> values;
+  size_t nonzeros() const { return rows.size(); }
+};
+
 /// y' = f(t, y). `rhs` may throw lagrange::SimulationError; it is propagated unchanged.
 struct OdeProblem {
   size_t size = 0;
   std::function<void(double t, const double* y, double* ydot)> rhs;
+  /// Optional; required by `cvode:jacobian` (Newton matrices from it instead of difference
+  /// quotients of rhs).
+  OdeJacobian jacobian;
 };
 
 /// F(t, y, y') = 0 (IDA). `differential[i]` is true for components whose derivative appears.
@@ -37,9 +50,23 @@ struct IntegratorOptions {
   StepHook after_step;       ///< optional; ODE methods only (IDA restarts at samples instead)
 };
 
+/// An estimate of the spectral radius of ∂f/∂y at (t, y): the mean growth rate of 60 power
+/// iterations (docs/theory.md §5.6, "Choosing the method").
+double spectral_radius_estimate(const OdeJacobian& jacobian, double t,
+                                const std::vector<double>& y);
+
+/// ρ · output step above which `auto` treats a problem as stiff (docs/theory.md §5.6).
+constexpr double kStiffnessThreshold = 100.0;
+
+/// What `auto` runs: cvode:jacobian when ρ(∂f/∂y) at (t, y) times output_step exceeds
+/// kStiffnessThreshold, else dop853 (also without a Jacobian).
+std::string choose_ode_method(const OdeJacobian& jacobian, double t, const std::vector<double>& y,
+                              double output_step);
+
 /// Every method name integrate() and integrate_dae() accept, in the order help texts list them:
 /// dop853 (the default), arkode (its default table), arkode:<table> for each named ARKODE explicit
-/// table, cvode, rk4, midpoint, ida.
+/// table, cvode, cvode:jacobian (CVODE on the problem's exact sparse Jacobian), auto
+/// (choose_ode_method), rk4, midpoint, ida.
 const std::vector<std::string>& integrator_methods();
 
 /// integrator_methods() joined by ", " (for messages that list the valid names).

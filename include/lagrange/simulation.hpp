@@ -52,15 +52,25 @@ struct SimulationOptions {
   double t_end = 10.0;
   double output_step = 0.01;
   IntegratorOptions integrator;
+  /// The exact Jacobian of the first-order form (ode_jacobian in analysis.hpp), handed to the
+  /// integrator as OdeProblem::jacobian; cvode:jacobian needs it.
+  OdeJacobian jacobian;
   /// After each internal step (ODE methods; IDA: at output samples) and at output samples,
   /// project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds projection_tol, and replace a free
   /// body's R by the nearest rotation when ‖RᵀR − 1‖_F exceeds it.
   bool project = true;
   double projection_tol = 1e-11;
+  /// Between samples (after internal steps of ODE methods) the constraints are projected only
+  /// when max |C| or max |Ċ| exceeds this; 0: step_drift_tolerance() derives it from atol.
+  double step_drift_tol = 0.0;
   bool project_initial = true;  ///< false: fail when the initial state is inconsistent
   const std::atomic<bool>* interrupt = nullptr;  ///< set asynchronously to stop cleanly
   std::function<void(double t)> progress;        ///< called at each output sample
 };
+
+/// The drift allowed between samples (docs/theory.md §4.3, "Projecting when the drift matters"):
+/// step_drift_tol when set, else max(projection_tol, integrator.atol).
+double step_drift_tolerance(const SimulationOptions& options);
 
 /// An initial state checked against C = 0, Ċ = 0 and, where needed, projected onto them
 /// (docs/theory.md §4.3).

@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "cli/prepare.hpp"
 #include "cli/report_command.hpp"
+#include "lagrange/analysis.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
@@ -159,6 +161,33 @@ int run_simulate(const Options& opt) {
   if (!choose_evaluation(*p.dynamics, opt.compile))
     fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
                p.dynamics->machine_code_error());
+  // cvode:jacobian integrates on the exact Jacobian, derived here; auto chooses by the
+  // stiffness it shows at the initial state, dop853 where it cannot be had (docs/theory.md §5.6).
+  std::unique_ptr<DynamicsJacobian> jacobian;
+  const std::string method = so.integrator.method;
+  const bool needs_jacobian = method == "cvode:jacobian";
+  if (needs_jacobian && p.equations.recursive)
+    throw UsageError(
+        "--integrator cvode:jacobian needs the Lagrangian formulation: add --dynamics lagrangian");
+  if (needs_jacobian || (method == "auto" && !p.equations.recursive)) {
+    try {
+      jacobian = std::make_unique<DynamicsJacobian>(p.equations, p.compiled);
+      std::vector<double> y0 = p.q;
+      y0.insert(y0.end(), p.v.begin(), p.v.end());
+      so.jacobian = ode_jacobian(*jacobian, *p.dynamics, so.t0, y0);
+      if (method == "auto")
+        so.integrator.method = choose_ode_method(so.jacobian, so.t0, y0, so.output_step);
+    } catch (const std::invalid_argument& e) {
+      if (needs_jacobian)
+        throw UsageError(fmt::format("--integrator cvode:jacobian: {}", e.what()));
+      so.jacobian = {};  // auto on a model with free bodies: the explicit default
+    } catch (const AnalysisError& e) {
+      if (needs_jacobian) throw;
+      so.jacobian = {};  // singular KKT at the start: the explicit default
+    }
+  }
+  if (so.integrator.method == "auto") so.integrator.method = "dop853";
+  p.dynamics->set_baumgarte(baumgarte_rate(model.stabilization, so.integrator.method));
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);

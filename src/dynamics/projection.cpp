@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/QR>
+#include <Eigen/SparseCholesky>
 #include <cmath>
 #include <limits>
 
@@ -26,14 +27,30 @@ double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
   return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
 }
 
+// docs/theory.md §4.3, "Projecting when the drift matters": the minimum-norm solution of
+// J x = rhs, x = Jᵀ (J Jᵀ)⁻¹ rhs, from a sparse LDLᵀ of J Jᵀ — constraint Jacobians have a few
+// non-zeros a row, so this costs O(non-zeros) where a dense QR of J costs O(m² n). The normal
+// equations square J's condition number, which the Gauss–Newton iteration around it absorbs
+// (each step only has to reduce C); when J Jᵀ is (nearly) singular — redundant constraints —
+// the rank-revealing complete orthogonal decomposition of J answers instead.
+Eigen::VectorXd min_norm_solve(const Eigen::MatrixXd& J, const Eigen::VectorXd& rhs) {
+  const Eigen::SparseMatrix<double> Js = J.sparseView();
+  const Eigen::SparseMatrix<double> JJt = Js * Js.transpose();
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(JJt);
+  if (ldlt.info() == Eigen::Success && JJt.rows() > 0) {
+    const Eigen::VectorXd d = ldlt.vectorD();
+    if (d.minCoeff() > 1e-12 * d.maxCoeff()) return Js.transpose() * ldlt.solve(rhs);
+  }
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(J).solve(rhs);
+}
+
 // A Gauss–Newton step for (∂C/∂q) Δq = rhs that moves each free body's R along SO(3): R's nine
 // columns of J give way to three, ∂C/∂θ_k = Σ_ij J_{R_ij} (R [e_k]×)_ij, and the minimum-norm
 // solution in those coordinates maps back to ΔR = R [Δθ]×, tangent to SO(3) (its distance from
 // SO(3) is then of the order of |Δθ|², not |Δθ|).
 Eigen::VectorXd tangent_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& rhs,
                              const Eigen::VectorXd& q, const std::vector<size_t>& rotations) {
-  if (rotations.empty())
-    return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(J).solve(rhs);
+  if (rotations.empty()) return min_norm_solve(J, rhs);
   const long nq = J.cols();
   std::vector<long> plain;  // columns of q outside every R
   std::vector<bool> in_rotation(static_cast<size_t>(nq), false);
@@ -64,7 +81,7 @@ Eigen::VectorXd tangent_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& rh
           col += T(i, c) * J.col(static_cast<long>(rotations[b]) + 3 * i + c);
       Jr.col(np + 3 * static_cast<long>(b) + k) = col;
     }
-  const Eigen::VectorXd x = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jr).solve(rhs);
+  const Eigen::VectorXd x = min_norm_solve(Jr, rhs);
   Eigen::VectorXd step = Eigen::VectorXd::Zero(nq);
   for (long c = 0; c < np; ++c) step[plain[static_cast<size_t>(c)]] = x[c];
   for (size_t b = 0; b < rotations.size(); ++b)
@@ -157,8 +174,7 @@ ProjectionResult Dynamics::try_project(double t, double* q, double* v,
   }
   for (long r = 0; r < m; ++r) rhs[r] = -out_[cm.Cdot_out() + static_cast<size_t>(r)];
   const Eigen::MatrixXd Gf = velocity_jacobian();
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Gf);
-  vv += cod.solve(rhs);
+  vv += min_norm_solve(Gf, rhs);
   eval_dynamics(t, q, v);
   res.rate_residual = max_abs(out_.data() + cm.Cdot_out(), cm.m);
   res.floor = rounding_floor(position_jacobian(), qv);

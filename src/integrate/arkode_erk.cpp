@@ -100,7 +100,7 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
   const double t_end = grid.time(grid.intervals());
   Context ctx;
   ErrorLog log;
-  OdeCallback callback{problem, {}};
+  OdeCallback callback{problem, {}, {}};
   Vector y_vec = wrap_vector(y.data(), y.size(), ctx);
   std::vector<double> sample(y.size());
   Vector sample_vec = wrap_vector(sample.data(), sample.size(), ctx);

@@ -1,5 +1,10 @@
 #include "integrate/callbacks.hpp"
 
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+
 #include "integrate/solver_errors.hpp"
 
 namespace lagrange::integration {
@@ -10,6 +15,32 @@ int OdeCallback::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self) {
     double* out = N_VGetArrayPointer(ydot);
     cb->problem.rhs(t, N_VGetArrayPointer(y), out);
     ensure_finite(t, out, cb->problem.size, "right-hand side ydot");
+  });
+}
+
+int OdeCallback::jacobian(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* self,
+                          N_Vector /*tmp1*/, N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
+  auto* cb = static_cast<OdeCallback*>(self);
+  return cb->guard.run([&] {
+    const OdeJacobian& jac = cb->problem.jacobian;
+    cb->values.resize(jac.nonzeros());
+    jac.values(t, N_VGetArrayPointer(y), cb->values.data());
+    ensure_finite(t, cb->values.data(), cb->values.size(), "Jacobian");
+    const size_t n = cb->problem.size;
+    if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
+      sunindextype* starts = SUNSparseMatrix_IndexPointers(J);
+      sunindextype* rows = SUNSparseMatrix_IndexValues(J);
+      for (size_t j = 0; j <= n; ++j) starts[j] = jac.column_starts[j];
+      std::copy(jac.rows.begin(), jac.rows.end(), rows);
+      std::copy(cb->values.begin(), cb->values.end(), SUNSparseMatrix_Data(J));
+      return;
+    }
+    SUNMatZero(J);
+    for (size_t j = 0; j < n; ++j) {
+      double* column = SUNDenseMatrix_Column(J, static_cast<sunindextype>(j));
+      for (long e = jac.column_starts[j]; e < jac.column_starts[j + 1]; ++e)
+        column[jac.rows[static_cast<size_t>(e)]] = cb->values[static_cast<size_t>(e)];
+    }
   });
 }
 

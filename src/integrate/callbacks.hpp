@@ -3,7 +3,10 @@
 // the SimulationError raised for a NaN/Inf result) are caught by `guard` and rethrown by the
 // driver.
 
+#include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>
+
+#include <vector>
 
 #include "integrate/callback_guard.hpp"
 #include "lagrange/integrator.hpp"
@@ -16,6 +19,11 @@ struct OdeCallback {
   CallbackGuard guard;
   /// ARKRhsFn / CVRhsFn: ydot = f(t, y); returns -1 after storing an exception.
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self);
+  /// CVLsJacFn: J = ∂f/∂y from problem.jacobian into a sparse (compressed-column) or dense
+  /// SUNMatrix; returns -1 after storing an exception.
+  static int jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* self,
+                      N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
+  std::vector<double> values;  ///< scratch for problem.jacobian's non-zeros
 };
 
 /// F(t, y, y') for IDA.

@@ -48,9 +48,14 @@ void validate_size(size_t size, size_t got, const char* what) {
 
 }  // namespace
 
-IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& options, double t0,
+IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& given, double t0,
                           std::vector<double> y0, double t_end, double dt,
                           const Observer& observer) {
+  IntegratorOptions options = given;
+  if (options.method == "auto") {
+    validate_size(problem.size, y0.size(), "y0");
+    options.method = choose_ode_method(problem.jacobian, t0, y0, dt);
+  }
   const std::string& method = options.method;
   const std::vector<std::string>& known = integrator_methods();
   if (method == "ida" || std::find(known.begin(), known.end(), method) == known.end()) {
@@ -63,7 +68,10 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
   if (!problem.rhs) throw std::invalid_argument("integrator: the ODE has no right-hand side");
   const integration::OutputGrid grid(t0, t_end, dt);
   IntegratorStats stats;
-  if (method == "cvode") {
+  if (method == "cvode:jacobian" && !problem.jacobian.values)
+    throw std::invalid_argument(
+        "integrator: cvode:jacobian needs the problem's exact Jacobian (OdeProblem::jacobian)");
+  if (method == "cvode" || method == "cvode:jacobian") {
     stats = integration::integrate_cvode(problem, options, grid, y0, observer);
   } else if (method == "dop853") {
     stats = integration::integrate_dop853(problem, options, grid, y0, observer);

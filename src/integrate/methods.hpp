@@ -24,8 +24,9 @@ IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOpti
                                  const OutputGrid& grid, std::vector<double>& y,
                                  const Observer& observer);
 
-/// CVODE BDF (orders 1–5) with Newton iteration and a dense direct linear solver; samples from
-/// CVODE's interpolant.
+/// CVODE BDF (orders 1–5) with Newton iteration; `cvode`: a dense direct linear solver on
+/// difference-quotient Jacobians, `cvode:jacobian`: problem.jacobian, in KLU when the build has
+/// it (else dense); samples from CVODE's interpolant.
 IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptions& options,
                                 const OutputGrid& grid, std::vector<double>& y,
                                 const Observer& observer);

@@ -2,6 +2,10 @@
 
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#ifdef LAGRANGE_HAVE_KLU
+#include <sunlinsol/sunlinsol_klu.h>
+#endif
 
 #include <stdexcept>
 #include <string>
@@ -45,6 +49,29 @@ Matrix dense_matrix(size_t n, const Context& ctx) {
 
 LinearSolver dense_solver(N_Vector y, SUNMatrix a, const Context& ctx) {
   return LinearSolver(not_null(SUNLinSol_Dense(y, a, ctx.get()), "SUNLinSol_Dense"));
+}
+
+Matrix sparse_matrix(size_t n, size_t nonzeros, const Context& ctx) {
+  const auto m = static_cast<sunindextype>(n);
+  return Matrix(
+      not_null(SUNSparseMatrix(m, m, static_cast<sunindextype>(nonzeros), CSC_MAT, ctx.get()),
+               "SUNSparseMatrix"));
+}
+
+bool have_klu() {
+#ifdef LAGRANGE_HAVE_KLU
+  return true;
+#else
+  return false;
+#endif
+}
+
+LinearSolver klu_solver(N_Vector y, SUNMatrix a, const Context& ctx) {
+#ifdef LAGRANGE_HAVE_KLU
+  return LinearSolver(not_null(SUNLinSol_KLU(y, a, ctx.get()), "SUNLinSol_KLU"));
+#else
+  throw std::logic_error("SUNDIALS: this build has no KLU (libsuitesparse-dev)");
+#endif
 }
 
 void* require_memory(void* mem, const char* what) {

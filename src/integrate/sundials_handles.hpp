@@ -64,6 +64,15 @@ Matrix dense_matrix(size_t n, const Context& ctx);
 /// A dense direct linear solver for `a`, templated on `y` (SUNLinSol_Dense).
 LinearSolver dense_solver(N_Vector y, SUNMatrix a, const Context& ctx);
 
+/// An n×n compressed-column sparse matrix with room for `nonzeros` entries (SUNSparseMatrix).
+Matrix sparse_matrix(size_t n, size_t nonzeros, const Context& ctx);
+
+/// True when this build has SUNDIALS' KLU sparse direct solver (found at configure time).
+bool have_klu();
+
+/// The KLU sparse direct solver for the sparse `a` (SUNLinSol_KLU); only when have_klu().
+LinearSolver klu_solver(N_Vector y, SUNMatrix a, const Context& ctx);
+
 /// Returns `mem`, or throws std::runtime_error naming `what` (e.g. "CVodeCreate") if it is null.
 void* require_memory(void* mem, const char* what);
 

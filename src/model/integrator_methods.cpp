@@ -22,6 +22,8 @@ const std::vector<std::string>& integrator_methods() {
                                               "arkode:fehlberg78",
                                               "arkode:verner87",
                                               "cvode",
+                                              "cvode:jacobian",
+                                              "auto",
                                               "rk4",
                                               "midpoint",
                                               "ida"};

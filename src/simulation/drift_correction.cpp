@@ -12,9 +12,10 @@ DriftCorrection::DriftCorrection(Dynamics& dynamics, const SimulationOptions& op
       options_(options),
       C_(dynamics.model().m),
       Cdot_(dynamics.model().m),
-      none_fixed_(dynamics.model().nq, false) {}
+      none_fixed_(dynamics.model().nq, false),
+      step_tol_(step_drift_tolerance(options)) {}
 
-bool DriftCorrection::operator()(double t, double* y) {
+bool DriftCorrection::correct(double t, double* y, double allowed) {
   const CompiledModel& cm = dynamics_.model();
   const double drift =
       orthonormalize_rotations(cm, y, options_.project ? options_.projection_tol : HUGE_VAL);
@@ -23,7 +24,7 @@ bool DriftCorrection::operator()(double t, double* y) {
   bool moved = drift > options_.projection_tol;
   if (cm.m > 0) {
     dynamics_.constraints(t, y, y + cm.nq, C_.data(), Cdot_.data());
-    if (max_abs(C_) > options_.projection_tol || max_abs(Cdot_) > options_.projection_tol) {
+    if (max_abs(C_) > allowed || max_abs(Cdot_) > allowed) {
       dynamics_.project(t, y, y + cm.nq, none_fixed_, 1e-13);
       moved = true;
     }

@@ -16,16 +16,23 @@ class DriftCorrection {
   DriftCorrection(Dynamics& dynamics, const SimulationOptions& options);
   /// docs/theory.md §4.3, §4.4: R ← nearest rotation where ‖RᵀR − 1‖_F > tol, then a projection
   /// onto C = 0, Ċ = 0 where max |C| or |Ċ| > tol (every coordinate may move); true when y moved.
-  bool operator()(double t, double* y);
+  /// At output samples: tol = projection_tol.
+  bool operator()(double t, double* y) { return correct(t, y, options_.projection_tol); }
+  /// After an internal step: the constraints only when their drift exceeds
+  /// step_drift_tolerance() (docs/theory.md §4.3, "Projecting when the drift matters").
+  bool after_step(double t, double* y) { return correct(t, y, step_tol_); }
   /// Largest ‖RᵀR − 1‖_F seen before a correction (Trajectory::rotation_drift).
   double largest_rotation_drift() const { return rotation_drift_; }
 
  private:
+  bool correct(double t, double* y, double allowed);
+
   Dynamics& dynamics_;
   const SimulationOptions& options_;
   std::vector<double> C_, Cdot_;
   std::vector<bool> none_fixed_;
   double rotation_drift_ = 0.0;
+  double step_tol_;
 };
 
 }  // namespace lagrange

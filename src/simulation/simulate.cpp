@@ -190,19 +190,26 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   last.v.resize(nv);
   last.a.resize(nv);
   // Drift correction (docs/theory.md §4.3, §4.4): free bodies' R back onto SO(3), then the
-  // constraints (which may involve R) onto C = 0, Ċ = 0; true when the state moved.
+  // constraints (which may involve R) onto C = 0, Ċ = 0; true when the state moved. At samples to
+  // projection_tol, after internal steps to step_drift_tolerance() (docs/theory.md §4.3).
   DriftCorrection drift(dyn, opt);
   const auto correct_drift = [&](double t, double* yy) {
     const bool moved = drift(t, yy);
     traj.rotation_drift = drift.largest_rotation_drift();
     return moved;
   };
+  const auto correct_step_drift = [&](double t, double* yy) {
+    const bool moved = drift.after_step(t, yy);
+    traj.rotation_drift = drift.largest_rotation_drift();
+    return moved;
+  };
   // ODE methods correct their own state after every internal step (the step hook); IDA restarts
   // at samples instead (StateChanged below).
   IntegratorOptions integrator = opt.integrator;
-  if (!dae) integrator.after_step = correct_drift;
+  if (!dae) integrator.after_step = correct_step_drift;
   OdeProblem ode;
   ode.size = n;
+  ode.jacobian = opt.jacobian;
   ode.rhs = [&dyn, nq, &lambda, &last](double t, const double* yy, double* yd) {
     last.reported = true;
     dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
@@ -222,7 +229,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     IntegratorOptions refine = opt.integrator;
     refine.method = "dop853";
     refine.step = 0.0;
-    refine.after_step = correct_drift;
+    refine.after_step = correct_step_drift;
     std::vector<double> y = y0;
     integrate(ode, refine, t_from, y0, t_to, t_to - t_from, [&](double t, double* yy, double*) {
       if (t == t_to) std::copy(yy, yy + n, y.begin());

@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "lagrange/simulation.hpp"
 
 namespace lagrange {
@@ -5,8 +7,14 @@ namespace lagrange {
 // docs/theory.md §4.3, "Choosing α".
 double baumgarte_rate(const Stabilization& stabilization, const std::string& method) {
   if (stabilization.alpha) return *stabilization.alpha;
-  const bool projects_after_steps = method != "cvode" && method != "ida";
+  const bool projects_after_steps = method.rfind("cvode", 0) != 0 && method != "ida";
   return stabilization.project && projects_after_steps ? 0.0 : kDefaultBaumgarte;
+}
+
+// docs/theory.md §4.3, "Projecting when the drift matters".
+double step_drift_tolerance(const SimulationOptions& options) {
+  if (options.step_drift_tol > 0.0) return options.step_drift_tol;
+  return std::max(options.projection_tol, options.integrator.atol);
 }
 
 }  // namespace lagrange

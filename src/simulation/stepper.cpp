@@ -84,7 +84,7 @@ struct Stepper::State {
     while (t_reached < target) {
       if (hook_pending) {
         hook_pending = false;
-        if (drift(t_reached, y.data())) dop->start(t_reached, true);
+        if (drift.after_step(t_reached, y.data())) dop->start(t_reached, true);
       }
       budget.spend(target, t_reached, "dop853", "TOO_MUCH_WORK");
       t_reached = dop->step();

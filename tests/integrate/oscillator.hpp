@@ -11,13 +11,22 @@ namespace lagrange::test {
 struct Oscillator {
   double omega = 2.0;
 
-  /// The first-order problem y' = (v, −ω² x).
+  /// The first-order problem y' = (v, −ω² x), with its exact Jacobian [0 1; −ω² 0].
   OdeProblem problem() const {
     const double w2 = omega * omega;
-    return {2, [w2](double, const double* y, double* ydot) {
-              ydot[0] = y[1];
-              ydot[1] = -w2 * y[0];
-            }};
+    OdeProblem p;
+    p.size = 2;
+    p.rhs = [w2](double, const double* y, double* ydot) {
+      ydot[0] = y[1];
+      ydot[1] = -w2 * y[0];
+    };
+    p.jacobian.column_starts = {0, 1, 2};
+    p.jacobian.rows = {1, 0};
+    p.jacobian.values = [w2](double, const double*, double* values) {
+      values[0] = -w2;
+      values[1] = 1.0;
+    };
+    return p;
   }
   /// Closed-form x(t) from (x0, v0) at t0.
   double x(double t, double t0, double x0, double v0) const {

@@ -89,7 +89,8 @@ TEST(Dop853, AdaptiveErrorFollowsTheTolerance) {
 // y' = y² from y(0) = 1 is 1/(1 − t), which leaves every bound at t = 1: the run stops there
 // with the time and why, instead of stepping past the singularity.
 TEST(Dop853, CollapsingStepSizeStopsAtTheSingularity) {
-  const OdeProblem blow_up{1, [](double, const double* y, double* ydot) { ydot[0] = y[0] * y[0]; }};
+  const OdeProblem blow_up{
+      1, [](double, const double* y, double* ydot) { ydot[0] = y[0] * y[0]; }, {}};
   try {
     integrate(blow_up, options_for("dop853"), 0.0, {1.0}, 2.0, 0.1,
               [](double, double*, double*) { return ObserverAction::Continue; });

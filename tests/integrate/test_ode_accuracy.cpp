@@ -83,9 +83,11 @@ TEST(Rk4, DefaultStepIsATenthOfTheOutputStepAndFitsEachInterval) {
 // y = A cos t + B sin t − A e^{−λt}, A = λ²/(1 + λ²), B = λ/(1 + λ²) (variation of constants).
 TEST(Cvode, SolvesAStiffProblemInFewSteps) {
   const double lambda = 1000.0;
-  const OdeProblem stiff{1, [lambda](double t, const double* y, double* ydot) {
+  const OdeProblem stiff{1,
+                         [lambda](double t, const double* y, double* ydot) {
                            ydot[0] = -lambda * (y[0] - std::cos(t));
-                         }};
+                         },
+                         {}};
   const double a = lambda * lambda / (1.0 + lambda * lambda);
   const double b = lambda / (1.0 + lambda * lambda);
   const auto exact = [&](double t) {
