@@ -13,5 +13,6 @@ from ._lagrange import (  # noqa: F401  (the package's public API)
     load,
     loads,
 )
+from .study import sweep  # noqa: F401
 
-__all__ = ["Equations", "Model", "ModelError", "Run", "SimulationError", "load", "loads"]
+__all__ = ["Equations", "Model", "ModelError", "Run", "SimulationError", "load", "loads", "sweep"]
