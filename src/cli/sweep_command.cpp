@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "cli/commands.hpp"
@@ -157,12 +159,54 @@ Study set_up(const Options& opt) {
   return s;
 }
 
-// The study directory's summary; a UsageError when it cannot be made or holds another study.
+// What decides a study's cases and rows, one option a line: STUDY/study.txt, which --resume
+// compares so that it finishes the same study.
+std::string description(const Options& opt) {
+  std::string d = fmt::format("model: {}\n", opt.model);
+  const auto list = [&](const char* option, const std::vector<std::string>& values) {
+    for (const auto& v : values) d += fmt::format("{} {}\n", option, v);
+  };
+  const auto number = [&](const char* option, const std::optional<double>& value) {
+    if (value) d += fmt::format("{} {:.17g}\n", option, *value);
+  };
+  list("--vary", opt.vary);
+  list("--random", opt.random);
+  if (!opt.random.empty()) d += fmt::format("--samples {}\n--seed {}\n", opt.samples, opt.seed);
+  list("--set", opt.sets);
+  list("--metric", opt.metrics);
+  number("--t-end", opt.t_end);
+  number("--output-step", opt.output_step);
+  number("--rtol", opt.rtol);
+  number("--atol", opt.atol);
+  number("--step", opt.step);
+  if (opt.integrator) d += fmt::format("--integrator {}\n", *opt.integrator);
+  d += fmt::format("--dynamics {}\n", opt.dynamics);
+  return d;
+}
+
+// The study directory's summary; a UsageError when it cannot be made, holds another study, or
+// --resume is given for a study started with other options.
 std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s) {
+  const fs::path about = fs::path(opt.study) / "study.txt";
+  const std::string text = description(opt);
   try {
+    if (opt.resume && fs::exists(about)) {
+      std::ifstream in(about, std::ios::binary);
+      std::stringstream was;
+      was << in.rdbuf();
+      if (was.str() != text)
+        throw UsageError(fmt::format(
+            "--resume: {} was started with other options; the same command with --resume "
+            "finishes it. It was:\n{}",
+            opt.study, was.str()));
+    }
     fs::create_directories(opt.study);
-    return std::make_unique<sweep::SummaryFile>((fs::path(opt.study) / "summary.csv").string(),
-                                                s.header, opt.resume);
+    auto summary = std::make_unique<sweep::SummaryFile>(
+        (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume);
+    write_file_atomically(about.string(), text);
+    return summary;
+  } catch (const UsageError&) {
+    throw;
   } catch (const std::exception& e) {
     throw UsageError(fmt::format("-o {}: {}", opt.study, e.what()));
   }

@@ -151,6 +151,12 @@ TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
   ASSERT_GE(kept, 3u);
   ASSERT_LT(kept, 30u);
   EXPECT_EQ(run_lagrange(dir.path(), args(stopped, false)).exit_code, 2);  // not over a study
+  auto other = args(stopped, true);
+  other.insert(other.end(), {"--rtol", "1e-6"});  // another study: refused, nothing changed
+  const RunResult refused = run_lagrange(dir.path(), other);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("started with other options"), std::string::npos) << refused.err;
+  EXPECT_EQ(read_summary(stopped / "summary.csv").size(), kept);
   const RunResult resumed = run_lagrange(dir.path(), args(stopped, true));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(without_wall_time(stopped / "summary.csv"), without_wall_time(whole / "summary.csv"));
