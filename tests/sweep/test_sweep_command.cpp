@@ -185,6 +185,23 @@ TEST(SweepCommand, BadInputIsRefusedBeforeAnythingRuns) {
   }
 }
 
+// A parameter that sets a tether's segment count changes the coordinates: one derivation cannot
+// cover it, and the study stops before it starts.
+TEST(SweepCommand, ValuesThatChangeTheStructureAreRefused) {
+  ScratchDir dir("sweep-structure");
+  std::string yaml = slurp(std::string(LAGRANGE_SOURCE_DIR) + "/examples/tether_reel_out.yaml");
+  yaml.replace(yaml.find("mu: 0.05}"), 9, "mu: 0.05, n: 8}");
+  yaml.replace(yaml.find("segments: 8"), 11, "segments: n");
+  spit(dir.path() / "segments.yaml", yaml);
+  const fs::path study = dir.path() / "study";
+  const RunResult r =
+      run_lagrange(dir.path(), {"sweep", (dir.path() / "segments.yaml").string(), "--vary", "n=8,4",
+                                "--t-end", "0.1", "-o", study.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("change the structure"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(study));
+}
+
 #ifdef LAGRANGE_HAVE_MPI
 // `mpirun -n 2 lagrange sweep`: rank 0 hands the cases to rank 1; the summary equals the one
 // worker's, case for case (as root, OpenMPI needs --allow-run-as-root).
