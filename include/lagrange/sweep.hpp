@@ -68,7 +68,7 @@ std::vector<Case> make_cases(const std::vector<Axis>& axes,
 
 /// A number computed from one case's trajectory (docs/theory.md §9.2).
 struct Metric {
-  enum class Aggregate { Max, Min, Mean, Final, Initial } aggregate = Aggregate::Max;
+  enum class Aggregate { Max, Min, Mean, Final, Initial, Drift } aggregate = Aggregate::Max;
   std::string name;    ///< the summary column
   std::string column;  ///< the trajectory column aggregated
   bool absolute = false;
@@ -79,8 +79,8 @@ struct Metric {
 };
 
 /// `NAME=AGG(EXPR[, WINDOW])` or `AGG(EXPR[, WINDOW])` (then NAME is the text itself): AGG one
-/// of max, min, mean, final, initial; EXPR a trajectory column or abs(column); WINDOW a
-/// condition on t such as `t > 60` or `t >= 5 and t < 10`.
+/// of max, min, mean, final, initial, drift (largest |x − first x|); EXPR a trajectory column or
+/// abs(column); WINDOW a condition on t such as `t > 60` or `t >= 5 and t < 10`.
 Metric parse_metric(const std::string& spec);
 
 /// StudyError naming the first metric whose column the trajectory will not have.

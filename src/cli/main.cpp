@@ -165,10 +165,11 @@ int main(int argc, char** argv) {
                     "lognormal(MU,SIGMA) (repeatable; --samples draws per grid point)");
   sweep->add_option("--samples", opt.samples, "draws of the --random parameters");
   sweep->add_option("--seed", opt.seed, "seed of the random draws (default 1)");
-  sweep->add_option("--metric", opt.metrics,
-                    "NAME=AGG(COLUMN[, WINDOW]) with AGG max | min | mean | final | initial, "
-                    "COLUMN a trajectory column or abs(COLUMN), WINDOW like 't > 60' "
-                    "(repeatable)");
+  sweep->add_option(
+      "--metric", opt.metrics,
+      "NAME=AGG(COLUMN[, WINDOW]) with AGG max | min | mean | final | initial | drift, "
+      "COLUMN a trajectory column or abs(COLUMN), WINDOW like 't > 60' "
+      "(repeatable)");
   sweep->add_option("-o,--output", opt.study, "study directory: summary.csv (and case_N.csv)")
       ->required();
   sweep->add_option("-j,--jobs", opt.jobs, "workers (default: every core)");

@@ -1,4 +1,4 @@
-// Metrics of a case's trajectory: max, min, mean, final and initial of a column or of its
+// Metrics of a case's trajectory: max, min, mean, final, initial and drift of a column or of its
 // absolute value, optionally over a time window (docs/theory.md §9.2).
 
 #include <fmt/format.h>
@@ -16,7 +16,7 @@ namespace {
 
 const char* kForm =
     "AGG(COLUMN), AGG(abs(COLUMN)) or AGG(COLUMN, t > T) with AGG one of max, "
-    "min, mean, final, initial";
+    "min, mean, final, initial, drift";
 
 // `t > 60`, `t >= 5 and t < 10`: the bounds of the window, into `m`.
 void parse_window(const std::string& text, const std::string& context, Metric& m) {
@@ -80,6 +80,8 @@ Metric parse_metric(const std::string& spec) {
     m.aggregate = Metric::Aggregate::Final;
   } else if (agg == "initial") {
     m.aggregate = Metric::Aggregate::Initial;
+  } else if (agg == "drift") {
+    m.aggregate = Metric::Aggregate::Drift;
   } else {
     throw StudyError(fmt::format("{}: unknown aggregate '{}'; expected {}", context, agg, kForm));
   }
@@ -120,7 +122,7 @@ void check_metric_columns(const std::vector<Metric>& metrics,
 double evaluate(const Metric& metric, const Trajectory& traj) {
   const size_t nc = traj.columns.size(), col = traj.column_index(metric.column);
   const size_t tcol = traj.column_index("t");
-  double result = std::numeric_limits<double>::quiet_NaN(), sum = 0.0;
+  double result = std::numeric_limits<double>::quiet_NaN(), sum = 0.0, first = 0.0;
   size_t count = 0;
   for (size_t r = 0; r < traj.rows(); ++r) {
     if (!in_window(metric, traj.data[r * nc + tcol])) continue;
@@ -141,6 +143,10 @@ double evaluate(const Metric& metric, const Trajectory& traj) {
         break;
       case Metric::Aggregate::Initial:
         if (count == 0) result = x;
+        break;
+      case Metric::Aggregate::Drift:
+        if (count == 0) first = x;
+        result = count == 0 ? 0.0 : std::max(result, std::abs(x - first));
         break;
     }
     ++count;

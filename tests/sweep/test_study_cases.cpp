@@ -116,6 +116,10 @@ TEST(StudyCases, MetricsOfASampledSine) {
   EXPECT_EQ(evaluate(parse_metric("max(x, t > 5 and t <= 7)"), traj), std::sin(0.1 * 70));
   // mean over 0 ≤ t ≤ 2π of a sine is 0 up to the grid's trapezoid-free sum.
   EXPECT_NEAR(evaluate(parse_metric("mean(x, t <= 6.25)"), traj), 0.0, 0.02);
+  // drift: the largest change from the window's first sample, sin(0.1·i) − sin(0.5) over t ≥ 0.5:
+  // at 3π/2 (t = 4.7).
+  EXPECT_EQ(evaluate(parse_metric("drift(x, t >= 0.5)"), traj),
+            std::abs(std::sin(0.1 * 47) - std::sin(0.1 * 5)));
   const Metric named = parse_metric("peak=max(abs(x))");
   EXPECT_EQ(named.name, "peak");
   EXPECT_TRUE(std::isnan(evaluate(parse_metric("max(x, t > 20)"), traj)));

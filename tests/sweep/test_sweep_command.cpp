@@ -107,9 +107,10 @@ TEST(SweepCommand, CasesAreBitIdenticalToSimulateSet) {
 // A massless second bob makes M singular: those cases fail with the reason, the rest finish.
 TEST(SweepCommand, FailingCasesAreRecordedAndTheRestFinish) {
   ScratchDir dir("sweep-failures");
-  const RunResult r = run_lagrange(
-      dir.path(), {"sweep", kModel, "--vary", "m2=1,0,2", "--metric", "final(theta2)", "--t-end",
-                   "1", "-o", (dir.path() / "study").string(), "-j", "2", "-q"});
+  const RunResult r =
+      run_lagrange(dir.path(), {"sweep", kModel, "--vary", "m2=1,0,2", "--metric", "final(theta2)",
+                                "--metric", "drift(energy)", "--t-end", "1", "-o",
+                                (dir.path() / "study").string(), "-j", "2", "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<Row> rows = read_summary(dir.path() / "study" / "summary.csv");
   ASSERT_EQ(rows.size(), 3u);
@@ -118,6 +119,8 @@ TEST(SweepCommand, FailingCasesAreRecordedAndTheRestFinish) {
   EXPECT_FALSE(rows[1].at("reason").empty());
   EXPECT_EQ(rows[2].at("status"), "ok");
   EXPECT_TRUE(std::isfinite(std::stod(rows[2].at("final(theta2)"))));
+  // The pendulum conserves energy (about 30 J here): at rtol 1e-10 it drifts by far less.
+  for (const size_t ok : {0, 2}) EXPECT_LT(std::stod(rows[ok].at("drift(energy)")), 1e-6);
 }
 
 // SIGINT part-way: exit 130 with the finished cases kept; --resume runs only the others and
