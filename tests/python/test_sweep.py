@@ -63,16 +63,51 @@ def test_sweep_through_a_process_pool(expected):
     check(frame, expected)
 
 
-def test_sweep_through_a_dask_cluster(expected):
+@pytest.fixture(scope="module")
+def dask_client():
+    """A Dask scheduler and two worker processes on the loopback interface, for this module."""
     distributed = pytest.importorskip("distributed", reason="python3-distributed is not installed")
-    model = lagrange.load(MODEL)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   host="127.0.0.1", dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        assert len(client.scheduler_info()["workers"]) == 2
-        frame = lagrange.sweep(model, GRID, METRICS, executor=client.get_executor(), chunk=1,
-                               t_end=T_END)
+        yield client
+
+
+def test_sweep_through_a_dask_cluster(expected, dask_client):
+    assert len(dask_client.scheduler_info()["workers"]) == 2
+    model = lagrange.load(MODEL)
+    frame = lagrange.sweep(model, GRID, METRICS, executor=dask_client.get_executor(), chunk=1,
+                           t_end=T_END)
     check(frame, expected)
+
+
+def test_a_dask_worker_killed_mid_sweep_loses_nothing(dask_client):  # last: it kills a worker
+    """SIGKILL of one of two Dask workers part-way: the scheduler runs its chunks again on the
+    other (and on the restarted one), and every case arrives once, as a run here gives it."""
+    import os
+    import signal
+    import threading
+    import time
+
+    model = lagrange.load(MODEL)
+    cases = [{"l2": 0.5 + 0.02 * i} for i in range(60)]
+    here = lagrange.sweep(model, cases, ["final(theta1)"], t_end=60.0)
+    victim = sorted(dask_client.run(os.getpid).values())[0]
+    result = {}
+    runner = threading.Thread(target=lambda: result.update(frame=lagrange.sweep(
+        model, cases, ["final(theta1)"], executor=dask_client.get_executor(), chunk=1,
+        t_end=60.0)))
+    runner.start()
+    time.sleep(0.3)
+    killed = runner.is_alive()
+    os.kill(victim, signal.SIGKILL)
+    runner.join(120)
+    assert not runner.is_alive()
+    frame = result["frame"]
+    assert len(frame) == len(cases)
+    assert list(frame["final(theta1)"]) == list(here["final(theta1)"])
+    if not killed:
+        pytest.skip("the sweep finished before the worker was killed")
 
 
 def test_failing_cases_are_rows_with_their_reason():
