@@ -4,7 +4,10 @@
 // before anything runs or is written.
 
 #include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -220,6 +223,91 @@ TEST(SweepCommand, UnderMpirunTheSummaryIsTheSame) {
   command += " > " + (dir.path() / "mpi.log").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << slurp(dir.path() / "mpi.log");
   EXPECT_EQ(without_wall_time(mpi / "summary.csv"), without_wall_time(one / "summary.csv"));
+}
+
+// The process below `ancestor` whose environment has OMPI_COMM_WORLD_RANK=`rank` (0 if none).
+pid_t rank_process(pid_t ancestor, int rank) {
+  const std::string wanted = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    // Walk up the parents: the rank is a child (or grandchild) of mpirun.
+    bool below = false;
+    for (pid_t p = std::stoi(name), depth = 0; p > 1 && depth < 4 && !below; ++depth) {
+      // "pid (comm) state ppid …": comm may hold spaces, so read after its closing parenthesis.
+      const std::string stat = slurp(fs::path("/proc") / std::to_string(p) / "stat");
+      const auto close = stat.rfind(')');
+      if (close == std::string::npos) break;
+      std::istringstream rest(stat.substr(close + 1));
+      std::string state;
+      pid_t parent = 0;
+      rest >> state >> parent;
+      below = parent == ancestor;
+      p = parent;
+    }
+    if (!below) continue;
+    std::string env = slurp(entry.path() / "environ");
+    std::replace(env.begin(), env.end(), '\0', '\n');
+    if (("\n" + env).find("\n" + wanted + "\n") != std::string::npos)
+      return static_cast<pid_t>(std::stoi(name));
+  }
+  return 0;
+}
+
+// SIGKILL of the rank running the cases: mpirun ends the job, the rows already written stay
+// whole, and --resume (here on one machine) finishes the study to the summary of one never
+// stopped, each case once.
+TEST(SweepCommand, UnderMpirunAKilledRankLosesNoFinishedCase) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "mpirun is not installed (openmpi-bin)";
+  ScratchDir dir("sweep-mpi-kill");
+  const fs::path whole = dir.path() / "whole", killed = dir.path() / "killed";
+  const auto args = [&](const fs::path& study) {
+    return std::vector<std::string>{
+        "sweep", kModel, "--vary", "l2=0.5:1.5:40", "--metric", "final(theta1)", "--t-end",
+        "100",   "-q",   "-o",     study.string()};
+  };
+  ASSERT_EQ(run_lagrange(dir.path(), args(whole)).exit_code, 0);
+  std::vector<std::string> argv{"mpirun",       "-n", "2", "--oversubscribe", "--allow-run-as-root",
+                                LAGRANGE_BINARY};
+  for (const auto& a : args(killed)) argv.push_back(a);
+  std::vector<char*> cargv;
+  for (auto& a : argv) cargv.push_back(a.data());
+  cargv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  const std::string log = (dir.path() / "mpirun.log").string();
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t mpirun = 0;
+  ASSERT_EQ(posix_spawnp(&mpirun, "mpirun", &fa, nullptr, cargv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  const auto rows = [&] {
+    std::error_code ec;
+    return fs::exists(killed / "summary.csv", ec) ? read_summary(killed / "summary.csv").size()
+                                                  : size_t{0};
+  };
+  for (int i = 0; i < 6000 && rows() < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const pid_t worker = rank_process(mpirun, 1);
+  if (worker > 0) kill(worker, SIGKILL);
+  int status = 0;
+  for (int i = 0; i < 6000 && waitpid(mpirun, &status, WNOHANG) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (waitpid(mpirun, &status, WNOHANG) == 0) {
+    kill(mpirun, SIGKILL);
+    waitpid(mpirun, &status, 0);
+  }
+  ASSERT_GT(worker, 0) << "rank 1 not found\n" << slurp(log);
+  const size_t kept = rows();
+  if (kept == 40) GTEST_SKIP() << "the study finished before rank 1 was killed";
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(log);
+  EXPECT_GE(kept, 3u);
+  auto resume = args(killed);
+  resume.push_back("--resume");
+  const RunResult r = run_lagrange(dir.path(), resume);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(without_wall_time(killed / "summary.csv"), without_wall_time(whole / "summary.csv"));
 }
 #else
 // Under mpirun without MPI built in, every rank would run the whole study: refused.
