@@ -1,6 +1,7 @@
-// `lagrange sweep`: a parameter study on one machine (docs/sweeps.md). Everything the command
-// line says is checked, and every case's model read, before the first case runs or anything is
-// written; then a pool of workers shares the one compiled model.
+// `lagrange sweep`: a parameter study (docs/sweeps.md). Everything the command line says is
+// checked, and every case's model read, before the first case runs or anything is written; then a
+// pool of workers shares the one compiled model, or, under mpirun, rank 0 hands the cases to the
+// other ranks (cli/sweep_mpi.hpp).
 
 #include <fmt/format.h>
 
