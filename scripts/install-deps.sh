@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox python3 python3-sympy
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
+  libopenmpi-dev openmpi-bin python3-distributed
   chromium
 )
 # node and npm build the report front-end; any install of them will do (Debian's when absent).

@@ -59,6 +59,15 @@ struct CompiledModel {
   size_t Cq_out() const { return C_out() + m; }
 };
 
+/// A model's initial state in the layout of its compiled form: plain coordinates, then each free
+/// body's r and R (q0), their rates, then each free body's ṙ and ω (v0).
+struct ModelInitialState {
+  std::vector<double> q0, v0;
+  std::vector<bool> fixed;        ///< as CompiledModel::fixed
+  std::vector<size_t> rotations;  ///< as CompiledModel::rotations
+};
+ModelInitialState model_initial_state(const Model& model);
+
 /// Compile derived equations into tapes (common subexpressions shared, parameters kept as
 /// tape inputs so that a new value needs no new derivation).
 std::shared_ptr<const CompiledModel> compile(const Equations& eq);

@@ -15,5 +15,7 @@ from ._lagrange import (  # noqa: F401  (the package's public API)
     load,
     loads,
 )
+from .study import sweep  # noqa: F401
 
-__all__ = ["AnalysisError", "Equations", "Model", "ModelError", "Run", "SimulationError", "Stepper", "load", "loads"]
+__all__ = ["AnalysisError", "Equations", "Model", "ModelError", "Run", "SimulationError", "Stepper",
+           "load", "loads", "sweep"]

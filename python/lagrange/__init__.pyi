@@ -1,8 +1,8 @@
 """Type stubs of the lagrange module (docs/python.md)."""
 
-from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
-
+from concurrent.futures import Executor
 from types import SimpleNamespace
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -238,3 +238,21 @@ def loads(
     label: str = "<string>",
 ) -> Model:
     """As load, for YAML text; `label` names it in error messages."""
+
+def sweep(
+    model: Model,
+    grid_or_samples: Union[Mapping[str, Sequence[float]], Sequence[Mapping[str, float]]],
+    metrics: Union[Mapping[str, str], Sequence[str]],
+    executor: Optional[Executor] = None,
+    *,
+    chunk: Optional[int] = None,
+    t_end: Optional[float] = None,
+    output_step: Optional[float] = None,
+    integrator: Optional[str] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    step: Optional[float] = None,
+) -> Any:
+    """Every case of a grid ({name: values}) or list of cases ([{name: value}]) run on model as
+    `lagrange sweep` runs it, here or on an Executor: a pandas DataFrame, one row per case
+    (values, status, reason, failure_time, metrics, wall_s). docs/sweeps.md."""

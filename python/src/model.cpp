@@ -14,6 +14,7 @@
 #include "lagrange/io.hpp"
 #include "run.hpp"
 #include "stepper.hpp"
+#include "study.hpp"
 
 namespace py = pybind11;
 
@@ -269,6 +270,22 @@ void bind_model(py::module_& m) {
           py::arg("dir"),
           "Write lagrange_model.h and lagrange_model.c (standalone C99) into dir, as `lagrange "
           "export`.")
+      .def(
+          "_run_cases",
+          [](const PyModel& pm, const std::vector<std::map<std::string, double>>& cases,
+             const std::vector<std::string>& metrics, std::optional<double> t_end,
+             std::optional<double> output_step, std::optional<std::string> integrator,
+             std::optional<double> rtol, std::optional<double> atol, std::optional<double> step,
+             bool check_only) {
+            return run_cases(pm, cases, metrics,
+                             cli::RunSettings{t_end, output_step, rtol, atol, step, integrator},
+                             check_only);
+          },
+          py::arg("cases"), py::arg("metrics"), py::kw_only(), py::arg("t_end") = py::none(),
+          py::arg("output_step") = py::none(), py::arg("integrator") = py::none(),
+          py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("step") = py::none(),
+          py::arg("check_only") = false,
+          "The cases of a study (lagrange.sweep) run here, one dict per case.")
       .def("__repr__",
            [](const PyModel& pm) {
              const CompiledModel& cm = *prepared(pm).compiled;

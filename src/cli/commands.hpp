@@ -2,6 +2,7 @@
 // The subcommands of the `lagrange` CLI, each returning the process exit code.
 
 #include <atomic>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -34,6 +35,12 @@ struct Options {
   std::optional<double> discrete;      ///< linearize --discrete DT (zero-order hold)
   std::vector<std::string> free, fix;  ///< trim --free / --fix: tangent coordinates
   double tol = 1e-9;                   ///< trim --tol: on max |acceleration|
+  std::vector<std::string> vary, random, metrics;  ///< sweep --vary, --random, --metric
+  size_t samples = 0;                              ///< sweep --samples
+  std::uint64_t seed = 1;                          ///< sweep --seed
+  std::string study;                               ///< sweep -o: the study directory
+  size_t jobs = 0;                                 ///< sweep -j (0: every core)
+  bool resume = false, keep_trajectories = false;  ///< sweep --resume, --keep-trajectories
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;
@@ -52,5 +59,8 @@ int run_eval(const Options& opt);
 int run_linearize(const Options& opt);
 /// An equilibrium by Newton's method, printed as an initial-state block (src/cli/trim_command.cpp).
 int run_trim(const Options& opt);
+/// Every case of a parameter grid or random sample, one derivation shared by a pool of workers,
+/// into STUDY/summary.csv (src/cli/sweep_command.cpp, docs/sweeps.md).
+int run_sweep(const Options& opt);
 
 }  // namespace lagrange::cli

@@ -1,5 +1,5 @@
 // The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval,
-// report, linearize, trim.
+// report, linearize, trim, sweep.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
@@ -152,6 +152,43 @@ int main(int argc, char** argv) {
   trim->add_option("--tol", opt.tol, "tolerance on max |acceleration| (default 1e-9)");
   trim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
 
+  auto* sweep = app.add_subcommand(
+      "sweep",
+      "run every case of a parameter grid or random sample, deriving once, on every core; one "
+      "summary row per case (docs/sweeps.md)");
+  sweep->add_option("model", opt.model, "model file (YAML)")->required();
+  sweep->add_option("--vary", opt.vary,
+                    "parameter values NAME=START:STOP:COUNT or NAME=V1,V2,... (repeatable; the "
+                    "grid is every combination)");
+  sweep->add_option("--random", opt.random,
+                    "random parameter NAME=normal(MU,SIGMA) | uniform(LOW,HIGH) | "
+                    "lognormal(MU,SIGMA) (repeatable; --samples draws per grid point)");
+  sweep->add_option("--samples", opt.samples, "draws of the --random parameters");
+  sweep->add_option("--seed", opt.seed, "seed of the random draws (default 1)");
+  sweep->add_option(
+      "--metric", opt.metrics,
+      "NAME=AGG(COLUMN[, WINDOW]) with AGG max | min | mean | final | initial | drift, "
+      "COLUMN a trajectory column or abs(COLUMN), WINDOW like 't > 60' "
+      "(repeatable)");
+  sweep->add_option("-o,--output", opt.study, "study directory: summary.csv (and case_N.csv)")
+      ->required();
+  sweep->add_option("-j,--jobs", opt.jobs, "workers (default: every core)");
+  sweep->add_flag("--resume", opt.resume,
+                  "finish an interrupted study: cases already in summary.csv are not run again");
+  sweep->add_flag("--keep-trajectories", opt.keep_trajectories,
+                  "write each case's trajectory to STUDY/case_N.csv");
+  sweep->add_option("--set", opt.sets, "value of a parameter not varied, NAME=VALUE (repeatable)");
+  sweep->add_option("--t-end", opt.t_end, "end time (overrides simulate.t_end)");
+  sweep->add_option("--output-step", opt.output_step, "output grid step");
+  sweep->add_option("--integrator", opt.integrator, "as for simulate")
+      ->check(CLI::IsMember(lagrange::integrator_methods()));
+  sweep->add_option("--rtol", opt.rtol, "relative tolerance");
+  sweep->add_option("--atol", opt.atol, "absolute tolerance");
+  sweep->add_option("--step", opt.step, "fixed step, as for simulate");
+  sweep->add_option("--dynamics", opt.dynamics, "auto (default) | lagrangian | recursive")
+      ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
+  sweep->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -170,6 +207,7 @@ int main(int argc, char** argv) {
     if (*eval) return run_eval(opt);
     if (*lin) return run_linearize(opt);
     if (*trim) return run_trim(opt);
+    if (*sweep) return run_sweep(opt);
   } catch (const lagrange::AnalysisError& e) {
     fmt::print(stderr, "lagrange: {}\n", e.what());
     return 3;

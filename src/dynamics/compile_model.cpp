@@ -15,6 +15,25 @@ std::vector<GiNaC::ex> dynamics_expressions(const Equations& eq, const CompiledM
   return dyn;
 }
 
+ModelInitialState model_initial_state(const Model& model) {
+  ModelInitialState s;
+  for (const auto& c : model.coordinates) {
+    s.q0.push_back(c.initial);
+    s.fixed.push_back(c.fixed);
+  }
+  for (const auto& c : model.coordinates) s.v0.push_back(c.rate);
+  for (const auto& b : model.bodies) {  // free bodies, in the order of kinematics()
+    if (!b.free) continue;
+    s.q0.insert(s.q0.end(), b.r0.begin(), b.r0.end());
+    s.rotations.push_back(s.q0.size());
+    s.q0.insert(s.q0.end(), b.R0.begin(), b.R0.end());
+    s.fixed.insert(s.fixed.end(), 12, false);
+    s.v0.insert(s.v0.end(), b.v0.begin(), b.v0.end());
+    s.v0.insert(s.v0.end(), b.w0.begin(), b.w0.end());
+  }
+  return s;
+}
+
 std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   const Model& model = *eq.model;
   auto cm = std::make_shared<CompiledModel>();
@@ -26,20 +45,11 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   cm->k = model.inputs.size();
   cm->coordinate_names = kin.q_names;
   cm->velocity_names = kin.v_names;
-  for (const auto& c : model.coordinates) {
-    cm->q0.push_back(c.initial);
-    cm->fixed.push_back(c.fixed);
-  }
-  for (const auto& c : model.coordinates) cm->v0.push_back(c.rate);
-  for (const auto& b : model.bodies) {  // free bodies, in the order of kinematics()
-    if (!b.free) continue;
-    cm->q0.insert(cm->q0.end(), b.r0.begin(), b.r0.end());
-    cm->rotations.push_back(cm->q0.size());
-    cm->q0.insert(cm->q0.end(), b.R0.begin(), b.R0.end());
-    cm->fixed.insert(cm->fixed.end(), 12, false);
-    cm->v0.insert(cm->v0.end(), b.v0.begin(), b.v0.end());
-    cm->v0.insert(cm->v0.end(), b.w0.begin(), b.w0.end());
-  }
+  ModelInitialState initial = model_initial_state(model);
+  cm->q0 = std::move(initial.q0);
+  cm->v0 = std::move(initial.v0);
+  cm->fixed = std::move(initial.fixed);
+  cm->rotations = std::move(initial.rotations);
   for (const auto& c : model.constraints) cm->constraint_names.push_back(c.name);
   for (const auto& r : model.reactions) {
     cm->reaction_names.push_back(r.name);

@@ -1,0 +1,169 @@
+#pragma once
+// Parameter studies (docs/sweeps.md): the cases of a grid or of a seeded random sample, metrics
+// over each case's trajectory, a pool of workers sharing one compiled model, and a summary file
+// that a study interrupted part-way resumes without losing or repeating a case.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/model.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange::sweep {
+
+/// A mistake in a study's description (a range, a distribution, a metric): the message says what
+/// was given and what was expected.
+struct StudyError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+/// One `--vary` axis: a parameter and the values it takes.
+struct Axis {
+  std::string name;
+  std::vector<double> values;
+};
+
+/// `NAME=A:B:N` (N values evenly spaced from A to B, both included) or `NAME=V1,V2,…`.
+Axis parse_axis(const std::string& spec);
+
+/// A distribution a random parameter is drawn from (docs/theory.md §9.1).
+struct Distribution {
+  enum class Kind { Normal, Uniform, LogNormal } kind = Kind::Normal;
+  double a = 0.0, b = 0.0;  ///< normal(μ, σ), uniform(low, high), lognormal(μ, σ) of log x
+  std::string text;         ///< as written, e.g. "normal(1,0.1)"
+};
+
+/// One `--random` parameter.
+struct RandomParameter {
+  std::string name;
+  Distribution distribution;
+};
+
+/// `NAME=normal(MU,SIGMA)`, `NAME=uniform(LOW,HIGH)` or `NAME=lognormal(MU,SIGMA)`.
+RandomParameter parse_random(const std::string& spec);
+
+/// One draw from `d` using `rng` (docs/theory.md §9.1): the same on every platform for a seed.
+double sample(const Distribution& d, std::mt19937_64& rng);
+
+/// One case of a study: its number (0-based, the row order of the summary) and parameter values.
+struct Case {
+  size_t index = 0;
+  std::vector<std::pair<std::string, double>> values;  ///< grid axes first, then random ones
+};
+
+/// Every combination of the axes (the last axis varying fastest), each combined with `samples`
+/// random draws when `random` is not empty (draws made in case order from one mt19937_64 seeded
+/// with `seed`). StudyError when nothing varies or a name is given twice.
+std::vector<Case> make_cases(const std::vector<Axis>& axes,
+                             const std::vector<RandomParameter>& random, size_t samples,
+                             std::uint64_t seed);
+
+/// A number computed from one case's trajectory (docs/theory.md §9.2).
+struct Metric {
+  enum class Aggregate { Max, Min, Mean, Final, Initial, Drift } aggregate = Aggregate::Max;
+  std::string name;    ///< the summary column
+  std::string column;  ///< the trajectory column aggregated
+  bool absolute = false;
+  /// Samples with t > after (or ≥ when after_inclusive) and t < before (≤) count.
+  std::optional<double> after, before;
+  bool after_inclusive = false, before_inclusive = false;
+  std::string text;  ///< as written
+};
+
+/// `NAME=AGG(EXPR[, WINDOW])` or `AGG(EXPR[, WINDOW])` (then NAME is the text itself): AGG one
+/// of max, min, mean, final, initial, drift (largest |x − first x|); EXPR a trajectory column or
+/// abs(column); WINDOW a condition on t such as `t > 60` or `t >= 5 and t < 10`.
+Metric parse_metric(const std::string& spec);
+
+/// StudyError naming the first metric whose column the trajectory will not have.
+void check_metric_columns(const std::vector<Metric>& metrics,
+                          const std::vector<std::string>& columns);
+
+/// The metric over `traj` (NaN when no sample falls in its window).
+double evaluate(const Metric& metric, const Trajectory& traj);
+
+/// What one case needs besides the shared compiled model.
+struct CaseInput {
+  std::vector<double> parameters, q0, v0;
+  SimulationOptions options;
+  double baumgarte = 0.0;
+};
+
+/// The parameter values, initial state and settings of `case_model` (the model file read with
+/// the case's values) for `base`, the model compiled once for the study. StudyError when the
+/// case's values change the model's structure (coordinates, constraints, parameters), which one
+/// compiled model cannot follow.
+CaseInput case_input(const Model& case_model, const CompiledModel& base,
+                     const SimulationOptions& options);
+
+/// How one case ended.
+struct CaseResult {
+  size_t index = 0;
+  Trajectory::Status status = Trajectory::Status::Complete;
+  std::string reason;  ///< why it failed (empty when complete)
+  double failure_time = 0.0;
+  std::vector<double> metrics;
+  double wall_seconds = 0.0;
+};
+
+/// Runs one case on `dyn` (a workspace over the study's compiled model): sets its parameters
+/// (no new derivation), makes its initial state consistent and simulates, as `simulate --set`
+/// does, so the numbers are the same bit for bit. Never throws for a failing case. `kept`, when
+/// given, receives the trajectory.
+CaseResult run_case(Dynamics& dyn, const CaseInput& input, const std::vector<Metric>& metrics,
+                    Trajectory* kept = nullptr);
+
+/// Runs the cases numbered `pending` (indices into `inputs`) on `workers` threads, each with its
+/// own Dynamics over `model`, handing each a new case when it finishes one (cases differ in
+/// cost). `done` is called for each finished case, one call at a time, from any thread; cases
+/// stopped by `interrupt` are not reported. `keep`, when set, receives each trajectory first.
+struct PoolOptions {
+  size_t workers = 1;
+  const std::atomic<bool>* interrupt = nullptr;
+  std::function<void(const CaseResult&)> done;
+  std::function<void(size_t index, const Trajectory&)> keep;
+};
+void run_pool(const std::shared_ptr<const CompiledModel>& model,
+              const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
+              const std::vector<Metric>& metrics, const PoolOptions& options);
+
+/// The study's summary table, one CSV row per case, appended as each case finishes: a row is
+/// one write() of a whole line, and a line without its end (the process died while writing) is
+/// cut off on resume; finish() rewrites the table in case order through an atomic rename.
+class SummaryFile {
+ public:
+  /// Opens `path` for the columns `header`. Without `resume` the file must not exist (a
+  /// std::runtime_error says so); with it, the rows already there are kept (a different header
+  /// is a std::runtime_error) and their case numbers are returned by done().
+  SummaryFile(const std::string& path, std::vector<std::string> header, bool resume);
+  ~SummaryFile();
+  SummaryFile(const SummaryFile&) = delete;
+  SummaryFile& operator=(const SummaryFile&) = delete;
+
+  const std::set<size_t>& done() const { return done_; }
+  /// Appends the row of case `index` (fields already formatted, the first being the index).
+  void append(size_t index, const std::vector<std::string>& fields);
+  /// Rewrites the file with its rows sorted by case number.
+  void finish();
+
+ private:
+  std::string path_;
+  std::vector<std::string> header_;
+  std::set<size_t> done_;
+  int fd_ = -1;
+};
+
+/// A summary field: doubles as `{:.17g}` (they read back to the same bits), text quoted when it
+/// holds a comma, a quote or a line break.
+std::string csv_field(double value);
+std::string csv_field(const std::string& text);
+
+}  // namespace lagrange::sweep

@@ -1,0 +1,75 @@
+"""lagrange.sweep: a parameter study from Python, on this process or any Executor (docs/sweeps.md).
+
+The cases run on the engine ``lagrange sweep`` uses, so each row holds the numbers
+``lagrange simulate --set`` gives for its values alone, wherever it ran.
+"""
+
+import hashlib
+import itertools
+import pickle
+
+_models = {}  # pickled model -> the model loaded from it, once per worker process
+
+
+def _cases(grid_or_samples):
+    """A dict of value sequences is a grid (every combination, the last name varying fastest);
+    a sequence of dicts is a list of cases (random samples, or any other set)."""
+    if isinstance(grid_or_samples, dict):
+        names = list(grid_or_samples)
+        values = [list(grid_or_samples[n]) for n in names]
+        if not names or any(len(v) == 0 for v in values):
+            raise ValueError("sweep: the grid needs at least one parameter with values")
+        return [dict(zip(names, map(float, combo))) for combo in itertools.product(*values)]
+    cases = [{k: float(v) for k, v in case.items()} for case in grid_or_samples]
+    if not cases:
+        raise ValueError("sweep: no cases")
+    return cases
+
+
+def _metric_specs(metrics):
+    if isinstance(metrics, dict):
+        return [f"{name}={expr}" for name, expr in metrics.items()]
+    return list(metrics)
+
+
+def _run_chunk(state, cases, metrics, settings):
+    """Runs on a worker: the model is unpickled (derived) once per process and pickled state."""
+    key = hashlib.sha256(state).digest()
+    model = _models.get(key)
+    if model is None:
+        model = _models[key] = pickle.loads(state)
+    return model._run_cases(cases, metrics, **settings)
+
+
+def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=None,
+          output_step=None, integrator=None, rtol=None, atol=None, step=None):
+    """Run every case of a study on ``model`` and return a pandas DataFrame, one row per case:
+    the parameter values, ``status`` ("ok" or "failed"), ``reason``, ``failure_time``, the
+    metrics and ``wall_s``.
+
+    ``grid_or_samples``: a dict ``{name: values}`` (the grid of every combination) or a list of
+    dicts ``{name: value}``. ``metrics``: ``{name: "max(abs(theta1))"}`` or a list of
+    ``"NAME=AGG(COLUMN[, t > T])"`` as for ``lagrange sweep --metric``. ``executor``: None runs
+    here; any ``concurrent.futures.Executor`` (a ProcessPoolExecutor, Dask's
+    ``distributed.Client(...).get_executor()``) runs chunks of ``chunk`` cases as tasks, each
+    worker process loading the model once. An unknown parameter or metric raises ValueError
+    before any case runs.
+    """
+    import pandas
+
+    cases = _cases(grid_or_samples)
+    specs = _metric_specs(metrics)
+    settings = dict(t_end=t_end, output_step=output_step, integrator=integrator, rtol=rtol,
+                    atol=atol, step=step)
+    model._run_cases(cases, specs, check_only=True, **settings)
+    if executor is None:
+        rows = model._run_cases(cases, specs, **settings)
+    else:
+        size = chunk or max(1, len(cases) // 32)
+        state = pickle.dumps(model)
+        futures = [executor.submit(_run_chunk, state, cases[i:i + size], specs, settings)
+                   for i in range(0, len(cases), size)]
+        rows = [row for f in futures for row in f.result()]
+    frame = pandas.DataFrame(rows)
+    frame.index.name = "case"
+    return frame

@@ -1,0 +1,24 @@
+#pragma once
+// The cases of a parameter study run on a loaded model (lagrange.sweep, python/lagrange/study.py):
+// the engine `lagrange sweep` uses (include/lagrange/sweep.hpp).
+
+#include <pybind11/pybind11.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model.hpp"
+
+namespace lagrange::python {
+
+/// Each case (parameter values by name) run on `m`'s compiled model as `lagrange sweep` runs it,
+/// with the GIL released while the cases run: one dict per case with its values, status,
+/// reason, failure_time, the metrics (specs as for `--metric`) and wall_s. ValueError before any
+/// case runs for an unknown parameter or a malformed or unknown metric; `check_only` stops there.
+pybind11::list run_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
+                         const std::vector<std::string>& metrics, const cli::RunSettings& settings,
+                         bool check_only);
+
+}  // namespace lagrange::python

@@ -1,0 +1,159 @@
+// Metrics of a case's trajectory: max, min, mean, final, initial and drift of a column or of its
+// absolute value, optionally over a time window (docs/theory.md §9.2).
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lagrange/sweep.hpp"
+#include "sweep/spec_text.hpp"
+
+namespace lagrange::sweep {
+
+namespace {
+
+const char* kForm =
+    "AGG(COLUMN), AGG(abs(COLUMN)) or AGG(COLUMN, t > T) with AGG one of max, "
+    "min, mean, final, initial, drift";
+
+// `t > 60`, `t >= 5 and t < 10`: the bounds of the window, into `m`.
+void parse_window(const std::string& text, const std::string& context, Metric& m) {
+  std::string rest = text;
+  for (size_t and_at; !rest.empty();) {
+    and_at = rest.find(" and ");
+    const std::string cond = trim(rest.substr(0, and_at));
+    rest = and_at == std::string::npos ? "" : rest.substr(and_at + 5);
+    if (cond.size() < 3 || cond[0] != 't' || (cond[1] != ' ' && cond[1] != '<' && cond[1] != '>'))
+      throw StudyError(fmt::format(
+          "{}: expected a time window such as 't > 60' or 't >= 5 and t < 10', got '{}'", context,
+          cond));
+    const std::string op_and_value = trim(cond.substr(1));
+    const bool inclusive = op_and_value.size() > 1 && op_and_value[1] == '=';
+    const char op = op_and_value[0];
+    if (op != '<' && op != '>')
+      throw StudyError(
+          fmt::format("{}: expected t > T, t >= T, t < T or t <= T, got '{}'", context, cond));
+    const double value =
+        finite_number(trim(op_and_value.substr(inclusive ? 2 : 1)), context + " (time window)");
+    if (op == '>') {
+      m.after = value;
+      m.after_inclusive = inclusive;
+    } else {
+      m.before = value;
+      m.before_inclusive = inclusive;
+    }
+  }
+}
+
+bool in_window(const Metric& m, double t) {
+  if (m.after && !(m.after_inclusive ? t >= *m.after : t > *m.after)) return false;
+  if (m.before && !(m.before_inclusive ? t <= *m.before : t < *m.before)) return false;
+  return true;
+}
+
+}  // namespace
+
+Metric parse_metric(const std::string& spec) {
+  Metric m;
+  const std::string context = fmt::format("--metric {}", spec);
+  std::string expr = trim(spec);
+  const auto open = expr.find('(');
+  if (const auto eq = expr.find('='); eq != std::string::npos && eq < open) {
+    m.name = trim(expr.substr(0, eq));
+    expr = trim(expr.substr(eq + 1));
+  }
+  m.text = expr;
+  if (m.name.empty()) m.name = expr;
+  const auto paren = expr.find('(');
+  if (paren == std::string::npos || expr.back() != ')')
+    throw StudyError(fmt::format("{}: expected {}", context, kForm));
+  const std::string agg = trim(expr.substr(0, paren));
+  if (agg == "max") {
+    m.aggregate = Metric::Aggregate::Max;
+  } else if (agg == "min") {
+    m.aggregate = Metric::Aggregate::Min;
+  } else if (agg == "mean") {
+    m.aggregate = Metric::Aggregate::Mean;
+  } else if (agg == "final") {
+    m.aggregate = Metric::Aggregate::Final;
+  } else if (agg == "initial") {
+    m.aggregate = Metric::Aggregate::Initial;
+  } else if (agg == "drift") {
+    m.aggregate = Metric::Aggregate::Drift;
+  } else {
+    throw StudyError(fmt::format("{}: unknown aggregate '{}'; expected {}", context, agg, kForm));
+  }
+  // The argument and the optional window, split at the first comma outside parentheses.
+  const std::string inner = expr.substr(paren + 1, expr.size() - paren - 2);
+  int depth = 0;
+  size_t comma = std::string::npos;
+  for (size_t i = 0; i < inner.size() && comma == std::string::npos; ++i) {
+    if (inner[i] == '(') ++depth;
+    if (inner[i] == ')') --depth;
+    if (inner[i] == ',' && depth == 0) comma = i;
+  }
+  std::string arg = trim(inner.substr(0, comma));
+  if (comma != std::string::npos) parse_window(trim(inner.substr(comma + 1)), context, m);
+  if (arg.rfind("abs(", 0) == 0 && arg.back() == ')') {
+    m.absolute = true;
+    arg = trim(arg.substr(4, arg.size() - 5));
+  }
+  if (arg.empty() || arg.find_first_of("(), ") != std::string::npos)
+    throw StudyError(
+        fmt::format("{}: expected a trajectory column or abs(column), got '{}'", context, arg));
+  m.column = arg;
+  return m;
+}
+
+void check_metric_columns(const std::vector<Metric>& metrics,
+                          const std::vector<std::string>& columns) {
+  for (const auto& m : metrics)
+    if (std::find(columns.begin(), columns.end(), m.column) == columns.end()) {
+      std::string known;
+      for (const auto& c : columns) known += (known.empty() ? "" : ", ") + c;
+      throw StudyError(fmt::format("--metric {}: no column '{}' in the trajectory (columns: {})",
+                                   m.text, m.column, known));
+    }
+}
+
+// docs/theory.md §9.2: the aggregate over the samples in the window, in time order.
+double evaluate(const Metric& metric, const Trajectory& traj) {
+  const size_t nc = traj.columns.size(), col = traj.column_index(metric.column);
+  const size_t tcol = traj.column_index("t");
+  double result = std::numeric_limits<double>::quiet_NaN(), sum = 0.0, first = 0.0;
+  size_t count = 0;
+  for (size_t r = 0; r < traj.rows(); ++r) {
+    if (!in_window(metric, traj.data[r * nc + tcol])) continue;
+    double x = traj.data[r * nc + col];
+    if (metric.absolute) x = std::abs(x);
+    switch (metric.aggregate) {
+      case Metric::Aggregate::Max:
+        result = count == 0 ? x : std::max(result, x);
+        break;
+      case Metric::Aggregate::Min:
+        result = count == 0 ? x : std::min(result, x);
+        break;
+      case Metric::Aggregate::Mean:
+        sum += x;
+        break;
+      case Metric::Aggregate::Final:
+        result = x;
+        break;
+      case Metric::Aggregate::Initial:
+        if (count == 0) result = x;
+        break;
+      case Metric::Aggregate::Drift:
+        if (count == 0) first = x;
+        result = count == 0 ? 0.0 : std::max(result, std::abs(x - first));
+        break;
+    }
+    ++count;
+  }
+  if (metric.aggregate == Metric::Aggregate::Mean && count > 0)
+    result = sum / static_cast<double>(count);
+  return result;
+}
+
+}  // namespace lagrange::sweep

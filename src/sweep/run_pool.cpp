@@ -1,0 +1,52 @@
+// The workers of a study on one machine: threads that each own a Dynamics over the shared,
+// immutable compiled model and take the next case when they finish one.
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "lagrange/dynamics.hpp"
+#include "lagrange/sweep.hpp"
+
+namespace lagrange::sweep {
+
+void run_pool(const std::shared_ptr<const CompiledModel>& model,
+              const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
+              const std::vector<Metric>& metrics, const PoolOptions& options) {
+  std::atomic<size_t> next{0};
+  std::mutex report;
+  std::exception_ptr error;  // the first exception of a worker (a summary that cannot be written)
+  std::atomic<bool> failed{false};
+  const auto stopped = [&] { return failed || (options.interrupt && options.interrupt->load()); };
+  const auto work = [&] {
+    try {
+      // Dynamics holds the specialised tapes and all scratch memory: one per worker.
+      Dynamics dyn(model, model->parameter_defaults);
+      Trajectory traj;
+      for (size_t slot = next++; slot < pending.size() && !stopped(); slot = next++) {
+        const size_t index = pending[slot];
+        CaseInput input = inputs[index];
+        input.options.interrupt = options.interrupt;
+        CaseResult result = run_case(dyn, input, metrics, options.keep ? &traj : nullptr);
+        result.index = index;
+        if (result.status == Trajectory::Status::Interrupted) break;
+        const std::lock_guard<std::mutex> lock(report);
+        if (options.keep) options.keep(index, traj);
+        if (options.done) options.done(result);
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(report);
+      if (!error) error = std::current_exception();
+      failed = true;
+    }
+  };
+  const size_t n = std::max<size_t>(1, std::min(options.workers, pending.size()));
+  std::vector<std::thread> threads;
+  for (size_t i = 1; i < n; ++i) threads.emplace_back(work);
+  work();
+  for (auto& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace lagrange::sweep

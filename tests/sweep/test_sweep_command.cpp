@@ -1,0 +1,326 @@
+// `lagrange sweep` as a user meets it (issue 24): each case is, bit for bit, the run that
+// `simulate --set` makes alone, with one worker and with two; failing cases are recorded and the
+// others finish; a study stopped by SIGINT resumes to the same summary; bad input is refused
+// before anything runs or is written.
+
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hardening/cli_runner.hpp"
+
+namespace lagrange::hardening {
+namespace {
+
+const std::string kModel = std::string(LAGRANGE_SOURCE_DIR) + "/examples/double_pendulum.yaml";
+
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> read_summary(const fs::path& path) {
+  std::istringstream in(slurp(path));
+  std::string line, field;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  for (std::istringstream h(line); std::getline(h, field, ',');) header.push_back(field);
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    Row row;
+    std::istringstream r(line);
+    for (const auto& name : header) {
+      std::getline(r, field, ',');
+      row[name] = field;
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The summary without its wall-time column, the one field that differs between runs.
+std::string without_wall_time(const fs::path& path) {
+  std::istringstream in(slurp(path));
+  std::string out, line;
+  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
+const std::vector<std::string> kStudy{"--vary",   "l2=0.5:1.5:3",
+                                      "--vary",   "m2=1,2.5",
+                                      "--metric", "final(theta1)",
+                                      "--metric", "peak=max(abs(theta2), t > 1)",
+                                      "--t-end",  "2",
+                                      "-q"};
+
+std::vector<std::string> study_args(const fs::path& dir, std::vector<std::string> extra) {
+  std::vector<std::string> args{"sweep", kModel, "-o", dir.string()};
+  args.insert(args.end(), kStudy.begin(), kStudy.end());
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+// Every case's trajectory equals, byte for byte, `simulate --set` of its values alone, with one
+// worker and with two; so do the metrics computed from it.
+TEST(SweepCommand, CasesAreBitIdenticalToSimulateSet) {
+  ScratchDir dir("sweep-identical");
+  for (const char* jobs : {"1", "2"}) {
+    const fs::path study = dir.path() / (std::string("j") + jobs);
+    const RunResult r =
+        run_lagrange(dir.path(), study_args(study, {"-j", jobs, "--keep-trajectories"}));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<Row> rows = read_summary(study / "summary.csv");
+    ASSERT_EQ(rows.size(), 6u);
+    for (const Row& row : rows) {
+      EXPECT_EQ(row.at("status"), "ok");
+      const fs::path alone = dir.path() / ("alone_" + row.at("case") + ".csv");
+      const RunResult s = run_lagrange(
+          dir.path(), {"simulate", kModel, "--set", "l2=" + row.at("l2"), "--set",
+                       "m2=" + row.at("m2"), "--t-end", "2", "-o", alone.string(), "-q"});
+      ASSERT_EQ(s.exit_code, 0) << s.err;
+      const std::string expected = slurp(alone);
+      EXPECT_EQ(slurp(study / ("case_" + row.at("case") + ".csv")), expected)
+          << "case " << row.at("case") << " with -j" << jobs;
+      // The metrics from the lone run's CSV: the last theta1, the largest |theta2| after t = 1.
+      std::istringstream csv(expected);
+      std::string line, field;
+      std::getline(csv, line);
+      double last = NAN, peak = -1;
+      while (std::getline(csv, line)) {
+        std::vector<double> v;
+        for (std::istringstream f(line); std::getline(f, field, ',');)
+          v.push_back(std::stod(field));
+        last = v[1];
+        if (v[0] > 1) peak = std::max(peak, std::abs(v[2]));
+      }
+      EXPECT_EQ(std::stod(row.at("final(theta1)")), last);
+      EXPECT_EQ(std::stod(row.at("peak")), peak);
+    }
+  }
+  EXPECT_EQ(without_wall_time(dir.path() / "j1" / "summary.csv"),
+            without_wall_time(dir.path() / "j2" / "summary.csv"));
+}
+
+// A massless second bob makes M singular: those cases fail with the reason, the rest finish.
+TEST(SweepCommand, FailingCasesAreRecordedAndTheRestFinish) {
+  ScratchDir dir("sweep-failures");
+  const RunResult r =
+      run_lagrange(dir.path(), {"sweep", kModel, "--vary", "m2=1,0,2", "--metric", "final(theta2)",
+                                "--metric", "drift(energy)", "--t-end", "1", "-o",
+                                (dir.path() / "study").string(), "-j", "2", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<Row> rows = read_summary(dir.path() / "study" / "summary.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].at("status"), "ok");
+  EXPECT_EQ(rows[1].at("status"), "failed");
+  EXPECT_FALSE(rows[1].at("reason").empty());
+  EXPECT_EQ(rows[2].at("status"), "ok");
+  EXPECT_TRUE(std::isfinite(std::stod(rows[2].at("final(theta2)"))));
+  // The pendulum conserves energy (about 30 J here): at rtol 1e-10 it drifts by far less.
+  for (const size_t ok : {0, 2}) EXPECT_LT(std::stod(rows[ok].at("drift(energy)")), 1e-6);
+}
+
+// SIGINT part-way: exit 130 with the finished cases kept; --resume runs only the others and
+// the summary equals that of a study never stopped, each case once.
+TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
+  ScratchDir dir("sweep-resume");
+  const std::vector<std::string> grid{
+      "--vary", "l2=0.5:1.5:30", "--metric", "final(theta1)", "--t-end", "5", "-j", "1", "-q"};
+  const auto args = [&](const fs::path& study, bool resume) {
+    std::vector<std::string> a{"sweep", kModel, "-o", study.string()};
+    a.insert(a.end(), grid.begin(), grid.end());
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  const fs::path whole = dir.path() / "whole", stopped = dir.path() / "stopped";
+  ASSERT_EQ(run_lagrange(dir.path(), args(whole, false)).exit_code, 0);
+  Child child(dir.path(), args(stopped, false));
+  const auto rows_now = [&] {
+    std::error_code ec;
+    return fs::exists(stopped / "summary.csv", ec) ? read_summary(stopped / "summary.csv").size()
+                                                   : 0u;
+  };
+  for (int i = 0; i < 2000 && rows_now() < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  child.signal(SIGINT);
+  const RunResult r = child.wait(std::chrono::seconds(60));
+  const size_t kept = rows_now();
+  if (r.exit_code == 0) GTEST_SKIP() << "the study finished before the signal";
+  ASSERT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
+  ASSERT_GE(kept, 3u);
+  ASSERT_LT(kept, 30u);
+  EXPECT_EQ(run_lagrange(dir.path(), args(stopped, false)).exit_code, 2);  // not over a study
+  auto other = args(stopped, true);
+  other.insert(other.end(), {"--rtol", "1e-6"});  // another study: refused, nothing changed
+  const RunResult refused = run_lagrange(dir.path(), other);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("started with other options"), std::string::npos) << refused.err;
+  EXPECT_EQ(read_summary(stopped / "summary.csv").size(), kept);
+  const RunResult resumed = run_lagrange(dir.path(), args(stopped, true));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(without_wall_time(stopped / "summary.csv"), without_wall_time(whole / "summary.csv"));
+}
+
+// Mistakes in the command line: exit 2 with a message naming them, and no study directory.
+TEST(SweepCommand, BadInputIsRefusedBeforeAnythingRuns) {
+  ScratchDir dir("sweep-bad");
+  const fs::path study = dir.path() / "study";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad{
+      {{"--vary", "k=1,2"}, "no parameter 'k'"},
+      {{"--vary", "l2=1:2:0"}, "COUNT"},
+      {{"--vary", "l2="}, "no values"},
+      {{"--random", "m2=normal(1)", "--samples", "3"}, "two numbers"},
+      {{"--random", "m2=normal(1,0.1)"}, "--samples"},
+      {{"--vary", "l2=1,2", "--metric", "max(theta3)"}, "no column 'theta3'"},
+      {{"--metric", "max(theta1)"}, "nothing varies"},
+  };
+  for (const auto& [extra, fragment] : bad) {
+    std::vector<std::string> args{"sweep", kModel, "-o", study.string(), "--t-end", "1"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run_lagrange(dir.path(), args);
+    EXPECT_EQ(r.exit_code, 2) << fragment << "\n" << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(study)) << fragment;
+  }
+}
+
+// A parameter that sets a tether's segment count changes the coordinates: one derivation cannot
+// cover it, and the study stops before it starts.
+TEST(SweepCommand, ValuesThatChangeTheStructureAreRefused) {
+  ScratchDir dir("sweep-structure");
+  std::string yaml = slurp(std::string(LAGRANGE_SOURCE_DIR) + "/examples/tether_reel_out.yaml");
+  yaml.replace(yaml.find("mu: 0.05}"), 9, "mu: 0.05, n: 8}");
+  yaml.replace(yaml.find("segments: 8"), 11, "segments: n");
+  spit(dir.path() / "segments.yaml", yaml);
+  const fs::path study = dir.path() / "study";
+  const RunResult r =
+      run_lagrange(dir.path(), {"sweep", (dir.path() / "segments.yaml").string(), "--vary", "n=8,4",
+                                "--t-end", "0.1", "-o", study.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("change the structure"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(study));
+}
+
+#ifdef LAGRANGE_HAVE_MPI
+// `mpirun -n 2 lagrange sweep`: rank 0 hands the cases to rank 1; the summary equals the one
+// worker's, case for case (as root, OpenMPI needs --allow-run-as-root).
+TEST(SweepCommand, UnderMpirunTheSummaryIsTheSame) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "mpirun is not installed (openmpi-bin)";
+  ScratchDir dir("sweep-mpi");
+  const fs::path one = dir.path() / "one", mpi = dir.path() / "mpi";
+  ASSERT_EQ(run_lagrange(dir.path(), study_args(one, {"-j", "1"})).exit_code, 0);
+  std::string command =
+      "mpirun -n 2 --oversubscribe --allow-run-as-root " + std::string(LAGRANGE_BINARY);
+  for (const auto& a : study_args(mpi, {})) command += " '" + a + "'";
+  command += " > " + (dir.path() / "mpi.log").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << slurp(dir.path() / "mpi.log");
+  EXPECT_EQ(without_wall_time(mpi / "summary.csv"), without_wall_time(one / "summary.csv"));
+}
+
+// The process below `ancestor` whose environment has OMPI_COMM_WORLD_RANK=`rank` (0 if none).
+pid_t rank_process(pid_t ancestor, int rank) {
+  const std::string wanted = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    // Walk up the parents: the rank is a child (or grandchild) of mpirun.
+    bool below = false;
+    for (pid_t p = std::stoi(name), depth = 0; p > 1 && depth < 4 && !below; ++depth) {
+      // "pid (comm) state ppid …": comm may hold spaces, so read after its closing parenthesis.
+      const std::string stat = slurp(fs::path("/proc") / std::to_string(p) / "stat");
+      const auto close = stat.rfind(')');
+      if (close == std::string::npos) break;
+      std::istringstream rest(stat.substr(close + 1));
+      std::string state;
+      pid_t parent = 0;
+      rest >> state >> parent;
+      below = parent == ancestor;
+      p = parent;
+    }
+    if (!below) continue;
+    std::string env = slurp(entry.path() / "environ");
+    std::replace(env.begin(), env.end(), '\0', '\n');
+    if (("\n" + env).find("\n" + wanted + "\n") != std::string::npos)
+      return static_cast<pid_t>(std::stoi(name));
+  }
+  return 0;
+}
+
+// SIGKILL of the rank running the cases: mpirun ends the job, the rows already written stay
+// whole, and --resume (here on one machine) finishes the study to the summary of one never
+// stopped, each case once.
+TEST(SweepCommand, UnderMpirunAKilledRankLosesNoFinishedCase) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "mpirun is not installed (openmpi-bin)";
+  ScratchDir dir("sweep-mpi-kill");
+  const fs::path whole = dir.path() / "whole", killed = dir.path() / "killed";
+  const auto args = [&](const fs::path& study) {
+    return std::vector<std::string>{
+        "sweep", kModel, "--vary", "l2=0.5:1.5:40", "--metric", "final(theta1)", "--t-end",
+        "100",   "-q",   "-o",     study.string()};
+  };
+  ASSERT_EQ(run_lagrange(dir.path(), args(whole)).exit_code, 0);
+  std::vector<std::string> argv{"mpirun",       "-n", "2", "--oversubscribe", "--allow-run-as-root",
+                                LAGRANGE_BINARY};
+  for (const auto& a : args(killed)) argv.push_back(a);
+  std::vector<char*> cargv;
+  for (auto& a : argv) cargv.push_back(a.data());
+  cargv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  const std::string log = (dir.path() / "mpirun.log").string();
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t mpirun = 0;
+  ASSERT_EQ(posix_spawnp(&mpirun, "mpirun", &fa, nullptr, cargv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  const auto rows = [&] {
+    std::error_code ec;
+    return fs::exists(killed / "summary.csv", ec) ? read_summary(killed / "summary.csv").size()
+                                                  : size_t{0};
+  };
+  for (int i = 0; i < 6000 && rows() < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const pid_t worker = rank_process(mpirun, 1);
+  if (worker > 0) kill(worker, SIGKILL);
+  int status = 0;
+  for (int i = 0; i < 6000 && waitpid(mpirun, &status, WNOHANG) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (waitpid(mpirun, &status, WNOHANG) == 0) {
+    kill(mpirun, SIGKILL);
+    waitpid(mpirun, &status, 0);
+  }
+  ASSERT_GT(worker, 0) << "rank 1 not found\n" << slurp(log);
+  const size_t kept = rows();
+  if (kept == 40) GTEST_SKIP() << "the study finished before rank 1 was killed";
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(log);
+  EXPECT_GE(kept, 3u);
+  auto resume = args(killed);
+  resume.push_back("--resume");
+  const RunResult r = run_lagrange(dir.path(), resume);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(without_wall_time(killed / "summary.csv"), without_wall_time(whole / "summary.csv"));
+}
+#else
+// Under mpirun without MPI built in, every rank would run the whole study: refused.
+TEST(SweepCommand, MpirunWithoutMpiIsRefused) {
+  ScratchDir dir("sweep-mpirun");
+  setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+  const RunResult r = run_lagrange(dir.path(), study_args(dir.path() / "study", {}));
+  unsetenv("OMPI_COMM_WORLD_SIZE");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("built without MPI"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "study"));
+}
+#endif
+
+}  // namespace
+}  // namespace lagrange::hardening
