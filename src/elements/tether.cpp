@@ -457,7 +457,7 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
         for (size_t k = 0; k < 3; ++k) force[j][k] -= c * m.time_derivative(pos[k]);
       }
       for (size_t k = 0; k < 3; ++k) power += force[j][k] * m.time_derivative(pos[k]);
-      Vec3 total = elastic ? model::add(force[j], elastic->force[j]) : force[j];
+      const Vec3 total = elastic ? model::add(force[j], elastic->force[j]) : force[j];
       bool any = false;
       for (const auto& f : total) any = any || !f.is_zero();
       if (any) m.forces.push_back(PointForce{t.nodes[j], total, loc});
