@@ -55,9 +55,10 @@ struct SimulationOptions {
   /// The exact Jacobian of the first-order form (ode_jacobian in analysis.hpp), handed to the
   /// integrator as OdeProblem::jacobian; cvode:jacobian needs it.
   OdeJacobian jacobian;
-  /// After each internal step (ODE methods; IDA: at output samples) and at output samples,
-  /// project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds projection_tol, and replace a free
-  /// body's R by the nearest rotation when ‖RᵀR − 1‖_F exceeds it.
+  /// At output samples (IDA: there only) project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds
+  /// projection_tol, after each internal step of an ODE method when they exceed
+  /// step_drift_tolerance(); replace a free body's R by the nearest rotation when ‖RᵀR − 1‖_F
+  /// exceeds projection_tol.
   bool project = true;
   double projection_tol = 1e-11;
   /// Between samples (after internal steps of ODE methods) the constraints are projected only

@@ -42,8 +42,8 @@ OdeJacobian ode_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
   if (cm.plain != nq || nq != nv)
     throw std::invalid_argument(fmt::format(
         "the exact ODE Jacobian needs plain coordinates only (q̇ = v); this model has {} free "
-        "bodies (use cvode or dop853)",
-        cm.rotations.size()));
+        "bod{} (use cvode or dop853)",
+        cm.rotations.size(), cm.rotations.size() == 1 ? "y" : "ies"));
   if (y0.size() != n)
     throw std::invalid_argument(
         fmt::format("ode_jacobian: expected a state of {} values, got {}", n, y0.size()));
