@@ -1,5 +1,6 @@
 #include "analysis.hpp"
 
+#include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
