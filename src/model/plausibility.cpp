@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <map>
+#include <vector>
 
-
+#include "compile/ginac_util.hpp"
 #include "model/model_reader.hpp"
 
 namespace lagrange::model {
@@ -20,32 +20,50 @@ void print_warning(const SourceLoc& at, const std::string& message) {
   fmt::print(stderr, "{}: warning: {}\n", at.str(), message);
 }
 
-/// How each parameter symbol is used: as (part of) a trig function's argument with a numeric
-/// coefficient — an angle — and anywhere else.
-struct AngleUse {
-  bool angle = false, other = false;
-};
+/// Where symbols occur, over an expression DAG visited once per distinct node (model expressions
+/// of spatial chains share subtrees exponentially often, so a plain recursion would not end):
+/// the symbols reached without passing through sin, cos or tan, and those functions' arguments.
+class TrigScan {
+ public:
+  void walk(const GiNaC::ex& e) {
+    if (!seen_.emplace(e, true).second) return;
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      outside_.emplace(e, true);
+      return;
+    }
+    if (GiNaC::is_a<GiNaC::function>(e)) {
+      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+      if (name == "sin" || name == "cos" || name == "tan") {
+        arguments_.emplace(e.op(0), true);
+        return;
+      }
+    }
+    for (size_t i = 0; i < e.nops(); ++i) walk(e.op(i));
+  }
+  bool outside(const GiNaC::symbol& p) const { return outside_.count(p) > 0; }
+  /// An angle: some argument changes with p at a constant rate (sin(p), cos(q + 2 p)), not a
+  /// frequency (sin(ω t)). Arguments of more than kSmall distinct nodes are not differentiated.
+  bool angle(const GiNaC::symbol& p) const {
+    for (const auto& [argument, unused] : arguments_) {
+      tape_detail::ExMap<bool> nodes;
+      if (!contains(argument, p, nodes) || nodes.size() > kSmall) continue;
+      if (GiNaC::is_a<GiNaC::numeric>(argument.diff(p).expand())) return true;
+    }
+    return false;
+  }
 
-void scan(const GiNaC::ex& e, const GiNaC::ex& trig_argument,
-          std::map<GiNaC::symbol, AngleUse, GiNaC::ex_is_less>& uses) {
-  if (GiNaC::is_a<GiNaC::symbol>(e)) {
-    const auto& s = GiNaC::ex_to<GiNaC::symbol>(e);
-    auto it = uses.find(s);
-    if (it == uses.end()) return;
-    // An angle when the argument changes with it at a constant rate (sin(p), cos(q + 2 p)), not
-    // a frequency (sin(ω t)).
-    const bool angle =
-        !trig_argument.is_zero() && GiNaC::is_a<GiNaC::numeric>(trig_argument.diff(s).expand());
-    (angle ? it->second.angle : it->second.other) = true;
-    return;
+ private:
+  static constexpr size_t kSmall = 200;
+  static bool contains(const GiNaC::ex& e, const GiNaC::symbol& p,
+                       tape_detail::ExMap<bool>& nodes) {
+    if (nodes.size() > kSmall || !nodes.emplace(e, true).second) return false;
+    if (e.is_equal(p)) return true;
+    for (size_t i = 0; i < e.nops(); ++i)
+      if (contains(e.op(i), p, nodes)) return true;
+    return false;
   }
-  GiNaC::ex argument = trig_argument;
-  if (GiNaC::is_a<GiNaC::function>(e)) {
-    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    if (name == "sin" || name == "cos" || name == "tan") argument = e.op(0);
-  }
-  for (size_t i = 0; i < e.nops(); ++i) scan(e.op(i), argument, uses);
-}
+  tape_detail::ExMap<bool> seen_, outside_, arguments_;
+};
 
 }  // namespace
 
@@ -82,35 +100,34 @@ void ModelReader::warn_implausible(const GiNaC::ex& e, const YAML::Node& node, Q
 }
 
 void ModelReader::warn_angle_parameters() const {
-  std::map<GiNaC::symbol, AngleUse, GiNaC::ex_is_less> uses;
+  std::vector<const Parameter*> candidates;
   for (const Parameter& p : m_.parameters)
-    if (std::abs(p.value) > kTurn + 1e-9) uses[p.sym];
-  if (uses.empty()) return;
-  auto visit = [&](const GiNaC::ex& e) { scan(e, 0, uses); };
+    if (std::abs(p.value) > kTurn + 1e-9) candidates.push_back(&p);
+  if (candidates.empty()) return;
+  TrigScan scan;
   auto visit3 = [&](const Vec3& v) {
-    for (const GiNaC::ex& e : v) visit(e);
+    for (const GiNaC::ex& e : v) scan.walk(e);
   };
-  visit(m_.kinetic);
-  visit(m_.potential);
-  for (const GiNaC::ex& e : m_.generalized_forces) visit(e);
+  scan.walk(m_.kinetic);
+  scan.walk(m_.potential);
+  for (const GiNaC::ex& e : m_.generalized_forces) scan.walk(e);
   for (const Point& p : m_.points) visit3(p.pos);
   for (const PointForce& f : m_.forces) visit3(f.force);
   for (const Body& b : m_.bodies) {
     visit3(b.position);
     for (const Vec3& row : b.rotation) visit3(row);
   }
-  for (const Input& u : m_.inputs) visit(u.expr);
-  for (const NamedExpr& c : m_.constraints) visit(c.expr);
-  for (const NamedExpr& o : m_.outputs) visit(o.expr);
+  for (const Input& u : m_.inputs) scan.walk(u.expr);
+  for (const NamedExpr& c : m_.constraints) scan.walk(c.expr);
+  for (const NamedExpr& o : m_.outputs) scan.walk(o.expr);
   if (m_.gravity) visit3(*m_.gravity);
-  for (const Parameter& p : m_.parameters) {
-    auto it = uses.find(p.sym);
-    if (it == uses.end() || !it->second.angle || it->second.other) continue;
-    print_warning(p.loc, fmt::format("parameter '{}' = {:g} enters only as an angle (inside sin, "
-                                     "cos or tan) and is {:.3g} turns: angles are in radians "
-                                     "({:g}° = {:.6g} rad)",
-                                     p.name, p.value, p.value / kTurn, p.value,
-                                     p.value * kPi / 180));
+  for (const Parameter* p : candidates) {
+    if (scan.outside(p->sym) || !scan.angle(p->sym)) continue;
+    print_warning(p->loc,
+                  fmt::format("parameter '{}' = {:g} enters only as an angle (inside sin, "
+                              "cos or tan) and is {:.3g} turns: angles are in radians "
+                              "({:g}° = {:.6g} rad)",
+                              p->name, p->value, p->value / kTurn, p->value, p->value * kPi / 180));
   }
 }
 

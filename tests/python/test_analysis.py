@@ -58,7 +58,7 @@ def test_trim_finds_the_hanging_equilibrium():
     m = lagrange.loads("parameters: {m: 1.0, l: 1.0, g: 9.81, F: 3.0}\n"
                        "coordinates: {theta: {initial: 0.1}}\n"
                        "points: {bob: [l*sin(theta), -l*cos(theta), 0]}\n"
-                       "particles: {bob: m}\ngravity: [0, -g, 0]\nforces: {bob: [F, 0, 0]}\n",
+                       "particles: {bob: m}\ngravity: [0, -g, 0]\nforces: [{point: bob, force: [F, 0, 0]}]\n",
                        label="<pendulum in a side force>")
     r = m.trim()
     assert r.q[0] == pytest.approx(math.atan2(3.0, 9.81), abs=1e-12)
@@ -96,7 +96,7 @@ def test_lqr_on_the_linear_model_balances_the_nonlinear_cart_pole():
     def fly(controlled):
         s = m.stepper(integrator="dop853", rtol=1e-9)
         x, largest = np.array([0.0, 0.15, 0.0, 0.0]), 0.15
-        for _ in range(int(6 / dt)):
+        for _ in range(int(10 / dt)):
             u = float(-(K @ x)[0]) if controlled else 0.0
             s.step(dt, inputs={"F": u})
             q, v = s.state
