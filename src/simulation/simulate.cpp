@@ -113,10 +113,11 @@ class StopWatch {
 
   StopWatch(size_t conditions, size_t n) : g_prev_(conditions), g_(conditions), y_prev_(n) {}
 
-  /// At a sample: true when a condition fired since the previous one; then `which`, `when` and
-  /// `state` are the earliest located crossing.
-  bool fired(double t, const double* y, const Evaluate& evaluate, const Advance& advance) {
-    evaluate(t, y, g_.data());
+  /// At a sample with condition values `g` (from its row): true when a condition fired since the
+  /// previous sample; then `which`, `when` and `state` are the earliest located crossing.
+  bool fired(double t, const double* y, const double* g, const Evaluate& evaluate,
+             const Advance& advance) {
+    std::copy(g, g + g_.size(), g_.begin());
     bool fired = false;
     if (started_) {
       when = HUGE_VAL;
@@ -218,7 +219,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   };
   const StopConditions stop(cm, traj.columns);
   StopWatch watch(stop.size(), n);
-  std::vector<double> stop_row;
+  std::vector<double> stop_row, stop_g(stop.size());
   const StopWatch::Evaluate stop_values = [&](double t, const double* yy, double* g) {
     stop_row.clear();
     rows.write(dyn, t, yy, yy + nq, stop_row);
@@ -253,15 +254,21 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::fill(yp + n, yp + n + m, 0.0);
       action = ObserverAction::StateChanged;
     }
-    if (!stop.empty() && watch.fired(t, yy, stop_values, advance)) {
-      const double* y = watch.state.data();
-      rows.append(dyn, watch.when, y, y + nq, traj);
-      traj.stopped_by = stop.spec(watch.which).name;
-      traj.stop_time = watch.when;
-      if (opt.progress) opt.progress(watch.when);
-      return ObserverAction::Stop;
-    }
     rows.append(dyn, t, yy, yy + nq, traj);
+    if (!stop.empty()) {  // the conditions read the row just written
+      const size_t width = traj.columns.size();
+      stop.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),
+                    stop_g.data());
+      if (watch.fired(t, yy, stop_g.data(), stop_values, advance)) {
+        traj.data.resize(traj.data.size() - width);  // the sample lies past the stop
+        const double* y = watch.state.data();
+        rows.append(dyn, watch.when, y, y + nq, traj);
+        traj.stopped_by = stop.spec(watch.which).name;
+        traj.stop_time = watch.when;
+        if (opt.progress) opt.progress(watch.when);
+        return ObserverAction::Stop;
+      }
+    }
     if (opt.progress) opt.progress(t);
     if (opt.interrupt != nullptr && opt.interrupt->load()) {
       traj.status = Trajectory::Status::Interrupted;

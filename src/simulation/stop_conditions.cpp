@@ -19,7 +19,7 @@ GiNaC::ex parse_side(const StopSpec& spec, const std::string& side, size_t offse
   model::ParseContext ctx;
   ctx.resolve = [&names](const std::string& name, size_t) -> std::optional<model::Value> {
     if (auto it = names.find(name); it != names.end()) return model::Value::of(it->second);
-    // `kite.r` for the columns kite.r.x, kite.r.y, kite.r.z.
+    // `p.r` for the columns p.r.x, p.r.y, p.r.z (any vector-valued output).
     const auto x = names.find(name + ".x"), y = names.find(name + ".y"),
                z = names.find(name + ".z");
     if (x != names.end() && y != names.end() && z != names.end())
