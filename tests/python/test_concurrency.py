@@ -84,7 +84,7 @@ def test_stepper_releases_the_gil(examples_dir):
     # As for simulate: one long step on another thread leaves this thread running Python.
     tether = lagrange.load(str(examples_dir / "tether_in_wind.yaml"))
     s = tether.stepper(compile="off")
-    worker = threading.Thread(target=s.step, args=(10.0,))
+    worker = threading.Thread(target=s.step, args=(60.0,))  # long enough on an idle machine
     ticks = [time.perf_counter()]
     worker.start()
     while worker.is_alive():
