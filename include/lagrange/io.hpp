@@ -47,8 +47,10 @@ std::string format_equations(const Equations& eq, const std::string& format, boo
 std::string format_recursive(const Equations& eq, const std::string& format);
 
 /// The manipulator form D, Christoffel symbols, C, g, τ (docs/theory.md §4.8) as text, LaTeX or
-/// JSON (`format`: text | latex | json).
-std::string format_manipulator(const ManipulatorForm& form, const std::string& format);
+/// JSON (`format`: text | latex | json); through named common subexpressions when written out in
+/// full it would exceed kFullExpansionLimit nodes, unless `expand` is set.
+std::string format_manipulator(const ManipulatorForm& form, const std::string& format,
+                               bool expand = false);
 
 /// Standalone C99 source (header + implementation) evaluating the dynamics
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.

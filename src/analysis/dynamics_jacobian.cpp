@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <map>
 
-#include "analysis/memo_diff.hpp"
+#include "symbolic/memo_diff.hpp"
 #include "lagrange/analysis.hpp"
 
 namespace lagrange {
@@ -51,7 +51,7 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
   const std::vector<GiNaC::symbol> in = eq.tape_inputs();
   std::vector<GiNaC::symbol> column_symbols;
   for (size_t k : columns_) column_symbols.push_back(in[k]);
-  analysis::MemoDiff differentiate(column_symbols);
+  symbolic::MemoDiff differentiate(column_symbols);
   // A parameter also acts through the prescribed inputs u(t, p), u̇, ü (Model::inputs):
   // d/dp = ∂/∂p + Σᵢ (∂/∂uᵢ ∂uᵢ/∂p + ∂/∂u̇ᵢ ∂u̇ᵢ/∂p + ∂/∂üᵢ ∂üᵢ/∂p). `through` holds, per
   // column, the (input symbol, ∂signal/∂p) pairs, and the input symbols point to those columns.

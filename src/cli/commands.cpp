@@ -91,7 +91,7 @@ int run_derive(const Options& opt) {
   }
   const Equations eq = derive(model);
   if (opt.form == "manipulator") {
-    fmt::print("{}", format_manipulator(manipulator_form(eq), opt.format));
+    fmt::print("{}", format_manipulator(manipulator_form(eq), opt.format, opt.expand));
     return 0;
   }
   fmt::print("{}", format_equations(eq, opt.format, opt.expand));

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "lagrange/equations.hpp"
 
@@ -23,6 +24,9 @@ std::string latex_escape(const std::string& name);
 /// The multiplier of a named constraint: lambda_name or \lambda_{\mathrm{name}}.
 std::string multiplier_str(const std::string& constraint, Style style);
 
+/// Expression-tree nodes of `exprs` written out in full (shared subexpressions counted at every
+/// use), saturating at `cap`; linear in the size of their DAG.
+size_t tree_size(const std::vector<GiNaC::ex>& exprs, size_t cap);
 /// Size of the equations written out in full: expression-tree nodes of T, U, M, h, Q, C, c and
 /// Ċ with shared subexpressions counted at every use, saturating at `cap`.
 size_t expanded_size(const Equations& eq, size_t cap);

@@ -140,12 +140,17 @@ std::string format_json_cse(const Equations& eq, const CompiledModel& cm,
 
 }  // namespace
 
-size_t expanded_size(const Equations& eq, size_t cap) {
+size_t tree_size(const std::vector<GiNaC::ex>& exprs, size_t cap) {
   SizeMemo memo;
   size_t n = 0;
-  auto add = [&](const GiNaC::ex& e) {
+  for (const GiNaC::ex& e : exprs)
     if (n < cap) n = std::min(cap, n + tree_size(e, memo, cap));
-  };
+  return n;
+}
+
+size_t expanded_size(const Equations& eq, size_t cap) {
+  std::vector<GiNaC::ex> all;
+  auto add = [&](const GiNaC::ex& e) { all.push_back(e); };
   add(eq.T);
   add(eq.U);
   for (size_t i = 0; i < eq.nv; ++i) {
@@ -158,7 +163,7 @@ size_t expanded_size(const Equations& eq, size_t cap) {
     add(eq.c[r]);
     add(eq.Cdot[r]);
   }
-  return n;
+  return tree_size(all, cap);
 }
 
 std::string format_equations_cse(const Equations& eq, const std::string& format) {

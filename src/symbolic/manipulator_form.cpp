@@ -9,6 +9,8 @@
 
 #include "lagrange/manipulator.hpp"
 #include "symbolic/expansion_bound.hpp"
+#include "symbolic/memo_diff.hpp"
+#include "symbolic/point_value.hpp"
 #include "symbolic/printed_size.hpp"
 
 namespace lagrange {
@@ -47,14 +49,16 @@ struct ExpandTrig : GiNaC::map_function {
 /// Small expressions in the shorter of their derived and trig-simplified forms (big arms' entries
 /// are left as derived).
 GiNaC::ex tidy(const GiNaC::ex& e) {
-  const size_t size = printed_size(e);
-  if (size > 4000 || !symbolic::expands_within(e, 2000)) return e;  // no unbounded expansion
+  if (!symbolic::expands_within(e, 2000)) return e;  // no unbounded expansion (asked first:
+  const size_t size = printed_size(e);               // linear in the DAG, where printing is not)
+  if (size > 4000) return e;
   const GiNaC::ex s = trig_simplify(e);
   return printed_size(s) < size ? s : e;
 }
 
-/// Evaluates expressions at a few random points (parameters in [0.5, 1.5], coordinates,
-/// velocities, t and inputs in [−2, 2]) with 40 digits: symbolic zeros come out below 1e-25.
+/// Evaluates expressions at two random points (parameters in [0.5, 1.5], coordinates,
+/// velocities, t and inputs in [−2, 2]) with 40 digits, memoised over the expressions' shared
+/// subtrees: symbolic zeros come out below 1e-25.
 class Probe {
  public:
   explicit Probe(const Equations& eq) {
@@ -76,25 +80,21 @@ class Probe {
         v[u.ud] = rational(0);
         v[u.udd] = rational(0);
       }
-      points_.push_back(v);
+      points_.emplace_back(std::move(v));
     }
   }
-  bool zero(const GiNaC::ex& e) const {
+  bool zero(const GiNaC::ex& e) {
     const long saved = GiNaC::Digits;
     GiNaC::Digits = 40;
     bool all = true;
-    for (const GiNaC::exmap& v : points_) {
-      const GiNaC::ex x = e.subs(v).evalf();
-      if (!GiNaC::is_a<GiNaC::numeric>(x) ||
-          !(GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(x)).to_double() < 1e-25))
-        all = false;
-    }
+    for (symbolic::PointValue& value : points_)
+      if (!(GiNaC::abs(value(e)).to_double() < 1e-25)) all = false;
     GiNaC::Digits = saved;
     return all;
   }
 
  private:
-  std::vector<GiNaC::exmap> points_;
+  std::vector<symbolic::PointValue> points_;
 };
 
 /// J_v = ∂r_c/∂q of the centre of mass r_c = r + R c, and J_ω with column j = unskew(∂R/∂q_j Rᵀ)
@@ -154,10 +154,16 @@ ManipulatorForm manipulator_form(const Equations& eq) {
               i + 1, j + 1, s.get_name()));
       f.D(i, j) = j < i ? f.D(j, i) : tidy(eq.M(i, j));
     }
-  const Probe probe(eq);
-  // dD[l] = ∂D/∂q_l; c_ijk = c_jik, computed for i ≤ j.
-  std::vector<GiNaC::matrix> dD;
-  for (size_t l = 0; l < n; ++l) dD.push_back(GiNaC::ex_to<GiNaC::matrix>(f.D.diff(eq.kin.q[l])));
+  Probe probe(eq);
+  // c_ijk = c_jik, computed for i ≤ j.
+  // dD[l] = ∂D/∂q_l, differentiated on the upper triangle and mirrored (D is symmetric), each
+  // shared subexpression once (the entries of a long chain's D share most of their terms).
+  symbolic::MemoDiff differentiate(
+      std::vector<GiNaC::symbol>(eq.kin.q.begin(), eq.kin.q.begin() + n));
+  std::vector<GiNaC::matrix> dD(n, GiNaC::matrix(n, n));
+  for (size_t l = 0; l < n; ++l)
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i; j < n; ++j) dD[l](i, j) = dD[l](j, i) = differentiate.diff(f.D(i, j), l);
   std::vector<GiNaC::ex> c(n * n * n, 0);
   for (size_t k = 0; k < n; ++k)
     for (size_t i = 0; i < n; ++i)
@@ -178,7 +184,7 @@ ManipulatorForm manipulator_form(const Equations& eq) {
       f.C(k, j) = s;
     }
   for (size_t k = 0; k < n; ++k) {
-    f.g.push_back(tidy(eq.U.diff(eq.kin.q[k])));
+    f.g.push_back(tidy(differentiate.diff(eq.U, k)));
     f.tau.push_back(eq.Q[k]);
     GiNaC::ex residual = eq.h[k] + f.g[k];
     for (size_t j = 0; j < n; ++j) residual += f.C(k, j) * eq.kin.v[j];

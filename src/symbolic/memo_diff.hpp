@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
-namespace lagrange::analysis {
+namespace lagrange::symbolic {
 
 /// ∂e/∂xₖ for the column symbols xₖ, memoised over the expression DAG (GiNaC's own diff walks
 /// shared subtrees again for each expression and each symbol).
@@ -40,4 +40,4 @@ class MemoDiff {
   std::vector<Map<GiNaC::ex>> memo_;  ///< per column
 };
 
-}  // namespace lagrange::analysis
+}  // namespace lagrange::symbolic

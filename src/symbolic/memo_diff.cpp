@@ -1,8 +1,8 @@
-#include "analysis/memo_diff.hpp"
+#include "symbolic/memo_diff.hpp"
 
 #include <algorithm>
 
-namespace lagrange::analysis {
+namespace lagrange::symbolic {
 
 MemoDiff::MemoDiff(const std::vector<GiNaC::symbol>& columns)
     : columns_(columns), memo_(columns.size()) {
@@ -80,4 +80,4 @@ GiNaC::ex MemoDiff::diff(const GiNaC::ex& e, size_t k) {
   return d;
 }
 
-}  // namespace lagrange::analysis
+}  // namespace lagrange::symbolic
