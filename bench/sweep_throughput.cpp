@@ -52,7 +52,8 @@ void study(const std::string& file, const std::string& parameter, double low, do
     inputs.push_back(sweep::case_input(m, *compiled, so));
   }
   const double read_seconds = since(t1);
-  const std::vector<sweep::Metric> metrics{sweep::parse_metric("max(energy)")};
+  std::vector<sweep::Metric> metrics{sweep::parse_metric("max(energy)")};
+  sweep::bind_metrics(metrics, trajectory_columns(*compiled), compiled->parameter_names);
   std::vector<size_t> pending(inputs.size());
   for (size_t i = 0; i < pending.size(); ++i) pending[i] = i;
   const std::string summary_path =

@@ -168,6 +168,13 @@ struct StopSpec {
   SourceLoc loc;  ///< of the condition's text
 };
 
+/// A `metrics:` entry as written, `AGG(EXPR[, WINDOW])` over trajectory columns and parameters;
+/// aggregated per case by `lagrange sweep` (lagrange/sweep.hpp) and printed by `simulate`.
+struct MetricSpec {
+  std::string name, text;
+  SourceLoc loc;  ///< of the metric's text
+};
+
 /// Constraint stabilisation settings (docs/theory.md §4.3).
 struct Stabilization {
   /// Baumgarte: both eigenvalues of the constraint error at −α; unset, baumgarte_rate() chooses.
@@ -217,6 +224,7 @@ struct Model {
   Stabilization stabilization;
   SimulateOptions simulate;
   std::vector<StopSpec> stop_when;  ///< `stop_when:` conditions, in file order
+  std::vector<MetricSpec> metrics;  ///< `metrics:`, in file order
 
   /// Index of a named entity, or -1.
   int coordinate_index(const std::string& name) const;

@@ -16,6 +16,7 @@
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/model.hpp"
 #include "lagrange/simulation.hpp"
+#include "lagrange/tape.hpp"
 
 namespace lagrange::sweep {
 
@@ -69,26 +70,40 @@ std::vector<Case> make_cases(const std::vector<Axis>& axes,
 /// A number computed from one case's trajectory (docs/theory.md §9.2).
 struct Metric {
   enum class Aggregate { Max, Min, Mean, Final, Initial, Drift } aggregate = Aggregate::Max;
-  std::string name;    ///< the summary column
-  std::string column;  ///< the trajectory column aggregated
-  bool absolute = false;
+  std::string name;        ///< the summary column
+  std::string expression;  ///< aggregated: an expression of the columns and the parameters
   /// Samples with t > after (or ≥ when after_inclusive) and t < before (≤) count.
   std::optional<double> after, before;
   bool after_inclusive = false, before_inclusive = false;
   std::string text;  ///< as written
+  /// `expression` compiled by bind_metrics over (columns, parameters); read-only, shared by
+  /// the workers.
+  std::shared_ptr<const Tape> tape;
+  size_t columns = 0;  ///< of the trajectory it was bound to
 };
 
 /// `NAME=AGG(EXPR[, WINDOW])` or `AGG(EXPR[, WINDOW])` (then NAME is the text itself): AGG one
-/// of max, min, mean, final, initial, drift (largest |x − first x|); EXPR a trajectory column or
-/// abs(column); WINDOW a condition on t such as `t > 60` or `t >= 5 and t < 10`.
-Metric parse_metric(const std::string& spec);
+/// of max, min, mean, final, initial, drift (largest |x − first x|); EXPR an expression of the
+/// trajectory's columns and the parameters (`abs(theta1)`, `sqrt(x^2 + y^2)`,
+/// `main.tension_ground * wing.airspeed`); WINDOW a condition on t such as `t > 60` or
+/// `t >= 5 and t < 10`. Errors start with `context` (default "--metric SPEC").
+Metric parse_metric(const std::string& spec, const std::string& context = "");
 
-/// StudyError naming the first metric whose column the trajectory will not have.
-void check_metric_columns(const std::vector<Metric>& metrics,
-                          const std::vector<std::string>& columns);
+/// Compiles each metric's expression over `columns` (a trajectory's) and `parameters`;
+/// StudyError naming the metric and the unknown name or the syntax error.
+void bind_metrics(std::vector<Metric>& metrics, const std::vector<std::string>& columns,
+                  const std::vector<std::string>& parameters);
 
-/// The metric over `traj` (NaN when no sample falls in its window).
-double evaluate(const Metric& metric, const Trajectory& traj);
+/// A study's metrics, bound to `cm`'s trajectory columns and parameters: the model file's
+/// `metrics:` (errors located there, as ModelError) then those of `specs` (`--metric`; a name
+/// given twice is a StudyError).
+std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
+                                  const std::vector<std::string>& specs);
+
+/// The metric over `traj` with the case's `parameters` (NaN when no sample falls in its
+/// window); the metric must be bound to `traj`'s columns.
+double evaluate(const Metric& metric, const Trajectory& traj,
+                const std::vector<double>& parameters = {});
 
 /// What one case needs besides the shared compiled model.
 struct CaseInput {

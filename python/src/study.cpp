@@ -22,8 +22,7 @@ py::list run_cases(const PyModel& m, const std::vector<std::map<std::string, dou
         "state from the model file, so load it without initial= (or write them in the file)");
   std::vector<sweep::Metric> metrics;
   try {
-    for (const auto& s : metric_specs) metrics.push_back(sweep::parse_metric(s));
-    sweep::check_metric_columns(metrics, trajectory_columns(*p.compiled));
+    metrics = sweep::study_metrics(*p.model, *p.compiled, metric_specs);
   } catch (const sweep::StudyError& e) {
     throw py::value_error(e.what());
   }

@@ -18,6 +18,7 @@
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
 #include "lagrange/simulation.hpp"
+#include "lagrange/sweep.hpp"
 
 namespace lagrange::cli {
 
@@ -154,6 +155,8 @@ int run_simulate(const Options& opt) {
   SimulationOptions so = simulation_options(model, opt);
   p.dynamics->set_baumgarte(baumgarte_rate(model.stabilization, so.integrator.method));
   const std::vector<std::string> plot_columns = checked_plot_columns(opt, *cm);
+  // The model file's `metrics:`, checked before the run and printed with the summary.
+  const std::vector<sweep::Metric> metrics = sweep::study_metrics(model, *cm, {});
   if (!opt.report.empty()) check_report(opt.report, model);
   if (!p.initial.was_consistent && !opt.quiet) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
@@ -228,6 +231,11 @@ int run_simulate(const Options& opt) {
                             traj.at(rows - 1, cm->coordinate_names[i]));
       if (shown < cm->nq) last += fmt::format(", … ({} more in the CSV)", cm->nq - shown);
       fmt::print("  final state: {}\n", last);
+      std::string values;
+      for (const sweep::Metric& m : metrics)
+        values += fmt::format("{}{} = {:.10g}", values.empty() ? "" : ", ", m.name,
+                              sweep::evaluate(m, traj, p.dynamics->parameters()));
+      if (!values.empty()) fmt::print("  metrics: {}\n", values);
       if (!traj.stopped_by.empty()) {
         const StopSpec* fired = nullptr;
         for (const StopSpec& s : cm->stop_when)

@@ -60,7 +60,7 @@ StudyPlan plan(const Options& opt) {
     if (opt.samples > 0 && random.empty())
       throw sweep::StudyError("--samples draws the --random parameters; give --random too");
     plan.cases = sweep::make_cases(axes, random, opt.samples, opt.seed);
-    for (const auto& m : opt.metrics) plan.metrics.push_back(sweep::parse_metric(m));
+    for (const auto& m : opt.metrics) sweep::parse_metric(m);  // checked before the model is read
   } catch (const sweep::StudyError& e) {
     throw UsageError(e.what());
   }
@@ -145,7 +145,7 @@ Study set_up(const Options& opt) {
                                    known.empty() ? "none" : known));
     }
   try {
-    sweep::check_metric_columns(s.plan.metrics, trajectory_columns(*p.compiled));
+    s.plan.metrics = sweep::study_metrics(*p.model, *p.compiled, opt.metrics);
   } catch (const sweep::StudyError& e) {
     throw UsageError(e.what());
   }

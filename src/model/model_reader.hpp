@@ -162,6 +162,9 @@ class ModelReader {
   /// `stop_when: {name: "lhs < rhs"}`: the texts, checked for one comparison; their names are
   /// checked against the trajectory columns once the model is compiled.
   void read_stop_when(const YAML::Node& node);
+  /// `metrics: {name: AGG(EXPR[, WINDOW])}`, kept as text: their names are the trajectory's
+  /// columns, known once the model is compiled (src/sweep/metrics.cpp checks them).
+  void read_metrics(const YAML::Node& node);
 
   // read_generated.cpp — names and state that elements generate (docs/model-language.md).
   Model& model() { return m_; }

@@ -64,4 +64,14 @@ void ModelReader::read_stop_when(const YAML::Node& node) {
   }
 }
 
+void ModelReader::read_metrics(const YAML::Node& node) {
+  expect_map(node, "metrics (a map name: aggregate, e.g. peak: max(abs(theta)))");
+  check_keys(node, {}, "metrics");
+  for (const auto& kv : node) {
+    const std::string name = scalar(kv.first, "name of a metric");
+    m_.metrics.push_back(
+        MetricSpec{name, scalar(kv.second, fmt::format("metric '{}'", name)), src_.at(kv.second)});
+  }
+}
+
 }  // namespace lagrange::model

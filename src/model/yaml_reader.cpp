@@ -25,7 +25,7 @@ const std::vector<std::string>& top_level_keys() {
       "points",      "particles",  "gravity",     "kinetic",   "potential",
       "generalized_forces",        "forces",      "torques",   "springs",
       "dampers",     "constraints", "outputs",    "stabilization", "simulate",
-      "stop_when",   "visual"};  // visual: read by the report (src/io/report_visual.cpp)
+      "stop_when",   "metrics",    "visual"};  // visual: read by the report (src/io/report_visual.cpp)
   // clang-format on
   static const std::vector<std::string> all = [] {
     std::vector<std::string> k = keys;
@@ -94,6 +94,7 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "stabilization")) read_stabilization(*n);
   if (auto n = section(root, "simulate")) read_simulate(*n);
   if (auto n = section(root, "stop_when")) read_stop_when(*n);
+  if (auto n = section(root, "metrics")) read_metrics(*n);
   warn_angle_parameters();
   return m_;
 }

@@ -4,34 +4,20 @@
 
 #include <fmt/format.h>
 
-#include <map>
-
 #include "lagrange/error.hpp"
 #include "model/expression_parser.hpp"
+#include "simulation/row_expression.hpp"
 
 namespace lagrange {
 
 namespace {
 
-/// One side of a condition, parsed with names resolving to column or parameter symbols.
+/// One side of a condition as an expression of the row's names, errors located in the file.
 GiNaC::ex parse_side(const StopSpec& spec, const std::string& side, size_t offset,
-                     const std::map<std::string, GiNaC::symbol>& names) {
-  model::ParseContext ctx;
-  ctx.resolve = [&names](const std::string& name, size_t) -> std::optional<model::Value> {
-    if (auto it = names.find(name); it != names.end()) return model::Value::of(it->second);
-    // `p.r` for the columns p.r.x, p.r.y, p.r.z (any vector-valued output).
-    const auto x = names.find(name + ".x"), y = names.find(name + ".y"),
-               z = names.find(name + ".z");
-    if (x != names.end() && y != names.end() && z != names.end())
-      return model::Value::of(Vec3{x->second, y->second, z->second});
-    return std::nullopt;
-  };
+                     const RowSymbols& names) {
   SourceLoc at = spec.loc;
   try {
-    const model::Value v = model::parse_expression(side, ctx);
-    if (v.is_vector || v.is_matrix)
-      throw model::ExprError{0, "expected a scalar on each side, got a vector or matrix"};
-    return v.scalar;
+    return names.parse(side);
   } catch (const model::ExprError& e) {
     if (at.column > 0) at.column += static_cast<int>(offset + e.offset);
     throw ModelError(at, fmt::format("{} (in stop condition '{}'; the columns and parameters "
@@ -45,12 +31,7 @@ GiNaC::ex parse_side(const StopSpec& spec, const std::string& side, size_t offse
 StopConditions::StopConditions(const CompiledModel& cm, const std::vector<std::string>& columns)
     : specs_(cm.stop_when), columns_(columns.size()), parameters_(cm.np) {
   if (specs_.empty()) return;
-  std::map<std::string, GiNaC::symbol> names;
-  std::vector<GiNaC::symbol> inputs;
-  // Columns and parameters share the model's one namespace, so no name is both.
-  for (const std::string& c : columns) inputs.push_back(names.emplace(c, c).first->second);
-  for (const std::string& p : cm.parameter_names)
-    inputs.push_back(names.emplace(p, p).first->second);
+  const RowSymbols names(columns, cm.parameter_names);
   std::vector<GiNaC::ex> g;
   for (const StopSpec& s : specs_) {
     const size_t at = s.text.find_first_of("<>");  // the reader checked there is exactly one
@@ -58,8 +39,8 @@ StopConditions::StopConditions(const CompiledModel& cm, const std::vector<std::s
     const GiNaC::ex rhs = parse_side(s, s.text.substr(at + 1), at + 1, names);
     g.push_back(s.text[at] == '<' ? rhs - lhs : lhs - rhs);
   }
-  tape_ = Tape::compile(g, inputs);
-  in_.resize(inputs.size());
+  tape_ = Tape::compile(g, names.inputs());
+  in_.resize(names.inputs().size());
   work_.resize(tape_.work_size());
 }
 

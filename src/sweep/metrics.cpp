@@ -1,13 +1,17 @@
-// Metrics of a case's trajectory: max, min, mean, final, initial and drift of a column or of its
-// absolute value, optionally over a time window (docs/theory.md §9.2).
+// Metrics of a case's trajectory: max, min, mean, final, initial and drift of an expression of
+// the columns and the parameters, optionally over a time window (docs/theory.md §9.2).
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
+#include "lagrange/error.hpp"
 #include "lagrange/sweep.hpp"
+#include "model/expression_parser.hpp"
+#include "simulation/row_expression.hpp"
 #include "sweep/spec_text.hpp"
 
 namespace lagrange::sweep {
@@ -15,8 +19,8 @@ namespace lagrange::sweep {
 namespace {
 
 const char* kForm =
-    "AGG(COLUMN), AGG(abs(COLUMN)) or AGG(COLUMN, t > T) with AGG one of max, "
-    "min, mean, final, initial, drift";
+    "AGG(EXPR) or AGG(EXPR, t > T), EXPR of the trajectory's columns and the parameters, with "
+    "AGG one of max, min, mean, final, initial, drift";
 
 // `t > 60`, `t >= 5 and t < 10`: the bounds of the window, into `m`.
 void parse_window(const std::string& text, const std::string& context, Metric& m) {
@@ -55,9 +59,9 @@ bool in_window(const Metric& m, double t) {
 
 }  // namespace
 
-Metric parse_metric(const std::string& spec) {
+Metric parse_metric(const std::string& spec, const std::string& where) {
   Metric m;
-  const std::string context = fmt::format("--metric {}", spec);
+  const std::string context = where.empty() ? fmt::format("--metric {}", spec) : where;
   std::string expr = trim(spec);
   const auto open = expr.find('(');
   if (const auto eq = expr.find('='); eq != std::string::npos && eq < open) {
@@ -94,40 +98,84 @@ Metric parse_metric(const std::string& spec) {
     if (inner[i] == ')') --depth;
     if (inner[i] == ',' && depth == 0) comma = i;
   }
-  std::string arg = trim(inner.substr(0, comma));
+  m.expression = trim(inner.substr(0, comma));
   if (comma != std::string::npos) parse_window(trim(inner.substr(comma + 1)), context, m);
-  if (arg.rfind("abs(", 0) == 0 && arg.back() == ')') {
-    m.absolute = true;
-    arg = trim(arg.substr(4, arg.size() - 5));
-  }
-  if (arg.empty() || arg.find_first_of("(), ") != std::string::npos)
-    throw StudyError(
-        fmt::format("{}: expected a trajectory column or abs(column), got '{}'", context, arg));
-  m.column = arg;
+  if (m.expression.empty())
+    throw StudyError(fmt::format("{}: expected {}, got nothing to aggregate", context, kForm));
   return m;
 }
 
-void check_metric_columns(const std::vector<Metric>& metrics,
-                          const std::vector<std::string>& columns) {
-  for (const auto& m : metrics)
-    if (std::find(columns.begin(), columns.end(), m.column) == columns.end()) {
+void bind_metrics(std::vector<Metric>& metrics, const std::vector<std::string>& columns,
+                  const std::vector<std::string>& parameters) {
+  const RowSymbols names(columns, parameters);
+  for (Metric& m : metrics) {
+    GiNaC::ex e;
+    try {
+      e = names.parse(m.expression);
+    } catch (const model::ExprError& err) {
       std::string known;
       for (const auto& c : columns) known += (known.empty() ? "" : ", ") + c;
-      throw StudyError(fmt::format("--metric {}: no column '{}' in the trajectory (columns: {})",
-                                   m.text, m.column, known));
+      throw StudyError(
+          fmt::format("metric '{}': {} in '{}' (the names are the trajectory's "
+                      "columns and the parameters; columns: {})",
+                      m.name, err.message, m.expression, known));
     }
+    m.tape = std::make_shared<const Tape>(Tape::compile({e}, names.inputs()));
+    m.columns = columns.size();
+  }
+}
+
+std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
+                                  const std::vector<std::string>& specs) {
+  std::vector<Metric> metrics;
+  std::vector<SourceLoc> where;  // of the model file's metrics
+  for (const MetricSpec& spec : model.metrics) {
+    try {
+      metrics.push_back(parse_metric(spec.name + "=" + spec.text, "metric " + spec.name));
+    } catch (const StudyError& e) {
+      throw ModelError(spec.loc, e.what());
+    }
+    where.push_back(spec.loc);
+  }
+  for (const std::string& s : specs) metrics.push_back(parse_metric(s));
+  for (size_t i = 0; i < metrics.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (metrics[i].name == metrics[j].name)
+        throw StudyError(
+            fmt::format("metric '{}' is given twice{}", metrics[i].name,
+                        j < where.size() ? " (in the model file and by --metric)" : ""));
+  const std::vector<std::string> columns = trajectory_columns(cm);
+  for (size_t i = 0; i < metrics.size(); ++i) {
+    std::vector<Metric> one{metrics[i]};
+    try {
+      bind_metrics(one, columns, cm.parameter_names);
+    } catch (const StudyError& e) {
+      if (i < where.size()) throw ModelError(where[i], e.what());
+      throw;
+    }
+    metrics[i] = std::move(one.front());
+  }
+  return metrics;
 }
 
 // docs/theory.md §9.2: the aggregate over the samples in the window, in time order.
-double evaluate(const Metric& metric, const Trajectory& traj) {
-  const size_t nc = traj.columns.size(), col = traj.column_index(metric.column);
-  const size_t tcol = traj.column_index("t");
+double evaluate(const Metric& metric, const Trajectory& traj,
+                const std::vector<double>& parameters) {
+  const size_t nc = traj.columns.size(), tcol = traj.column_index("t");
+  if (!metric.tape || metric.columns != nc || metric.tape->num_inputs() != nc + parameters.size())
+    throw std::logic_error(fmt::format(
+        "metric {}: bound to {} columns and {} parameters, evaluated on {} and {}", metric.text,
+        metric.columns, metric.tape ? metric.tape->num_inputs() - metric.columns : 0, nc,
+        parameters.size()));
+  std::vector<double> in(nc + parameters.size()), work(metric.tape->work_size());
+  std::copy(parameters.begin(), parameters.end(), in.begin() + static_cast<long>(nc));
   double result = std::numeric_limits<double>::quiet_NaN(), sum = 0.0, first = 0.0;
   size_t count = 0;
   for (size_t r = 0; r < traj.rows(); ++r) {
     if (!in_window(metric, traj.data[r * nc + tcol])) continue;
-    double x = traj.data[r * nc + col];
-    if (metric.absolute) x = std::abs(x);
+    std::copy_n(traj.data.begin() + static_cast<long>(r * nc), nc, in.begin());
+    double x = 0.0;
+    metric.tape->eval(in.data(), &x, work.data());
     switch (metric.aggregate) {
       case Metric::Aggregate::Max:
         result = count == 0 ? x : std::max(result, x);

@@ -68,7 +68,7 @@ CaseResult run_case(Dynamics& dyn, const CaseInput& input, const std::vector<Met
   result.reason = traj.message;
   result.failure_time = traj.failure_time;
   if (traj.rows() > 0)
-    for (const auto& m : metrics) result.metrics.push_back(evaluate(m, traj));
+    for (const auto& m : metrics) result.metrics.push_back(evaluate(m, traj, input.parameters));
   else
     result.metrics.assign(metrics.size(), std::nan(""));
   result.wall_seconds =

@@ -120,7 +120,7 @@ def test_failing_cases_are_rows_with_their_reason():
 
 @pytest.mark.parametrize("grid, metrics, fragment", [
     ({"k": [1.0]}, ["final(theta1)"], "no parameter 'k'"),
-    ({"l2": [1.0]}, ["max(theta3)"], "no column 'theta3'"),
+    ({"l2": [1.0]}, ["max(theta3)"], "unknown name 'theta3'"),
     ({"l2": [1.0]}, ["median(theta1)"], "unknown aggregate"),
     ({"l2": []}, ["final(theta1)"], "at least one parameter"),
 ])

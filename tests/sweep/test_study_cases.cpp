@@ -97,6 +97,15 @@ TEST(StudyCases, DrawsHaveTheDistributionsMoments) {
   EXPECT_GT(logn[2], 0.0);
 }
 
+/// The metric `spec` bound to `traj`'s columns and the parameters `names` = `values`.
+double metric_of(const std::string& spec, const Trajectory& traj,
+                 const std::vector<std::string>& names = {},
+                 const std::vector<double>& values = {}) {
+  std::vector<Metric> m{parse_metric(spec)};
+  bind_metrics(m, traj.columns, names);
+  return evaluate(m.front(), traj, values);
+}
+
 // x = sin t sampled at t = 0, 0.1, …, 10: the metrics against their closed forms on the grid.
 TEST(StudyCases, MetricsOfASampledSine) {
   Trajectory traj;
@@ -105,25 +114,48 @@ TEST(StudyCases, MetricsOfASampledSine) {
     traj.data.push_back(0.1 * i);
     traj.data.push_back(std::sin(0.1 * i));
   }
-  EXPECT_EQ(evaluate(parse_metric("final(x)"), traj), std::sin(10.0));
-  EXPECT_EQ(evaluate(parse_metric("initial(x)"), traj), 0.0);
-  EXPECT_NEAR(evaluate(parse_metric("max(x)"), traj), 1.0, 1e-3);   // near t = π/2
-  EXPECT_NEAR(evaluate(parse_metric("min(x)"), traj), -1.0, 1e-3);  // near t = 3π/2
+  EXPECT_EQ(metric_of("final(x)", traj), std::sin(10.0));
+  EXPECT_EQ(metric_of("initial(x)", traj), 0.0);
+  EXPECT_NEAR(metric_of("max(x)", traj), 1.0, 1e-3);   // near t = π/2
+  EXPECT_NEAR(metric_of("min(x)", traj), -1.0, 1e-3);  // near t = 3π/2
   // After t = 5 the next extremum is at 5π/2 ≈ 7.85: the sample at 7.9.
-  EXPECT_EQ(evaluate(parse_metric("max(abs(x), t > 5)"), traj), std::sin(0.1 * 79));
+  EXPECT_EQ(metric_of("max(abs(x), t > 5)", traj), std::sin(0.1 * 79));
   // sin rises over [5, 7]: the last sample before 7 (the bound excluded), then with it.
-  EXPECT_EQ(evaluate(parse_metric("max(x, t > 5 and t < 7)"), traj), std::sin(0.1 * 69));
-  EXPECT_EQ(evaluate(parse_metric("max(x, t > 5 and t <= 7)"), traj), std::sin(0.1 * 70));
+  EXPECT_EQ(metric_of("max(x, t > 5 and t < 7)", traj), std::sin(0.1 * 69));
+  EXPECT_EQ(metric_of("max(x, t > 5 and t <= 7)", traj), std::sin(0.1 * 70));
   // mean over 0 ≤ t ≤ 2π of a sine is 0 up to the grid's trapezoid-free sum.
-  EXPECT_NEAR(evaluate(parse_metric("mean(x, t <= 6.25)"), traj), 0.0, 0.02);
+  EXPECT_NEAR(metric_of("mean(x, t <= 6.25)", traj), 0.0, 0.02);
   // drift: the largest change from the window's first sample, sin(0.1·i) − sin(0.5) over t ≥ 0.5:
   // at 3π/2 (t = 4.7).
-  EXPECT_EQ(evaluate(parse_metric("drift(x, t >= 0.5)"), traj),
+  EXPECT_EQ(metric_of("drift(x, t >= 0.5)", traj),
             std::abs(std::sin(0.1 * 47) - std::sin(0.1 * 5)));
   const Metric named = parse_metric("peak=max(abs(x))");
   EXPECT_EQ(named.name, "peak");
-  EXPECT_TRUE(std::isnan(evaluate(parse_metric("max(x, t > 20)"), traj)));
-  EXPECT_THROW(check_metric_columns({parse_metric("max(y)")}, traj.columns), StudyError);
+  EXPECT_TRUE(std::isnan(metric_of("max(x, t > 20)", traj)));
+  std::vector<Metric> unknown{parse_metric("max(y)")};
+  EXPECT_THROW(bind_metrics(unknown, traj.columns, {}), StudyError);
+}
+
+// Expressions of several columns and of the parameters: a point on a circle of radius R,
+// (x, y) = R (cos t, sin t), sampled at t = 0, 0.1, …, 10.
+TEST(StudyCases, MetricsOfExpressionsOfColumnsAndParameters) {
+  const double R = 2.5;
+  Trajectory traj;
+  traj.columns = {"t", "x", "y"};
+  for (int i = 0; i <= 100; ++i)
+    for (double v : {0.1 * i, R * std::cos(0.1 * i), R * std::sin(0.1 * i)}) traj.data.push_back(v);
+  // The radius is constant, so every aggregate of it is R (to rounding), and of r/R is 1.
+  EXPECT_NEAR(metric_of("max(sqrt(x^2 + y^2))", traj), R, 4e-15);
+  EXPECT_NEAR(metric_of("min(sqrt(x^2 + y^2))", traj), R, 4e-15);
+  EXPECT_NEAR(metric_of("drift(x^2 + y^2)", traj), 0.0, 1e-13);
+  EXPECT_NEAR(metric_of("mean(sqrt(x^2 + y^2) / R)", traj, {"R"}, {R}), 1.0, 4e-15);
+  // x·y = R²/2 sin 2t peaks at t = π/4 + kπ; of the samples, t = 0.8 comes closest (sin 1.6).
+  EXPECT_EQ(metric_of("max(x*y)", traj), (R * std::cos(0.1 * 8)) * (R * std::sin(0.1 * 8)));
+  // A name that is neither a column nor a parameter, and a syntax error, are refused at bind.
+  for (const char* bad : {"max(x + z)", "max(x +)"}) {
+    std::vector<Metric> m{parse_metric(bad)};
+    EXPECT_THROW(bind_metrics(m, traj.columns, {}), StudyError) << bad;
+  }
 }
 
 TEST(StudyCases, SummaryKeepsWholeRowsAcrossAResume) {

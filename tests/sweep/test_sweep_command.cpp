@@ -126,6 +126,50 @@ TEST(SweepCommand, FailingCasesAreRecordedAndTheRestFinish) {
   for (const size_t ok : {0, 2}) EXPECT_LT(std::stod(rows[ok].at("drift(energy)")), 1e-6);
 }
 
+// Metrics in the model file, of several columns and of the parameters, beside --metric ones:
+// max(x2 / (l1 + l2)) times l1 + l2 of each case is that case's max(x2), so the parameters a
+// metric reads are the case's own; a bad one is refused at its line before anything is written.
+TEST(SweepCommand, ModelFileMetricsReadTheCaseParameters) {
+  ScratchDir dir("sweep-model-metrics");
+  const std::string model = (dir.path() / "metrics.yaml").string();
+  spit(model, slurp(kModel) + "metrics:\n  reach: max(x2 / (l1 + l2))\n  swing: final(theta1)\n");
+  const fs::path study = dir.path() / "study";
+  const RunResult r = run_lagrange(
+      dir.path(), {"sweep", model, "--vary", "l2=0.5,1,2", "--metric", "max(x2)", "--metric",
+                   "final(theta1)", "--t-end", "2", "-o", study.string(), "-j", "2", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<Row> rows = read_summary(study / "summary.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  for (const Row& row : rows) {
+    ASSERT_EQ(row.at("status"), "ok");
+    const double l2 = std::stod(row.at("l2")), reach = std::stod(row.at("reach"));
+    EXPECT_NEAR(reach * (1.0 + l2), std::stod(row.at("max(x2)")), 1e-12 * (1.0 + l2)) << l2;
+    EXPECT_EQ(row.at("swing"), row.at("final(theta1)"));
+  }
+
+  // `simulate` prints the model file's metrics with its summary: swing is the final theta1.
+  const RunResult sim = run_lagrange(
+      dir.path(), {"simulate", model, "--t-end", "2", "-o", (dir.path() / "run.csv").string()});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_NE(sim.out.find("  metrics: reach = "), std::string::npos) << sim.out;
+  const std::string final_line = sim.out.substr(sim.out.find("final state: theta1 = ") + 22);
+  const double theta1 = std::stod(final_line),
+               swing = std::stod(sim.out.substr(sim.out.find("swing = ") + 8));
+  EXPECT_NEAR(swing, theta1, 1e-5 * std::abs(theta1));  // printed with 6 and 10 digits
+
+  spit(model, slurp(kModel) + "metrics:\n  bad: max(theta3)\n");
+  fs::remove_all(study);
+  const RunResult bad = run_lagrange(
+      dir.path(), {"sweep", model, "--vary", "l2=1,2", "--t-end", "1", "-o", study.string()});
+  EXPECT_NE(bad.exit_code, 0);
+  const std::string base = slurp(kModel);  // `bad:` is on the second line after it
+  const auto line = std::count(base.begin(), base.end(), '\n') + 2;
+  EXPECT_NE(bad.err.find("metrics.yaml:" + std::to_string(line) + ":"), std::string::npos)
+      << bad.err;
+  EXPECT_NE(bad.err.find("unknown name 'theta3'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(study / "summary.csv"));
+}
+
 // SIGINT part-way: exit 130 with the finished cases kept; --resume runs only the others and
 // the summary equals that of a study never stopped, each case once.
 TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
@@ -178,7 +222,7 @@ TEST(SweepCommand, BadInputIsRefusedBeforeAnythingRuns) {
       {{"--vary", "l2="}, "no values"},
       {{"--random", "m2=normal(1)", "--samples", "3"}, "two numbers"},
       {{"--random", "m2=normal(1,0.1)"}, "--samples"},
-      {{"--vary", "l2=1,2", "--metric", "max(theta3)"}, "no column 'theta3'"},
+      {{"--vary", "l2=1,2", "--metric", "max(theta3)"}, "unknown name 'theta3'"},
       {{"--metric", "max(theta1)"}, "nothing varies"},
   };
   for (const auto& [extra, fragment] : bad) {
