@@ -114,9 +114,10 @@ const char* kJacobianC = R"C(
 int lagrange_jacobian(double t, const double* q, const double* v, const double* u,
                       const double* p, double alpha, double* a_q, double* a_v, double* a_u) {
   const int n = LAGRANGE_N, nk = LAGRANGE_N + LAGRANGE_M, nc = LJ_NCOL;
+  /* qdot, a and lambda, in, out, R, M, then Y = M^-1 G^T, G and S = G M^-1 G^T (constraints). */
   double* work = (double*)malloc(sizeof(double) * (LAGRANGE_NQ + nk + LJ_NIN + LJ_NOUT +
                                                    (size_t)nk * nc + (size_t)n * n +
-                                                   (size_t)(LAGRANGE_M + 1) * (n + LAGRANGE_M)));
+                                                   (size_t)LAGRANGE_M * (2 * n + LAGRANGE_M) + 1));
   double *qdot, *a, *lambda, *in, *out, *R, *M, *Y, *S;
   int i, j, r, k, e, rc;
   if (!work) return 3;
@@ -147,7 +148,10 @@ int lagrange_jacobian(double t, const double* q, const double* v, const double* 
     }
   }
   for (i = 0; i < n * n; ++i) M[i] = 0.0;
-  for (e = 0; e < LJ_NM; ++e) M[lj_M_row[e] * n + lj_M_col[e]] = M[lj_M_col[e] * n + lj_M_row[e]] = out[e];
+  for (e = 0; e < LJ_NM; ++e) {
+    M[lj_M_row[e] * n + lj_M_col[e]] = out[e];
+    M[lj_M_col[e] * n + lj_M_row[e]] = out[e];
+  }
   if (lg_chol(M, n)) { free(work); return 1; }
 #if LAGRANGE_M > 0
   /* Range space, as lagrange_dynamics: Y = M^-1 G^T (rows), S = G Y, lambda' = S^-1 (G x - r2). */
