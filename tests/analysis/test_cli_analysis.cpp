@@ -119,6 +119,24 @@ generalized_forces: {x: F}
   EXPECT_NE(r.output.find("stopped at x = 0.5"), std::string::npos) << r.output;
 }
 
+// a = −(x² + 1): never zero, but the Jacobian −2x is regular away from 0, so Newton walks to the
+// minimum of |a| at x = 0 and must stop there, saying so (exit 3), not print a state.
+TEST(CliTrim, NoRootWithARegularJacobianExitsThree) {
+  const auto model = write_model("no_root.yaml", R"(
+name: no equilibrium
+parameters: {m: 1.0}
+coordinates:
+  x: {initial: 1.0, rate: 0}
+kinetic: m/2*der(x)^2
+potential: m*(x^3/3 + x)
+)");
+  const Result r = run("trim " + model.string());
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_EQ(r.output.find("coordinates:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("trim: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stopped at x = "), std::string::npos) << r.output;
+}
+
 TEST(CliTrim, UnknownOrNoFreeCoordinatesAreUsageErrors) {
   Result r = run("trim " + example("pendulum.yaml") + " --free phi");
   EXPECT_EQ(r.code, 2) << r.output;
