@@ -5,6 +5,7 @@
 //   bench_linearize                the 50- and 200-segment tethered balloon (bench_tether's, and
 //                                  in a uniform wind), the rigid AP2 on 50 segments, the Panda
 //                                  (examples/robots/panda.urdf): a table
+//   bench_linearize TEXT           only the models whose label contains TEXT
 //   bench_linearize pendulum N     the N-link pendulum (bench/n_link_pendulum.hpp, PerLink) at
 //                                  its initial state: one JSON line with A and the times, read
 //                                  by bench/linearize_vs_sympy.py
@@ -84,9 +85,9 @@ struct Measured {
   LinearModel lin;
 };
 
-// `fixed_last`: trim holds the last coordinate (the Panda's flange joint, along which gravity
-// does nothing: no isolated equilibrium otherwise).
-Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_last = false) {
+// `fixed_ends`: trim holds the first and last coordinates (the Panda's base and flange joints,
+// about vertical or distal axes along which gravity does nothing: no isolated equilibrium else).
+Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_ends = false) {
   Measured r;
   const bench::Stopwatch clock;
   r.build = b.times.build();
@@ -118,9 +119,9 @@ Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_last = false) 
   try {
     const auto s0 = clock.now().wall;
     TrimOptions options;
-    if (fixed_last) {
+    if (fixed_ends) {
       options.free.assign(cm.nv, true);
-      options.free.back() = false;
+      options.free.front() = options.free.back() = false;
     }
     const TrimResult t = trim(jac, dyn, 0.0, q, options);
     r.trim += fmt::format("trim {:.3g} s, {} iterations, max |a| = {:.1e}", clock.now().wall - s0,
@@ -163,7 +164,7 @@ int main(int argc, char** argv) {
   struct Case {
     std::string label;
     std::function<bench::BuiltModel()> build;
-    bool fixed_last = false;
+    bool fixed_ends = false;
   };
   const std::string panda = std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots/panda.urdf";
   const std::vector<Case> cases{
@@ -186,8 +187,9 @@ int main(int argc, char** argv) {
              "model", "nv", "build s", "diff. s", "forward us", "jacobian", "jac/fwd",
              "FD (2n fwd)", "FD/jac", "linearize s", "|J-FD|", "trim");
   for (const Case& c : cases) {
+    if (argc == 2 && c.label.find(argv[1]) == std::string::npos) continue;  // one model only
     bench::BuiltModel b = c.build();
-    const Measured m = measure(b, true, c.fixed_last);
+    const Measured m = measure(b, true, c.fixed_ends);
     fmt::print(
         "{:<24} {:>5} {:>8.3g} {:>9.3g} {:>10.3g} {:>8.3g}us {:>8.3g} {:>9.3g}us {:>8.3g} "
         "{:>11.3g} {:>9.1e}  {}\n",

@@ -49,7 +49,7 @@ def main():
     ap.add_argument("--n", type=int, nargs="*", default=list(range(2, 11)), help="link counts")
     args = ap.parse_args()
     print("| N | SymPy: model → A [s] | SymPy linearize alone [s] | lagrange: model → A [s] | ratio "
-          "| exact Jacobian [µs] | FD through forward [µs] | FD / exact | max |A − A_SymPy| / max |A| "
+          "| exact Jacobian [µs] | FD through forward [µs] | FD / exact | ‖A − A_SymPy‖_max / ‖A‖_max "
           "| FD vs exact |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for n in args.n:
