@@ -37,7 +37,7 @@ size_t named_input(const CompiledModel& cm, const std::string& name) {
 constexpr long kSparseKkt = 120;
 
 // [M Gᵀ; G 0] X = R by a sparse LU (COLAMD ordering, threshold partial pivoting; the matrix is
-// indefinite). AnalysisError when it is singular or the solution is not finite.
+// indefinite). AnalysisError when it is singular or the solution of a finite R is not finite.
 Eigen::MatrixXd sparse_kkt_solve(const Eigen::MatrixXd& M, const Eigen::MatrixXd& G,
                                  const Eigen::MatrixXd& R, double t) {
   const long n = M.rows(), m = G.rows();
@@ -57,7 +57,9 @@ Eigen::MatrixXd sparse_kkt_solve(const Eigen::MatrixXd& M, const Eigen::MatrixXd
   lu.compute(K);
   Eigen::MatrixXd X;
   if (lu.info() == Eigen::Success) X = lu.solve(R);
-  if (lu.info() != Eigen::Success || !X.allFinite())
+  // A right-hand side that is not finite (a derivative of |x| at 0) passes through to the
+  // caller, which says the dynamics are not differentiable there.
+  if (lu.info() != Eigen::Success || (!X.allFinite() && R.allFinite()))
     throw AnalysisError(
         fmt::format("the KKT matrix [M Gᵀ; G 0] is singular at t = {}: redundant constraints "
                     "or a mass matrix singular on the constraint manifold",
