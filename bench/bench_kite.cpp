@@ -21,25 +21,7 @@
 #include "bench_support.hpp"
 #include "lagrange/integrator.hpp"
 #include "lagrange/simulation.hpp"
-
-namespace {
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const size_t at = text.find(from);
-  if (at == std::string::npos) throw std::runtime_error("rigid_kite_ap2.yaml lacks " + from);
-  return text.replace(at, from.size(), to);
-}
-
-std::string kite_yaml(int segments) {
-  std::ifstream in(std::string(LAGRANGE_SOURCE_DIR) + "/examples/rigid_kite_ap2.yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = replaced(ss.str(), "segments: 5", fmt::format("segments: {}", segments));
-  return replaced(text, "wind: {speed: W}",
-                  "wind: {profile: logarithmic, speed: W, reference_height: 10, roughness: 0.1}");
-}
-
-}  // namespace
+#include "tether_models.hpp"
 
 int main(int argc, char** argv) {
   using namespace lagrange;
@@ -66,7 +48,7 @@ int main(int argc, char** argv) {
   const std::vector<Case> cases = {{5, 1e-6, true}, {50, 1e-6, true}, {200, 1e-6, all}};
   for (const Case& c : cases) {
     const auto b0 = clock.now();
-    bench::BuiltModel b = bench::build_model(kite_yaml(c.n), fmt::format("<ap2 N={}>", c.n));
+    bench::BuiltModel b = bench::build_model(bench::kite_yaml(c.n), fmt::format("<ap2 N={}>", c.n));
     const double build = clock.now().cpu - b0.cpu;
     const CompiledModel& cm = *b.compiled;
     call[c.n] = bench::forward_call_seconds(b);

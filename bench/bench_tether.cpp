@@ -22,40 +22,7 @@
 #include "lagrange/analysis.hpp"
 #include "lagrange/integrator.hpp"
 #include "lagrange/simulation.hpp"
-
-namespace {
-
-std::string balloon_yaml(int segments) {
-  return fmt::format(R"(parameters: {{M: 2.0, B: 60, g: 9.81, L: 50, mu: 0.0046, d: 0.002, U: 8,
-             z0: 0.1, href: 10, k: 0.6}}
-coordinates:
-  x: {{initial: 10}}
-  y: {{initial: 0}}
-  z: {{initial: 48}}
-points:
-  balloon: [x, y, z]
-particles:
-  balloon: M
-gravity: [0, 0, -g]
-wind: {{profile: logarithmic, speed: U, reference_height: href, roughness: z0}}
-forces:
-  - point: balloon
-    force: [0, 0, B]
-  - point: balloon
-    force: -k*norm(vel(balloon) - [U*log(z/z0)/log(href/z0), 0, 0])*(vel(balloon) - [U*log(z/z0)/log(href/z0), 0, 0])
-tethers:
-  main:
-    between: [[0, 0, 0], balloon]
-    segments: {}
-    length: L
-    mass_per_length: mu
-    diameter: d
-    drag: simple
-)",
-                     segments);
-}
-
-}  // namespace
+#include "tether_models.hpp"
 
 int main(int argc, char** argv) {
   using namespace lagrange;
@@ -81,7 +48,8 @@ int main(int argc, char** argv) {
   for (int n : {10, 50, 100, 200}) {
     if (n > up_to) break;
     const auto b0 = clock.now();
-    bench::BuiltModel b = bench::build_model(balloon_yaml(n), fmt::format("<balloon N={}>", n));
+    bench::BuiltModel b =
+        bench::build_model(bench::balloon_yaml(n), fmt::format("<balloon N={}>", n));
     const double build = clock.now().cpu - b0.cpu;
     const CompiledModel& cm = *b.compiled;
     call[n] = bench::forward_call_seconds(b);

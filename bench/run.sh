@@ -16,7 +16,7 @@ python=/usr/bin/python3  # Debian's python3 has sympy and numpy (docs/benchmarks
 out=${LAGRANGE_BENCH_OUT:-$build/bench-results}
 
 for exe in bench_pendulum bench_cartesian_chain bench_tether bench_kite bench_stepper \
-  bench_elastic_kite long_run work_precision; do
+  bench_elastic_kite bench_linearize long_run work_precision; do
   if [[ ! -x $build/bench/$exe ]]; then
     echo "$0: $build/bench/$exe not found; build it first: cmake --build $build --target benchmarks" >&2
     exit 1
@@ -50,6 +50,10 @@ if [[ -d $build/python/lagrange ]]; then
 else
   echo "(the Python stepper is not measured: build the _lagrange target)"
 fi
+echo
+echo "== linearise and trim: tethers, kite, Panda; the N-link pendulum against SymPy's linearize =="
+"$build/bench/bench_linearize" | tee "$out/linearize.md"
+"$python" "$here/linearize_vs_sympy.py" --bench "$build/bench/bench_linearize" | tee -a "$out/linearize.md"
 echo
 echo "== lagrange from Python against sympy.physics.mechanics (N-link pendulum, same run) =="
 if [[ -d $build/python/lagrange ]]; then

@@ -54,6 +54,10 @@ class DynamicsJacobian {
   /// Structural non-zeros of the derivatives (the sparsity the tape keeps).
   size_t nonzeros() const { return pattern_.size(); }
   const Tape& tape() const { return tape_; }
+  /// The tape's outputs: value_count() values (the dynamics tape's up to ∂C/∂q, then the model
+  /// outputs), then one derivative per pattern() entry (value index, column).
+  size_t value_count() const { return values_; }
+  const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
 
   /// Values and derivatives at (t, q, v) with `dyn`'s parameter values and Baumgarte rate α.
   /// The accelerations come from dyn.forward (the one KKT path); their derivatives from the
@@ -141,15 +145,25 @@ std::vector<Mode> modes(const LinearModel& lin, size_t components = 4);
 
 /// Options of trim().
 struct TrimOptions {
-  std::vector<bool> free;  ///< per tangent coordinate (nv): varied by Newton; empty = all
-  double tol = 1e-10;      ///< on max |a| (and max |C| for constrained models)
+  /// Per tangent coordinate (nv): varied by Newton. Empty: all, except the coordinates that
+  /// move at a held rate (`steady`), whose value is only the phase of the steady motion.
+  std::vector<bool> free;
+  /// Per velocity (nv): held at its value in v0, a steady state (docs/theory.md §5.5); the
+  /// velocities not held are 0. Empty: none held, an equilibrium. Plain coordinates only.
+  std::vector<bool> steady;
+  /// Per velocity (nv): a held rate that Newton varies instead (its v0 value is the start).
+  std::vector<bool> free_rates;
+  double tol = 1e-10;  ///< on max |a| (and max |C| for constrained models)
   int max_iterations = 50;
 };
 
-/// Result of trim(): the equilibrium and how it was found.
+/// Result of trim(): the equilibrium or steady state and how it was found.
 struct TrimResult {
-  std::vector<double> q, v;  ///< v = 0
-  double residual = 0.0;     ///< max |a| at q
+  std::vector<double> q, v;  ///< v: the held rates, 0 elsewhere
+  double residual = 0.0;     ///< max |a| at (q, v)
+  /// max |ȧ| = max |∂a/∂q q̇| along the steady motion: 0 when the moving coordinates do not
+  /// enter the accelerations (cyclic), else the state is only quasi-steady. 0 at equilibrium.
+  double drift = 0.0;
   int iterations = 0;
 };
 
@@ -158,5 +172,11 @@ struct TrimResult {
 /// step (docs/theory.md §5.5). Throws AnalysisError saying why and where it stopped.
 TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
                 const TrimOptions& options = {});
+
+/// A steady state: the rates options.steady held at their values in v0 (or varied, with
+/// options.free_rates), the other velocities 0, a(q, v) = 0 (docs/theory.md §5.5). As trim()
+/// above; std::invalid_argument for held rates of a free body or flags of the wrong size.
+TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
+                const std::vector<double>& v0, const TrimOptions& options);
 
 }  // namespace lagrange

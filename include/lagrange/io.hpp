@@ -11,6 +11,8 @@
 
 namespace lagrange {
 
+class DynamicsJacobian;  // lagrange/analysis.hpp
+
 /// CSV with a header row and 17 significant digits, written to a temporary name and renamed
 /// when complete; beside it `path.json` records status ("complete", "failed", "interrupted"),
 /// the reason and run statistics.
@@ -55,6 +57,11 @@ std::string format_manipulator(const ManipulatorForm& form, const std::string& f
 /// Standalone C99 source (header + implementation) evaluating the dynamics
 /// a = f(t, q, v, u, p) with the KKT solve; files lagrange_model.h/.c written into `dir`.
 void export_c(const CompiledModel& model, const std::string& dir);
+
+/// export_c, and also the exact derivatives ∂a/∂q, ∂a/∂v, ∂a/∂u (u: the model's inputs) with
+/// their CSC sparsity patterns, in lagrange_jacobian.h/.c (docs/theory.md §5.7). `jac` must
+/// differentiate by the model's inputs in order and no outputs (std::invalid_argument).
+void export_c_jacobian(const DynamicsJacobian& jac, const std::string& dir);
 
 /// C99 of the manipulator form — D(q), C(q, q̇) q̇, g(q), inverse and forward dynamics — in
 /// lagrange_manipulator.h/.c with an example main.c in `dir`. Throws std::invalid_argument for a

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <map>
 
@@ -27,6 +29,42 @@ size_t named_input(const CompiledModel& cm, const std::string& name) {
   throw std::invalid_argument(
       fmt::format("no input or parameter '{}' in the model (expected one of: {})", name,
                   known.empty() ? "none" : known));
+}
+
+// Above this many KKT rows the differentiated system is factorised sparse: a tether's
+// [M Gᵀ; G 0] is banded, and its dense LU with nq + nv right-hand sides cost more than central
+// differences through the forward call at 200 segments (docs/benchmarks.md).
+constexpr long kSparseKkt = 120;
+
+// [M Gᵀ; G 0] X = R by a sparse LU (COLAMD ordering, threshold partial pivoting; the matrix is
+// indefinite). AnalysisError when it is singular or the solution of a finite R is not finite.
+Eigen::MatrixXd sparse_kkt_solve(const Eigen::MatrixXd& M, const Eigen::MatrixXd& G,
+                                 const Eigen::MatrixXd& R, double t) {
+  const long n = M.rows(), m = G.rows();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (long j = 0; j < n; ++j)
+    for (long i = 0; i < n; ++i)
+      if (M(i, j) != 0.0) entries.emplace_back(i, j, M(i, j));
+  for (long j = 0; j < n; ++j)
+    for (long r = 0; r < m; ++r)
+      if (G(r, j) != 0.0) {
+        entries.emplace_back(n + r, j, G(r, j));
+        entries.emplace_back(j, n + r, G(r, j));
+      }
+  Eigen::SparseMatrix<double> K(n + m, n + m);
+  K.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(K);
+  Eigen::MatrixXd X;
+  if (lu.info() == Eigen::Success) X = lu.solve(R);
+  // A right-hand side that is not finite (a derivative of |x| at 0) passes through to the
+  // caller, which says the dynamics are not differentiable there.
+  if (lu.info() != Eigen::Success || (!X.allFinite() && R.allFinite()))
+    throw AnalysisError(
+        fmt::format("the KKT matrix [M Gᵀ; G 0] is singular at t = {}: redundant constraints "
+                    "or a mass matrix singular on the constraint manifold",
+                    t));
+  return X;
 }
 
 }  // namespace
@@ -189,6 +227,8 @@ StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* 
         (n && !(llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > 1e-13 * scale)))
       throw AnalysisError(fmt::format("the mass matrix is singular at t = {}", t));
     X = llt.solve(R);
+  } else if (n + m > kSparseKkt) {
+    X = sparse_kkt_solve(M, J.G, R, t);
   } else {
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
     K.topLeftCorner(n, n) = M;

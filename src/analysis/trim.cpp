@@ -1,7 +1,8 @@
-// Equilibria by Newton's method on the exact Jacobian (docs/theory.md §5.5).
+// Equilibria and steady states by Newton's method on the exact Jacobian (docs/theory.md §5.5).
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lagrange/analysis.hpp"
@@ -11,8 +12,10 @@ namespace lagrange {
 
 namespace {
 
-// "theta = 0.1, x = 2" for the positions a user can read (plain coordinates and body origins).
-std::string describe(const CompiledModel& cm, const std::vector<double>& q) {
+// "theta = 0.1, x = 2, phi_dot = 0.5" for the positions a user can read (plain coordinates and
+// body origins) and the non-zero plain rates.
+std::string describe(const CompiledModel& cm, const std::vector<double>& q,
+                     const std::vector<double>& v) {
   std::string s;
   size_t shown = 0;
   for (size_t i = 0; i < cm.nq && shown < 12; ++i) {
@@ -20,6 +23,8 @@ std::string describe(const CompiledModel& cm, const std::vector<double>& q) {
     if (i >= cm.plain && name.find(".R") != std::string::npos) continue;
     s += fmt::format("{}{} = {:.9g}", shown++ ? ", " : "", name, q[i]);
   }
+  for (size_t i = 0; i < cm.plain && shown < 16; ++i)
+    if (v[i] != 0.0) s += fmt::format(", {} = {:.9g}", cm.velocity_names[i], v[i]);
   return s;
 }
 
@@ -28,12 +33,17 @@ struct Residual {
   double norm = 0.0;
 };
 
-// a(q, v = 0) after putting q on C = 0 (constrained models; non-free plain coordinates held).
-Residual residual_at(Dynamics& dyn, double t, std::vector<double>& q,
+// a(q, v) after putting q on C = 0 (constrained models; non-free plain coordinates held). The
+// projection is given zero rates, so that it moves only q; the held rates are checked against
+// Ċ = 0 once trim has converged.
+Residual residual_at(Dynamics& dyn, double t, std::vector<double>& q, const std::vector<double>& v,
                      const std::vector<bool>& held) {
   const CompiledModel& cm = dyn.model();
-  std::vector<double> v(cm.nv, 0.0), qdot(cm.nq), lambda(cm.m);
-  if (cm.m > 0) (void)dyn.try_project(t, q.data(), v.data(), held);
+  std::vector<double> qdot(cm.nq), lambda(cm.m);
+  if (cm.m > 0) {
+    std::vector<double> still(cm.nv, 0.0);
+    (void)dyn.try_project(t, q.data(), still.data(), held);
+  }
   Residual r;
   r.a.resize(static_cast<long>(cm.nv));
   dyn.forward(t, q.data(), v.data(), qdot.data(), r.a.data(), lambda.data());
@@ -41,57 +51,121 @@ Residual residual_at(Dynamics& dyn, double t, std::vector<double>& q,
   return r;
 }
 
+// A per-coordinate flag vector of options: empty (→ `fallback`) or of size n.
+std::vector<bool> flags(const std::vector<bool>& given, size_t n, const char* what,
+                        const std::vector<bool>& fallback) {
+  if (given.empty()) return fallback;
+  if (given.size() != n)
+    throw std::invalid_argument(fmt::format("expected {} {} flags, got {}", n, what, given.size()));
+  return given;
+}
+
+// What trim varies: tangent coordinates (index < nv) and held rates (nv + velocity index).
+struct Unknowns {
+  std::vector<long> positions, rates;
+  size_t size() const { return positions.size() + rates.size(); }
+};
+
+Unknowns unknowns_of(const CompiledModel& cm, const TrimOptions& options,
+                     std::vector<bool>& steady) {
+  const size_t n = cm.nv;
+  steady = flags(options.steady, n, "steady", std::vector<bool>(n, false));
+  for (size_t i = cm.plain; i < n; ++i)
+    if (steady[i])
+      throw std::invalid_argument(fmt::format(
+          "the rate '{}' of a free body cannot be held: in the body's velocity coordinates a "
+          "steady rotation has ω̇ ≠ 0 and r̈ ≠ 0, so a = 0 does not describe it "
+          "(docs/theory.md §5.5); write the rotation with angles as coordinates",
+          cm.velocity_names[i]));
+  std::vector<bool> moving_phase(n, true);
+  for (size_t i = 0; i < cm.plain; ++i) moving_phase[i] = !steady[i];
+  const std::vector<bool> free = flags(options.free, n, "free", moving_phase);
+  const std::vector<bool> rates = flags(options.free_rates, n, "free-rate", std::vector<bool>(n));
+  Unknowns u;
+  for (size_t i = 0; i < n; ++i) {
+    if (free[i]) u.positions.push_back(static_cast<long>(i));
+    if (!rates[i]) continue;
+    if (!steady[i])
+      throw std::invalid_argument(
+          fmt::format("the rate '{}' is varied but not held: name it as a steady rate too",
+                      cm.velocity_names[i]));
+    u.rates.push_back(static_cast<long>(i));
+  }
+  if (u.size() == 0) throw std::invalid_argument("trim has nothing to vary");
+  return u;
+}
+
 }  // namespace
 
-// docs/theory.md §5.5: solve a(x, v = 0) = 0 for the free tangent coordinates x: Newton steps
-// (∂a/∂x)_free Z ξ = −a, δ = Z ξ along the constraint manifold (least squares), each shortened
-// by halving until ‖a‖₂ decreases by the Armijo fraction 1e-4·s.
 TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
                 const TrimOptions& options) {
+  return trim(jac, dyn, t, q0, std::vector<double>(jac.model().nv, 0.0), options);
+}
+
+// docs/theory.md §5.5: solve a(x, v) = 0 for the unknowns u (free tangent coordinates x and
+// free held rates): Newton steps (∂a/∂u) Z ξ = −a, δ = Z ξ along the constraint manifold
+// (least squares), each shortened by halving until ‖a‖₂ decreases by the Armijo fraction
+// 1e-4·s.
+TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
+                const std::vector<double>& v0, const TrimOptions& options) {
   const CompiledModel& cm = jac.model();
   const long n = static_cast<long>(cm.nv);
-  std::vector<bool> free = options.free.empty() ? std::vector<bool>(cm.nv, true) : options.free;
-  if (free.size() != cm.nv)
-    throw std::invalid_argument(fmt::format("expected {} free flags, got {}", cm.nv, free.size()));
-  std::vector<long> unknowns;
-  for (long i = 0; i < n; ++i)
-    if (free[static_cast<size_t>(i)]) unknowns.push_back(i);
+  if (v0.size() != cm.nv)
+    throw std::invalid_argument(fmt::format("expected {} velocities, got {}", cm.nv, v0.size()));
+  std::vector<bool> steady;
+  const Unknowns unknowns = unknowns_of(cm, options, steady);
+  const long nu = static_cast<long>(unknowns.size()),
+             np = static_cast<long>(unknowns.positions.size());
   std::vector<bool> held(cm.nq, false);
-  for (size_t i = 0; i < cm.plain; ++i) held[i] = !free[i];
+  for (size_t i = 0; i < cm.plain; ++i)
+    held[i] = std::find(unknowns.positions.begin(), unknowns.positions.end(),
+                        static_cast<long>(i)) == unknowns.positions.end();
+  const bool held_rates = std::find(steady.begin(), steady.end(), true) != steady.end();
+  const char* what = held_rates ? "steady state" : "equilibrium";
+  const auto name_of = [&](long k) {
+    return k < np ? tangent_chart(cm, q0.data(), v0.data())
+                        .names[static_cast<size_t>(unknowns.positions[static_cast<size_t>(k)])]
+                  : cm.velocity_names[static_cast<size_t>(
+                        unknowns.rates[static_cast<size_t>(k - np)])];
+  };
 
   TrimResult result;
   result.q = q0;
   result.v.assign(cm.nv, 0.0);
-  Residual r = residual_at(dyn, t, result.q, held);
+  for (size_t i = 0; i < cm.nv; ++i)
+    if (steady[i]) result.v[i] = v0[i];
+  Residual r = residual_at(dyn, t, result.q, result.v, held);
   for (int it = 0;; ++it) {
     result.iterations = it;
     result.residual = n ? r.a.cwiseAbs().maxCoeff() : 0.0;
-    if (result.residual <= options.tol) return result;
+    if (result.residual <= options.tol) break;
     if (it == options.max_iterations)
       throw AnalysisError(
           fmt::format("trim did not converge in {} iterations: max |acceleration| = {:.3g} at {}",
-                      options.max_iterations, result.residual, describe(cm, result.q)));
+                      options.max_iterations, result.residual, describe(cm, result.q, result.v)));
     const StateJacobian J = jac.evaluate(dyn, t, result.q.data(), result.v.data());
     const TangentChart chart = tangent_chart(cm, result.q.data(), result.v.data());
     const Eigen::MatrixXd Ax = J.a_q * chart.T;
-    Eigen::MatrixXd Af(n, static_cast<long>(unknowns.size()));
-    for (size_t k = 0; k < unknowns.size(); ++k) Af.col(static_cast<long>(k)) = Ax.col(unknowns[k]);
+    Eigen::MatrixXd Af(n, nu);
+    for (long k = 0; k < np; ++k) Af.col(k) = Ax.col(unknowns.positions[static_cast<size_t>(k)]);
+    for (long k = np; k < nu; ++k)
+      Af.col(k) = J.a_v.col(unknowns.rates[static_cast<size_t>(k - np)]);
     if (!Af.allFinite())
       throw AnalysisError(fmt::format(
           "trim: the Jacobian ∂a/∂q is not finite at iteration {} (the dynamics are not "
           "differentiable there); stopped at {}",
-          it, describe(cm, result.q)));
+          it, describe(cm, result.q, result.v)));
     // Constrained models: Newton moves along the manifold, δ = Z ξ with Z an orthonormal basis
-    // of the null space of (∂C/∂x)_free; on C = 0 at v = 0, a lies in G's null space too.
-    Eigen::MatrixXd Z = Eigen::MatrixXd::Identity(Af.cols(), Af.cols());
+    // of the null space of (∂C/∂x)_free (the rates do not enter C); on C = 0 at v = 0, a lies
+    // in G's null space too.
+    Eigen::MatrixXd Z = Eigen::MatrixXd::Identity(nu, nu);
     if (cm.m > 0) {
       const Eigen::MatrixXd Cx = J.C_q * chart.T;
-      Eigen::MatrixXd Cf(Cx.rows(), Af.cols());
-      for (size_t k = 0; k < unknowns.size(); ++k)
-        Cf.col(static_cast<long>(k)) = Cx.col(unknowns[k]);
+      Eigen::MatrixXd Cf = Eigen::MatrixXd::Zero(Cx.rows(), nu);
+      for (long k = 0; k < np; ++k) Cf.col(k) = Cx.col(unknowns.positions[static_cast<size_t>(k)]);
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> cq(Cf.transpose());
       const Eigen::MatrixXd Q = cq.householderQ();
-      Z = Q.rightCols(Af.cols() - cq.rank());
+      Z = Q.rightCols(nu - cq.rank());
     }
     const Eigen::MatrixXd Ar = Af * Z;
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Ar);
@@ -103,31 +177,34 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
       if (N.cols() > 0 && N.col(0).norm() > 0) {
         Eigen::Index top = 0;
         (Z * N.col(0)).cwiseAbs().maxCoeff(&top);
-        along = fmt::format(" (the accelerations do not change along '{}')",
-                            chart.names[static_cast<size_t>(unknowns[static_cast<size_t>(top)])]);
+        along = fmt::format(" (the accelerations do not change along '{}')", name_of(top));
       }
       throw AnalysisError(fmt::format(
           "trim: the Jacobian ∂a/∂q is singular at iteration {} (rank {} of {}){}: no isolated "
-          "equilibrium here; stopped at {} with max |acceleration| = {:.3g}",
-          it, qr.rank(), Ar.cols(), along, describe(cm, result.q), result.residual));
+          "{} here; stopped at {} with max |acceleration| = {:.3g}",
+          it, qr.rank(), Ar.cols(), along, what, describe(cm, result.q, result.v),
+          result.residual));
     }
     const Eigen::VectorXd step = Z * qr.solve(Eigen::VectorXd(-r.a));
     Eigen::VectorXd dx = Eigen::VectorXd::Zero(n);
-    for (size_t k = 0; k < unknowns.size(); ++k) dx[unknowns[k]] = step[static_cast<long>(k)];
+    for (long k = 0; k < np; ++k) dx[unknowns.positions[static_cast<size_t>(k)]] = step[k];
     double s = 1.0;
     bool accepted = false;
     for (int halving = 0; halving < 30 && !accepted; ++halving, s *= 0.5) {
-      std::vector<double> q = result.q;
+      std::vector<double> q = result.q, v = result.v;
       const Eigen::VectorXd ds = s * dx;
       retract(cm, ds.data(), q.data());
+      for (long k = np; k < nu; ++k)
+        v[static_cast<size_t>(unknowns.rates[static_cast<size_t>(k - np)])] += s * step[k];
       Residual next;
       try {
-        next = residual_at(dyn, t, q, held);
+        next = residual_at(dyn, t, q, v, held);
       } catch (const SimulationError&) {
         continue;  // a singular point on the way: shorten the step
       }
       if (std::isfinite(next.norm) && next.norm <= (1.0 - 1e-4 * s) * r.norm) {
         result.q = std::move(q);
+        result.v = std::move(v);
         r = std::move(next);
         accepted = true;
       }
@@ -135,12 +212,29 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
     if (!accepted)
       throw AnalysisError(fmt::format(
           "trim: no step along the Newton direction reduces the accelerations at iteration {} "
-          "(a local minimum of |a| that is not an equilibrium{}); stopped at {} with max "
+          "(a local minimum of |a| that is not {}{}); stopped at {} with max "
           "|acceleration| = {:.3g}",
-          it,
-          unknowns.size() < static_cast<size_t>(n) ? ", or none with these coordinates free" : "",
-          describe(cm, result.q), result.residual));
+          it, held_rates ? "a steady state" : "an equilibrium",
+          nu < n ? ", or none with these coordinates free" : "", describe(cm, result.q, result.v),
+          result.residual));
   }
+  if (!held_rates) return result;
+  // docs/theory.md §5.5: a held rate must keep the constraints (Ċ = G v = 0), and the motion
+  // q₀ + v t stays steady to first order when ȧ = ∂a/∂q q̇ vanishes.
+  if (cm.m > 0) {
+    std::vector<double> C(cm.m), Cdot(cm.m);
+    dyn.constraints(t, result.q.data(), result.v.data(), C.data(), Cdot.data());
+    double worst = 0.0;
+    for (double c : Cdot) worst = std::max(worst, std::abs(c));
+    if (worst > options.tol)
+      throw AnalysisError(fmt::format(
+          "trim: the held rates move the constraints (max |Ċ| = {:.3g} at {}): no steady state "
+          "with these rates and the other velocities 0",
+          worst, describe(cm, result.q, result.v)));
+  }
+  const StateJacobian J = jac.evaluate(dyn, t, result.q.data(), result.v.data());
+  result.drift = n ? (J.a_q * J.qdot).cwiseAbs().maxCoeff() : 0.0;
+  return result;
 }
 
 }  // namespace lagrange

@@ -111,6 +111,22 @@ int run_export(const Options& opt) {
                opt.c_dir);
     return 0;
   }
+  if (opt.jacobian) {
+    if (opt.dynamics == "recursive")
+      throw UsageError(
+          "export --jacobian: the derivatives come from the Lagrangian form; drop --dynamics "
+          "recursive");
+    const Equations eq = derive(model, Formulation::Lagrangian);
+    const auto cm = compile(eq);
+    const DynamicsJacobian jac(eq, cm, cm->input_names);
+    export_c_jacobian(jac, opt.c_dir);
+    fmt::print(
+        "wrote {0}/lagrange_model.h, {0}/lagrange_model.c, {0}/lagrange_jacobian.h and "
+        "{0}/lagrange_jacobian.c ({1} + {2} tape instructions, lagrangian, {3} derivative "
+        "entries)\n",
+        opt.c_dir, cm->dynamics.num_instructions(), jac.tape().num_instructions(), jac.nonzeros());
+    return 0;
+  }
   const Formulation form = formulation(model, opt.dynamics);
   const auto cm = compile(derive(model, form));
   export_c(*cm, opt.c_dir);

@@ -33,7 +33,10 @@ struct Options {
   std::vector<std::string> inputs;     ///< linearize --inputs: model inputs or parameters
   std::vector<std::string> outputs;    ///< linearize --outputs: coordinates, velocities, outputs
   std::optional<double> discrete;      ///< linearize --discrete DT (zero-order hold)
-  std::vector<std::string> free, fix;  ///< trim --free / --fix: tangent coordinates
+  std::vector<std::string> free, fix;  ///< trim --free / --fix: tangent coordinates, held rates
+  std::vector<std::string> steady;     ///< trim --steady: rates NAME_dot held at their values
+  bool at_trim = false;                ///< linearize --at-trim: trim first, linearise there
+  bool jacobian = false;               ///< export --jacobian: also the derivatives' C
   double tol = 1e-9;                   ///< trim --tol: on max |acceleration|
   std::vector<std::string> vary, random, metrics;  ///< sweep --vary, --random, --metric
   size_t samples = 0;                              ///< sweep --samples

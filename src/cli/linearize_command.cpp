@@ -1,5 +1,6 @@
-// `lagrange linearize MODEL [--at …] [--inputs …] [--outputs …] [--format …] [--discrete DT]`
-// (README.md, "Linearise and trim"): A, B, C, D on the constraint manifold and the modes.
+// `lagrange linearize MODEL [--at …|--at-trim …] [--inputs …] [--outputs …] [--format …]
+// [--discrete DT]` (README.md, "Linearise and trim"): A, B, C, D on the constraint manifold and
+// the modes, at the given state or at the equilibrium or steady state trim finds from it.
 
 #include <fmt/format.h>
 
@@ -9,6 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
+#include "cli/trim_setup.hpp"
 #include "lagrange/analysis.hpp"
 
 namespace lagrange::cli {
@@ -71,10 +73,21 @@ std::string shape_text(const Mode& mode) {
   return s;
 }
 
-std::string format_text(const Prepared& p, const LinearModel& lin, const std::vector<Mode>& ms) {
+// What the text output says about an operating point that came from trim.
+struct TrimmedAt {
+  const TrimResult* result = nullptr;
+  bool steady = false;
+  double tol = 0.0;
+};
+
+std::string format_text(const Prepared& p, const LinearModel& lin, const std::vector<Mode>& ms,
+                        const TrimmedAt& trimmed) {
   const CompiledModel& cm = *p.compiled;
   std::string out = fmt::format("{}: linearised at t = 0{}\n", p.model->name,
                                 lin.dt > 0 ? fmt::format(", zero-order hold dt = {}", lin.dt) : "");
+  if (trimmed.result)
+    out += fmt::format("operating point from trim: {}\n",
+                       trim_summary(*trimmed.result, trimmed.steady, trimmed.tol));
   std::string point;
   for (size_t i = 0; i < cm.plain; ++i)
     point +=
@@ -82,7 +95,10 @@ std::string format_text(const Prepared& p, const LinearModel& lin, const std::ve
   for (size_t i = 0; i < cm.plain; ++i)
     if (p.v[i] != 0.0) point += fmt::format(", {} = {:.9g}", cm.velocity_names[i], p.v[i]);
   if (!point.empty()) out += "operating point: " + point + "\n";
-  if (lin.equilibrium_residual > 1e-8)
+  if (trimmed.steady)
+    out +=
+        "note: a steady motion (held rates): A, B describe perturbations of the state about it\n";
+  else if (lin.equilibrium_residual > 1e-8)
     out += fmt::format(
         "note: not an equilibrium (max |q_dot|, |acceleration| = {:.3g}): a first-order Taylor "
         "approximation; `lagrange trim` finds an equilibrium\n",
@@ -127,10 +143,16 @@ nlohmann::json json_matrix(const Eigen::MatrixXd& X) {
   return rows;
 }
 
-std::string format_json(const Prepared& p, const LinearModel& lin, const std::vector<Mode>& ms) {
+std::string format_json(const Prepared& p, const LinearModel& lin, const std::vector<Mode>& ms,
+                        const TrimmedAt& trimmed) {
   const CompiledModel& cm = *p.compiled;
   nlohmann::json j;
   j["name"] = p.model->name;
+  if (trimmed.result)
+    j["trim"] = {{"steady", trimmed.steady},
+                 {"iterations", trimmed.result->iterations},
+                 {"residual", trimmed.result->residual},
+                 {"drift", trimmed.result->drift}};
   j["t"] = 0.0;
   j["dt"] = lin.dt;
   j["coordinates"] = cm.coordinate_names;
@@ -198,6 +220,14 @@ int run_linearize(const Options& opt) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(fmt::format("--inputs: {}", e.what()));
   }
+  TrimResult trimmed;
+  TrimmedAt at;
+  if (opt.at_trim) {
+    trimmed = trim_prepared(p, *jac, trim_options(*p.compiled, p.q, p.v, opt));
+    at = {&trimmed, !opt.steady.empty(), opt.tol};
+  } else if (!opt.free.empty() || !opt.fix.empty() || !opt.steady.empty()) {
+    throw UsageError("--free, --fix and --steady choose what trim varies: give --at-trim too");
+  }
   LinearModel lin;
   try {
     lin = linearize(*jac, *p.dynamics, 0.0, p.q.data(), p.v.data(), opt.outputs);
@@ -207,11 +237,11 @@ int run_linearize(const Options& opt) {
   const std::vector<Mode> ms = modes(lin);
   if (opt.discrete) lin = discretize(lin, *opt.discrete);
   if (opt.format == "json")
-    fmt::print("{}", format_json(p, lin, ms));
+    fmt::print("{}", format_json(p, lin, ms, at));
   else if (opt.format == "csv")
     fmt::print("{}", format_csv(lin, ms));
   else
-    fmt::print("{}", format_text(p, lin, ms));
+    fmt::print("{}", format_text(p, lin, ms, at));
   return 0;
 }
 

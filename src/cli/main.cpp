@@ -92,6 +92,9 @@ int main(int argc, char** argv) {
                   "auto (default): recursive where it applies (joint trees) | lagrangian | "
                   "recursive; as for simulate")
       ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
+  exp->add_flag("--jacobian", opt.jacobian,
+                "also write lagrange_jacobian.h/.c: exact da/dq, da/dv, da/du with their sparsity "
+                "(Lagrangian form)");
 
   auto* check =
       app.add_subcommand("check", "validate the model and the consistency of its initial state");
@@ -122,6 +125,18 @@ int main(int argc, char** argv) {
   report->add_option("--set", opt.sets, "parameter value the run used, NAME=VALUE (repeatable)");
   report->add_flag("-q,--quiet", opt.quiet, "no summary line");
 
+  const auto trim_choices = [&](CLI::App* cmd) {
+    cmd->add_option("--free", opt.free,
+                    "coordinates (and rates held by --steady) Newton may vary (default: every "
+                    "coordinate not moving at a held rate), comma-separated")
+        ->delimiter(',');
+    cmd->add_option("--fix", opt.fix, "coordinates held at their initial values")->delimiter(',');
+    cmd->add_option("--steady", opt.steady,
+                    "a steady state: rates NAME_dot held at their initial or --at values, "
+                    "comma-separated (docs/theory.md §5.5)")
+        ->delimiter(',');
+    cmd->add_option("--tol", opt.tol, "tolerance on max |acceleration| (default 1e-9)");
+  };
   auto* lin = app.add_subcommand(
       "linearize", "A, B, C, D and the modes at an operating point, on the constraint manifold");
   lin->add_option("model", opt.model, "model file (YAML or URDF)")->required();
@@ -139,17 +154,20 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json", "csv"}));
   lin->add_option("--discrete", opt.discrete, "zero-order-hold discretisation with this step");
   lin->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  lin->add_flag("--at-trim", opt.at_trim,
+                "trim first (from the initial state or --at, with --free/--fix/--steady/--tol) "
+                "and linearise at the equilibrium or steady state found");
+  trim_choices(lin);
 
   auto* trim = app.add_subcommand(
-      "trim", "find an equilibrium from the initial state (Newton on the exact Jacobian)");
+      "trim",
+      "find an equilibrium or steady state from the initial state (Newton on the exact "
+      "Jacobian)");
   trim->add_option("model", opt.model, "model file (YAML or URDF)")->required();
-  trim->add_option("--free", opt.free,
-                   "coordinates Newton may vary (default: all), comma-separated")
+  trim_choices(trim);
+  trim->add_option("--at", opt.initial,
+                   "start: coordinate or rate NAME_dot, NAME=VALUE (comma-separated)")
       ->delimiter(',');
-  trim->add_option("--fix", opt.fix, "coordinates held at their initial values")->delimiter(',');
-  trim->add_option("--at", opt.initial, "start: coordinate NAME=VALUE (comma-separated)")
-      ->delimiter(',');
-  trim->add_option("--tol", opt.tol, "tolerance on max |acceleration| (default 1e-9)");
   trim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
 
   auto* sweep = app.add_subcommand(

@@ -1,6 +1,6 @@
-// `lagrange trim MODEL [--free NAME,…] [--fix NAME,…] [--at …] [--tol TOL]` (README.md,
-// "Linearise and trim"): an equilibrium from the model's initial state, printed as the
-// model file's initial values.
+// `lagrange trim MODEL [--free NAME,…] [--fix NAME,…] [--steady NAME_dot,…] [--at …] [--tol TOL]`
+// (README.md, "Linearise and trim"): an equilibrium or steady state from the model's initial
+// state, printed as the model file's initial values.
 
 #include <fmt/format.h>
 
@@ -8,37 +8,19 @@
 
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
+#include "cli/trim_setup.hpp"
 #include "lagrange/analysis.hpp"
 
 namespace lagrange::cli {
 
 namespace {
 
-// Per tangent coordinate: varied by Newton. --free names the varied ones (default all),
-// --fix removes names from them.
-std::vector<bool> free_flags(const TangentChart& chart, const Options& opt) {
-  const auto check = [&](const std::string& option, const std::string& name) {
-    const auto it = std::find(chart.names.begin(), chart.names.end(), name);
-    if (it == chart.names.end()) {
-      std::string known;
-      for (const auto& s : chart.names) known += (known.empty() ? "" : ", ") + s;
-      throw UsageError(fmt::format("{}: no coordinate '{}' in the model (expected one of: {})",
-                                   option, name, known));
-    }
-    return static_cast<size_t>(it - chart.names.begin());
-  };
-  std::vector<bool> free(chart.names.size(), opt.free.empty());
-  for (const auto& name : opt.free) free[check("--free", name)] = true;
-  for (const auto& name : opt.fix) free[check("--fix", name)] = false;
-  if (std::none_of(free.begin(), free.end(), [](bool f) { return f; }))
-    throw UsageError("--free/--fix leave no coordinate for trim to vary");
-  return free;
-}
-
-std::string yaml_block(const CompiledModel& cm, const std::vector<double>& q) {
+std::string yaml_block(const CompiledModel& cm, const std::vector<double>& q,
+                       const std::vector<double>& v) {
   std::string out = "coordinates:\n";
   for (size_t i = 0; i < cm.plain; ++i)
-    out += fmt::format("  {}: {{initial: {:.17g}, rate: 0}}\n", cm.coordinate_names[i], q[i] + 0.0);
+    out += fmt::format("  {}: {{initial: {:.17g}, rate: {:.17g}}}\n", cm.coordinate_names[i],
+                       q[i] + 0.0, v[i] + 0.0);
   if (cm.rotations.empty()) return out;
   out += "bodies:  # the free bodies' initial state (merge into each body's entry)\n";
   for (size_t iR : cm.rotations) {
@@ -58,18 +40,12 @@ std::string yaml_block(const CompiledModel& cm, const std::vector<double>& q) {
 }  // namespace
 
 int run_trim(const Options& opt) {
-  if (!(opt.tol > 0)) throw UsageError(fmt::format("--tol must be positive, got {}", opt.tol));
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--at", "lagrangian");
   const CompiledModel& cm = *p.compiled;
+  const TrimOptions options = trim_options(cm, p.q, p.v, opt);
   const DynamicsJacobian jac(p.equations, p.compiled);
-  TrimOptions options;
-  options.free = free_flags(tangent_chart(cm, p.q.data(), p.v.data()), opt);
-  options.tol = opt.tol;
-  const TrimResult r = trim(jac, *p.dynamics, 0.0, p.q, options);
-  fmt::print(
-      "# {}: equilibrium found by Newton's method in {} iteration{}, max |acceleration| = "
-      "{:.3g}\n",
-      p.model->name, r.iterations, r.iterations == 1 ? "" : "s", r.residual);
+  const TrimResult r = trim_prepared(p, jac, options);
+  fmt::print("# {}: {}\n", p.model->name, trim_summary(r, !opt.steady.empty(), opt.tol));
   if (cm.m > 0) {
     std::vector<double> C(cm.m), Cdot(cm.m);
     p.dynamics->constraints(0.0, r.q.data(), r.v.data(), C.data(), Cdot.data());
@@ -77,7 +53,7 @@ int run_trim(const Options& opt) {
     for (double c : C) worst = std::max(worst, std::abs(c));
     fmt::print("# on the constraints: max |C| = {:.3g}\n", worst);
   }
-  fmt::print("{}", yaml_block(cm, r.q));
+  fmt::print("{}", yaml_block(cm, r.q, r.v));
   return 0;
 }
 

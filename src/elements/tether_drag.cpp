@@ -8,9 +8,12 @@ Vec3 combine(const GiNaC::ex& a, const Vec3& x, const GiNaC::ex& b, const Vec3& 
   return {a * x[0] + b * y[0], a * x[1] + b * y[1], a * x[2] + b * y[2]};
 }
 
-// F = −½ ρ d ℓₛ C_D ‖v‖ v for the apparent velocity v = ṙ − w(r) (seed 000, "Tether Forces").
+// F = −½ ρ d ℓₛ C_D ‖v‖ v for the apparent velocity v = ṙ − w(r) (seed 000, "Tether Forces"),
+// ‖v‖ as √(v·v + ε²), ε = 10⁻⁹ m/s, so that the derivative is finite at v = 0
+// (docs/theory.md §4.5, Drag at rest).
 Vec3 drag_force(const Tether& t, const GiNaC::ex& seg, const Vec3& v) {
-  const GiNaC::ex speed = GiNaC::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const GiNaC::numeric eps(1, 1000000000);
+  const GiNaC::ex speed = GiNaC::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + eps * eps);
   const GiNaC::ex k = -t.air_density * t.diameter * seg * t.cd * speed / 2;
   return {k * v[0], k * v[1], k * v[2]};
 }

@@ -119,12 +119,101 @@ generalized_forces: {x: F}
   EXPECT_NE(r.output.find("stopped at x = 0.5"), std::string::npos) << r.output;
 }
 
+// a = −(x² + 1): never zero, but the Jacobian −2x is regular away from 0, so Newton walks to the
+// minimum of |a| at x = 0 and must stop there, saying so (exit 3), not print a state.
+TEST(CliTrim, NoRootWithARegularJacobianExitsThree) {
+  const auto model = write_model("no_root.yaml", R"(
+name: no equilibrium
+parameters: {m: 1.0}
+coordinates:
+  x: {initial: 1.0, rate: 0}
+kinetic: m/2*der(x)^2
+potential: m*(x^3/3 + x)
+)");
+  const Result r = run("trim " + model.string());
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_EQ(r.output.find("coordinates:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("trim: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stopped at x = "), std::string::npos) << r.output;
+}
+
 TEST(CliTrim, UnknownOrNoFreeCoordinatesAreUsageErrors) {
   Result r = run("trim " + example("pendulum.yaml") + " --free phi");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--free: no coordinate 'phi'"), std::string::npos) << r.output;
   r = run("trim " + example("pendulum.yaml") + " --fix theta");
   EXPECT_EQ(r.code, 2) << r.output;
+}
+
+// The top of test_steady_state.cpp in Euler angles: steady precession at φ̇ = 4.55, ψ̇ = 20 has
+// cos θ = (I₃ s Ω − m g l) / ((I₁ − I₃) Ω²) (derived there).
+const char* const kTop = R"(
+name: top in Euler angles
+parameters: {m: 1.0, g: 9.81, l: 0.1, I1: 0.006, I3: 0.01}
+coordinates:
+  phi: {initial: 0, rate: 4.55}
+  theta: {initial: 0.8, rate: 0}
+  psi: {initial: 0, rate: 20}
+kinetic: I1/2*(der(theta)^2 + der(phi)^2*sin(theta)^2) + I3/2*(der(psi) + der(phi)*cos(theta))^2
+potential: m*g*l*cos(theta)
+)";
+
+double number_after(const std::string& text, const std::string& key) {
+  const size_t at = text.find(key);
+  if (at == std::string::npos) return NAN;
+  return std::stod(text.substr(at + key.size()));
+}
+
+TEST(CliTrim, SteadyPrecessionOfATopInEulerAngles) {
+  const auto model = write_model("top_euler.yaml", kTop);
+  Result r = run("trim " + model.string() + " --steady phi_dot,psi_dot");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("steady state found by Newton's method"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("steady along the motion: max |da/dt| = 0"), std::string::npos)
+      << r.output;
+  const double cos_theta = (0.01 * 20 * 4.55 - 9.81 * 0.1) / ((0.006 - 0.01) * 4.55 * 4.55);
+  EXPECT_NEAR(number_after(r.output, "theta: {initial: "), std::acos(cos_theta), 1e-9) << r.output;
+  EXPECT_NEAR(number_after(r.output, "phi: {initial: 0, rate: "), 4.55, 1e-15) << r.output;
+  // One rate given the angle: φ̇ at θ = 0.5 (the slow root of the quadratic in Ω).
+  r = run("trim " + model.string() + " --steady phi_dot,psi_dot --free phi_dot --at theta=0.5");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const double a = (0.006 - 0.01) * std::cos(0.5), b = -0.01 * 20, c = 9.81 * 0.1;
+  EXPECT_NEAR(number_after(r.output, "phi: {initial: 0, rate: "),
+              (-b - std::sqrt(b * b - 4 * a * c)) / (2 * a), 1e-9)
+      << r.output;
+}
+
+TEST(CliLinearize, AtTrimSaysWhereTheOperatingPointCameFrom) {
+  const auto model = write_model("top_euler.yaml", kTop);
+  Result r = run("linearize " + model.string() + " --at-trim --steady phi_dot,psi_dot");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("operating point from trim: steady state found"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("a steady motion (held rates)"), std::string::npos) << r.output;
+  r = run("linearize " + example("pendulum.yaml") + " --at-trim --at theta=0.349 --format json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_FALSE(j["trim"]["steady"].get<bool>());
+  EXPECT_LE(j["trim"]["residual"].get<double>(), 1e-9);
+  EXPECT_NEAR(j["q"][0].get<double>(), 0.0, 1e-12);  // linearised at the bottom, not at 20°
+  EXPECT_NEAR(j["modes"][0]["im"].get<double>(), std::sqrt(9.81), 1e-9);
+  EXPECT_LE(j["equilibrium_residual"].get<double>(), 1e-9);
+}
+
+TEST(CliTrim, SteadyNamesAreChecked) {
+  const auto model = write_model("top_euler.yaml", kTop);
+  Result r = run("trim " + model.string() + " --steady theta");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--steady: no rate 'theta'"), std::string::npos) << r.output;
+  r = run("trim " + model.string() + " --steady psi_dot --free phi_dot");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("'phi_dot' is not held by --steady"), std::string::npos) << r.output;
+  r = run("linearize " + model.string() + " --steady phi_dot");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--at-trim"), std::string::npos) << r.output;
+  r = run("trim " + example("heavy_top.yaml") + " --steady top.omega_z");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("free body"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -118,5 +118,25 @@ TEST_P(ExampleJacobian, MatchesCentralDifferences) {
 INSTANTIATE_TEST_SUITE_P(Examples, ExampleJacobian, ::testing::ValuesIn(testing::example_files()),
                          [](const auto& info) { return testing::model_label(info.param); });
 
+// More KKT rows than kSparseKkt (117 velocities, 40 constraints): the differentiated system is
+// factorised sparse (dynamics_jacobian.cpp); a line between two anchors in a wind, with drag,
+// moving, against central differences like every example.
+TEST(SparseKktJacobian, LongLineInWindMatchesCentralDifferences) {
+  Analysed s = testing::analyse_string(R"(
+name: long line in wind
+parameters: {L: 12, mu: 0.05, d: 0.01, U: 6}
+gravity: [0, 0, -9.81]
+wind: {speed: U}
+tethers:
+  line: {between: [[0, 0, 0], [10, 0, 0]], segments: 40, length: L, mass_per_length: mu,
+         diameter: d, cd: 1.2, drag: fine}
+)",
+                                       {"L", "mu", "d", "U"});
+  ASSERT_GT(s.cm->nv + s.cm->m, 120u);
+  for (size_t i = 0; i < s.cm->nv; ++i) s.v[i] = 0.3 * std::sin(1.0 + static_cast<double>(i));
+  s.dyn->project(0.0, s.q.data(), s.v.data(), s.cm->fixed);
+  check_against_differences(s);
+}
+
 }  // namespace
 }  // namespace lagrange
