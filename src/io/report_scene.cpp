@@ -14,6 +14,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "io/report_skeleton.hpp"
 #include "io/report_visual.hpp"
 
 namespace lagrange::io {
@@ -174,6 +175,9 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     outs.insert(outs.end(), o.begin(), o.end());
     for (const Vec3& row : b->rot()) outs.insert(outs.end(), row.begin(), row.end());
   }
+  const Skeleton bones = skeleton(model, traj);
+  const size_t skeleton_at = outs.size();
+  outs.insert(outs.end(), bones.outputs.begin(), bones.outputs.end());
   const size_t static_at = outs.size();
   const Vec3 gravity = model.gravity.value_or(Vec3{0, 0, 0});
   outs.insert(outs.end(), gravity.begin(), gravity.end());
@@ -192,7 +196,7 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   RowEvaluator eval(eq, cm, traj, parameters, outs);
 
   const size_t np = points.size(), nb = bodies.size();
-  const size_t per_frame = std::max<size_t>(1, 3 * np + 12 * nb);
+  const size_t per_frame = std::max<size_t>(1, 3 * np + 12 * nb + bones.outputs.size());
   const std::vector<size_t> rows = sample_rows(
       traj.rows(),
       std::min(limits.max_frames, std::max<size_t>(2, limits.max_scene_numbers / per_frame)));
@@ -203,8 +207,10 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
                                                         std::vector<std::array<double, 12>>(nb));
   std::vector<P3> ground(np);
   std::vector<double> statics;
+  std::vector<std::vector<double>> joints(nf);  // skeleton: node positions, then joint axes
   for (size_t f = 0; f < nf; ++f) {
     const std::vector<double>& o = eval.at(rows[f]);
+    joints[f].assign(o.begin() + skeleton_at, o.begin() + static_at);
     for (size_t i = 0; i < np; ++i)
       for (size_t k = 0; k < 3; ++k) pos[f][i][k] = o[3 * i + k];
     for (size_t j = 0; j < nb; ++j)
@@ -225,6 +231,7 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   for (size_t f = 0; f < nf; ++f) {
     for (const auto& p : pos[f]) grow(p.data());
     for (const auto& b : pose[f]) grow(b.data());
+    for (size_t k = 0; k < bones.nodes; ++k) grow(&joints[f][3 * k]);
   }
   double extent = hi[0] >= lo[0] ? dist(lo, hi) : 0.0;
   if (!(extent > 1e-9)) extent = 1.0;
@@ -357,9 +364,13 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     BodyShape shape =
         shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
                            s[0], I, Eigen::Vector3d(s[10], s[11], s[12]), 0.08 * extent);
-    // A body small against the scene (a kite on a long tether) is enlarged to be seen.
+    // A body small against the scene (a kite on a long tether) is enlarged to be seen; a link of
+    // a joint tree keeps its size, its skeleton shows where it is.
     const double largest = std::max({shape.size[0], shape.size[1], shape.size[2]});
-    if (largest < 0.06 * extent)
+    const bool link = std::any_of(model.tree.begin(), model.tree.end(), [&](const TreeJoint& t) {
+      return t.body >= 0 && &model.bodies[static_cast<size_t>(t.body)] == bodies[j];
+    });
+    if (largest < 0.06 * extent && !link)
       for (double& x : shape.size) x *= 0.06 * extent / largest;
     if (const double* scale = visual_lookup(visual.size, bodies[j]->name))
       for (double& x : shape.size) x *= *scale;
@@ -417,6 +428,19 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   j["t"] = times;
   j["positions"] = flat_pos;
   j["poses"] = flat_pose;
+  if (bones.nodes > 0) {
+    nlohmann::json sk = bones.layout;
+    std::vector<double> at, axes;
+    for (size_t f = 0; f < nf; ++f) {
+      for (size_t k = 0; k < 3 * bones.nodes; ++k)
+        at.push_back(round_decimals(joints[f][k], decimals));
+      for (size_t k = 3 * bones.nodes; k < joints[f].size(); ++k)
+        axes.push_back(round_decimals(joints[f][k], 5));
+    }
+    sk["positions"] = at;
+    sk["directions"] = axes;
+    j["skeleton"] = sk;
+  }
   return j;
 }
 
