@@ -1,10 +1,11 @@
-// The 3-D view: points, bodies, segments, trails, the skeleton of joint trees and the ground of
-// the scene JSON (src/io/report_scene.cpp), posed at any time by interpolating between frames;
-// the camera frames everything drawn over the whole run.
+// The 3-D view: points, bodies, segments, trails, the skeleton of joint trees, driven hoops and
+// the ground of the scene JSON (src/io/report_scene.cpp), posed at any time by interpolating
+// between frames; the camera frames everything drawn over the whole run.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { bracket, interpolate } from './timeline.js';
 import { Skeleton } from './skeleton.js';
+import { Rings } from './rings.js';
 import { fitDistance } from './framing.js';
 
 const PALETTE = ['#d9534f', '#2f7ed8', '#f0ad4e', '#5cb85c', '#8e44ad', '#16a085'];
@@ -140,6 +141,7 @@ export class View {
       return line;
     });
     if (s.skeleton) this.skeleton = new Skeleton(this.scene, s.skeleton, this.markerSize(), this.up);
+    if (s.rings) this.rings = new Rings(this.scene, s.rings, 0.006 * e);
     this.addGround();
   }
 
@@ -185,6 +187,7 @@ export class View {
         }
       }
       if (this.skeleton) this.skeleton.expandBox(box, f);
+      if (this.rings) this.rings.expandBox(box, f);
     }
     if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
     return box;
@@ -282,6 +285,7 @@ export class View {
       if (seg.g.kind === 'damper') seg.line.computeLineDistances();
     }
     if (this.skeleton) this.skeleton.pose(i, w);
+    if (this.rings) this.rings.pose(i, w);
     for (const trail of this.trails) trail.geometry.setDrawRange(0, i + 1 + (w > 0 ? 1 : 0));
     this.render();
   }

@@ -100,6 +100,7 @@ async function checkReport(browser, html, csvHeader) {
   expect(moved > 10, `nothing moved between two screenshots (${moved} pixels differ)`);
 
   if (data.scene.skeleton) for (const problem of await checkSkeleton(page)) failures.push(problem);
+  if (data.scene.rings) for (const problem of await checkRings(page)) failures.push(problem);
   for (const problem of await checkFraming(page)) failures.push(problem);
 
   // Plots: one chart with the first coordinates; every CSV column is offered somewhere.
@@ -188,6 +189,41 @@ async function checkSkeleton(page) {
         if (k < 0) return;
         const m = view.bodyGroups[j].matrix.elements;
         if (!near([m[12], m[13], m[14]], node(k), tol)) problems.push(`t = ${time}: link ${b.name} drawn away from its joint`);
+      });
+    }
+    return problems;
+  });
+}
+
+// A driven point rides on its drawn hoop at every frame: within the sag of the hoop's chords
+// (and the scene's rounding) of the polygon the rods draw.
+async function checkRings(page) {
+  return page.evaluate(() => {
+    const r = window.lagrangeReport;
+    const view = r.view;
+    const rings = view.rings;
+    const t = view.s.t;
+    const problems = [];
+    const n = rings.n;
+    for (let f = 0; f < t.length; f += Math.max(1, Math.floor(t.length / 10))) {
+      r.seek(t[f]);
+      view.s.rings.points.forEach((point, ring) => {
+        const p = view.pointMeshes[point].position;
+        let best = Infinity;
+        let size = 0;
+        for (let k = 0; k < n; ++k) {
+          const mesh = rings.rods[ring * n + k];
+          mesh.updateMatrixWorld();
+          const a = p.clone().set(0, -0.5, 0).applyMatrix4(mesh.matrixWorld);
+          const b = p.clone().set(0, 0.5, 0).applyMatrix4(mesh.matrixWorld);
+          const d = b.clone().sub(a);
+          const s = Math.min(1, Math.max(0, p.clone().sub(a).dot(d) / d.lengthSq()));
+          best = Math.min(best, a.addScaledVector(d, s).distanceTo(p));
+          size = Math.max(size, d.length());
+        }
+        // a chord of length c on a circle sags c^2 / (8 R), R ~ n c / (2 pi)
+        const sag = (size * Math.PI) / (4 * n);
+        if (best > sag + 2e-4 * view.s.extent) problems.push(`t = ${t[f]}: point ${point} is ${best} off its hoop`);
       });
     }
     return problems;
