@@ -42,13 +42,9 @@ export class Rings {
     });
   }
 
-  /** Grows `box` by the rings at frame f. */
-  expandBox(box, f) {
-    const p = new THREE.Vector3();
-    for (let k = 0; k < this.stride; k += 3) {
-      p.fromArray(this.r.positions, f * this.stride + k);
-      box.expandByPoint(p.clone().addScalar(-this.radius));
-      box.expandByPoint(p.addScalar(this.radius));
-    }
+  /** Calls fn(x, y, z, r) with spheres that hold the rings drawn at frame f. */
+  eachDrawn(f, fn) {
+    const p = this.r.positions;
+    for (let k = f * this.stride; k < (f + 1) * this.stride; k += 3) fn(p[k], p[k + 1], p[k + 2], this.radius);
   }
 }

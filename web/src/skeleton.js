@@ -101,14 +101,10 @@ export class Skeleton {
     return ends;
   }
 
-  /** Grows `box` by everything drawn at frame f. */
-  expandBox(box, f) {
-    this.pose(f, 0);
-    const m = 0.12 * this.size; // the plate's radius, the largest marker
-    for (let k = 0; k < this.nn; ++k) {
-      const c = this.node(k);
-      box.expandByPoint(c.clone().addScalar(-m));
-      box.expandByPoint(c.addScalar(m));
-    }
+  /** Calls fn(x, y, z, r) with spheres that hold everything drawn at frame f. */
+  eachDrawn(f, fn) {
+    const m = 0.12 * this.size; // the plate's radius and the axes' reach, the largest markers
+    const p = this.sk.positions;
+    for (let k = 3 * this.nn * f; k < 3 * this.nn * (f + 1); k += 3) fn(p[k], p[k + 1], p[k + 2], m);
   }
 }

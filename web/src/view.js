@@ -6,7 +6,7 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { bracket, interpolate } from './timeline.js';
 import { Skeleton } from './skeleton.js';
 import { Rings } from './rings.js';
-import { fitDistance } from './framing.js';
+import { Fit } from './framing.js';
 
 const PALETTE = ['#d9534f', '#2f7ed8', '#f0ad4e', '#5cb85c', '#8e44ad', '#16a085'];
 const BODY_COLOR = '#e8a33d';
@@ -157,38 +157,44 @@ export class View {
     return d > 1e-3 * this.s.extent ? Math.min(d, this.s.extent) : this.s.extent;
   }
 
-  // The box around everything drawn over all frames: points with their radius, bodies' shapes
-  // at their poses, the skeleton with its markers.
-  bounds() {
+  // Calls fn(x, y, z, r) with spheres that hold everything drawn over all frames: points with
+  // their radius, the corners of bodies' shapes at their poses, the skeleton and the hoops.
+  eachDrawn(fn) {
     const s = this.s;
-    const box = new THREE.Box3();
     const p = new THREE.Vector3();
-    const nf = s.t.length;
+    const c = new THREE.Vector3();
     const nb = s.bodies.length;
     const rot = new THREE.Matrix4();
     const half = s.bodies.map((b) => (b.shape === 'box' ? b.size.map((x) => x / 2) : [b.size[0], b.size[1], b.shape === 'sphere' ? b.size[0] : b.size[2] / 2]));
     const axes = s.bodies.map((b) => new THREE.Matrix4().set(...b.axes.slice(0, 3), 0, ...b.axes.slice(3, 6), 0, ...b.axes.slice(6, 9), 0, 0, 0, 0, 1));
-    for (let f = 0; f < nf; ++f) {
+    for (let f = 0; f < s.t.length; ++f) {
       s.points.forEach((pt, i) => {
-        if (pt.kind === 'unused') return;
-        p.fromArray(s.positions, f * this.stride + 3 * i);
-        box.expandByPoint(p.clone().addScalar(-pt.radius));
-        box.expandByPoint(p.addScalar(pt.radius));
+        const o = f * this.stride + 3 * i;
+        if (pt.kind !== 'unused') fn(s.positions[o], s.positions[o + 1], s.positions[o + 2], pt.radius);
       });
       for (let j = 0; j < nb; ++j) {
         const r = s.poses;
         const o = (f * nb + j) * 12;
         rot.set(r[o + 3], r[o + 4], r[o + 5], r[o], r[o + 6], r[o + 7], r[o + 8], r[o + 1], r[o + 9], r[o + 10], r[o + 11], r[o + 2], 0, 0, 0, 1);
-        const c = s.bodies[j].center;
+        c.fromArray(s.bodies[j].center);
+        const h = half[j];
         for (let k = 0; k < 8; ++k) {
-          const h = half[j];
-          p.set(k & 1 ? h[0] : -h[0], k & 2 ? h[1] : -h[1], k & 4 ? h[2] : -h[2]).applyMatrix4(axes[j]);
-          box.expandByPoint(p.add(new THREE.Vector3(c[0], c[1], c[2])).applyMatrix4(rot));
+          p.set(k & 1 ? h[0] : -h[0], k & 2 ? h[1] : -h[1], k & 4 ? h[2] : -h[2]).applyMatrix4(axes[j]).add(c).applyMatrix4(rot);
+          fn(p.x, p.y, p.z, 0);
         }
       }
-      if (this.skeleton) this.skeleton.expandBox(box, f);
-      if (this.rings) this.rings.expandBox(box, f);
+      if (this.skeleton) this.skeleton.eachDrawn(f, fn);
+      if (this.rings) this.rings.eachDrawn(f, fn);
     }
+  }
+
+  // The box around everything drawn over all frames.
+  bounds() {
+    const box = new THREE.Box3();
+    this.eachDrawn((x, y, z, r) => {
+      box.min.set(Math.min(box.min.x, x - r), Math.min(box.min.y, y - r), Math.min(box.min.z, z - r));
+      box.max.set(Math.max(box.max.x, x + r), Math.max(box.max.y, y + r), Math.max(box.max.z, z + r));
+    });
     if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
     return box;
   }
@@ -225,7 +231,9 @@ export class View {
       dir = h1.multiplyScalar(0.8).addScaledVector(h2, -1.0).addScaledVector(this.up, 0.55).normalize();
     }
     this.camera.up.copy(this.up);
-    const dist = fitDistance(this.box, center, dir, this.up, this.camera.fov, this.camera.aspect) + 1e-9 * s.extent;
+    const fit = new Fit(center, dir, this.up, this.camera.fov, this.camera.aspect);
+    this.eachDrawn((x, y, z, r) => fit.add(x, y, z, r));
+    const dist = fit.distance + 1e-9 * s.extent;
     this.camera.position.copy(center).addScaledVector(dir, dist);
     this.controls.target.copy(center);
     this.controls.update();

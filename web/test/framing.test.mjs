@@ -2,7 +2,7 @@
 // of the box inside the view, the farthest one on its edge.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { fitDistance } from '../src/framing.js';
+import { Fit, fitDistance } from '../src/framing.js';
 
 // Normalised screen coordinates of p seen from `eye` looking at `target` (up, fov, aspect).
 function project(p, eye, target, up, fovDeg, aspect) {
@@ -45,4 +45,15 @@ test('every corner of a long, off-centre box is in view from a three-quarter dir
     }
     assert.ok(Math.abs(widest - 1) < 1e-12, `aspect ${aspect}: widest corner at ${widest}`);
   }
+});
+
+test('a sphere fitted alone touches the edge of the view (the side plane is tangent to it)', () => {
+  // camera on +z looking at the origin, 90° square view: a sphere of radius r at (a, 0, 0)
+  // touches the side plane x = depth when (a + r√2) = D (half-angle 45°, sec = √2).
+  const fit = new Fit({ x: 0, y: 0, z: 0 }, { x: 0, y: 0, z: 1 }, { x: 0, y: 1, z: 0 }, 90, 1, 0);
+  fit.add(2, 0, 0, 0.5);
+  assert.ok(Math.abs(fit.distance - (2 + 0.5 * Math.SQRT2)) < 1e-12, `distance ${fit.distance}`);
+  // the side plane x + z = D lies r from the centre (2, 0, 0): |2 - D| / √2 = r
+  const D = fit.distance;
+  assert.ok(Math.abs(Math.abs(2 - D) / Math.SQRT2 - 0.5) < 1e-12);
 });
