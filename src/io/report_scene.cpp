@@ -379,6 +379,29 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     if (best >= 0 && moving_groups.size() <= 4) trail.push_back(best);
   }
 
+  // The longest bone from each link's joint at the first frame, by link name.
+  std::map<std::string, double> link_length;
+  if (bones.nodes > 0) {
+    const auto& nodes = bones.layout["nodes"];
+    for (const auto& t : model.tree)
+      if (t.body >= 0) link_length[model.bodies[static_cast<size_t>(t.body)].name] = 0;
+    for (const auto& bone : bones.layout["bones"]) {
+      const size_t a = bone[0], b = bone[1];
+      if (nodes[a]["kind"] != "joint") continue;
+      const auto it = link_length.find(nodes[a]["name"].get<std::string>());
+      if (it == link_length.end()) continue;
+      const double* pa = &joints[0][3 * a];
+      const double* pb = &joints[0][3 * b];
+      it->second = std::max(it->second, std::hypot(pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]));
+    }
+  }
+
+  double mean_link = 0;
+  size_t measured = 0;
+  for (const auto& [name, length] : link_length)
+    if (length > 0) mean_link += length, ++measured;
+  if (measured > 0) mean_link /= static_cast<double>(measured);
+
   // Bodies: shape from the declared shape or the inertia, centred on the centre of mass.
   nlohmann::json jbodies = nlohmann::json::array();
   for (size_t j = 0; j < nb; ++j) {
@@ -390,14 +413,21 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     BodyShape shape =
         shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
                            s[0], I, Eigen::Vector3d(s[10], s[11], s[12]), 0.08 * extent);
-    // A body small against the scene (a kite on a long tether) is enlarged to be seen; a link of
-    // a joint tree keeps its size, its skeleton shows where it is.
+    // A body small against the scene (a kite on a long tether) is enlarged to be seen. A link of
+    // a joint tree keeps its size, but is drawn at most 1.2 times as long as the link (its longest
+    // bone; a published inertia can be far from the link's solid, the skeleton shows the link).
     const double largest = std::max({shape.size[0], shape.size[1], shape.size[2]});
-    const bool link = std::any_of(model.tree.begin(), model.tree.end(), [&](const TreeJoint& t) {
-      return t.body >= 0 && &model.bodies[static_cast<size_t>(t.body)] == bodies[j];
-    });
-    if (largest < 0.06 * extent && !link)
+    const auto bone = link_length.find(bodies[j]->name);
+    if (bone != link_length.end()) {
+      // A link whose child sits on its joint (a wrist) measures by its centre of mass, or else by
+      // the mean link.
+      double length = std::max(bone->second, 2 * std::hypot(s[10], s[11], s[12]));
+      if (!(length > 0)) length = mean_link;
+      if (length > 0 && largest > 1.2 * length)
+        for (double& x : shape.size) x *= 1.2 * length / largest;
+    } else if (largest < 0.06 * extent) {
       for (double& x : shape.size) x *= 0.06 * extent / largest;
+    }
     if (const double* scale = visual_lookup(visual.size, bodies[j]->name))
       for (double& x : shape.size) x *= *scale;
     nlohmann::json b{{"name", bodies[j]->name}, {"shape", shape.kind}};

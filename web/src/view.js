@@ -94,7 +94,7 @@ export class View {
         geometry.rotateX(Math.PI / 2); // three's cylinders run along y, the body's along z
       } else geometry = new THREE.BoxGeometry(b.size[0], b.size[1], b.size[2]);
       // Over a skeleton the links are see-through, so that the joints inside them show.
-      const see = s.skeleton ? { transparent: true, opacity: 0.45, depthWrite: false } : {};
+      const see = s.skeleton ? { transparent: true, opacity: 0.35, depthWrite: false } : {};
       const mesh = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: b.color ?? BODY_COLOR, roughness: 0.6, ...see }));
       const a = b.axes;
       const basis = new THREE.Matrix4().set(a[0], a[1], a[2], 0, a[3], a[4], a[5], 0, a[6], a[7], a[8], 0, 0, 0, 0, 1);
