@@ -1,4 +1,4 @@
-// Driven guides of the report's 3-D view (docs/model-language.md, "The report"): the curve a
+// Driven guides of the report's 3-D view (docs/model-language.md, "How a model looks"): the curve a
 // driven point can move on at one instant is its position with the drive held and its one
 // coordinate swept over a turn, sampled here as expressions of t, the inputs and the parameters.
 

@@ -1,7 +1,8 @@
-// The kinematic skeleton of the report's 3-D view (docs/model-language.md, "The report"): a
+// The kinematic skeleton of the report's 3-D view (docs/model-language.md, "How a model looks"): a
 // link's frame is its body's pose, or for a massless link its parent's frame times the joint's
-// transform (docs/theory.md §4.9); bones join a joint to its children's joints, a leaf link's
-// joint to its centre of mass and points, and the world's base to the root joints.
+// transform (docs/theory.md §4.9, Joints: r = r_parent + R_parent p, R = R_parent R_joint); bones
+// join a joint to its children's joints, a leaf link's joint to its centre of mass and points, and
+// the world's base to the root joints.
 
 #include "io/report_skeleton.hpp"
 
