@@ -6,12 +6,14 @@
 // Then a large generated run (200 moving points over 60 s): its size must stay under the bound of
 // docs/model-language.md; its opening time is measured and printed, not asserted. Robot arms (the
 // UR5 of examples/robots and a spatial R-R-P arm with a prismatic joint) are generated too, and
-// every report with a skeleton is checked for connected links and a camera that frames it all.
+// every report with a skeleton is checked for connected links, with a hoop for the point on it,
+// and every report for a camera that frames it all. Two reports are checked at a time.
 //
 // Usage: node browser.mjs LAGRANGE EXAMPLES_DIR OUT_DIR [NAME_FILTER]
 // Prints "N passed, N failed" and exits non-zero when a check fails.
 import { launch, openReport } from '../chromium.mjs';
-import { execFileSync } from 'node:child_process';
+import { execFile } from 'node:child_process';
+import { promisify } from 'node:util';
 import { mkdirSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { basename, join, resolve } from 'node:path';
 
@@ -22,6 +24,7 @@ if (!lagrange || !examplesDir || !outDir) {
 }
 export const SIZE_BOUND = 12 * 1024 * 1024; // bytes; docs/model-language.md, "The report"
 mkdirSync(outDir, { recursive: true });
+const run = promisify(execFile);
 
 function examples() {
   return readdirSync(examplesDir)
@@ -307,41 +310,51 @@ function largeModel() {
   return file;
 }
 
+// Simulates a model, checks its report and prints what it found (at once, so that the lines of
+// two models checked side by side do not interleave); true when it passed.
+async function checkModel(browser, model) {
+  const name = basename(model, '.yaml');
+  const html = resolve(join(outDir, `${name}.html`));
+  const csv = join(outDir, `${name}.csv`);
+  const lines = [];
+  let result;
+  try {
+    const started = Date.now();
+    await run(resolve(lagrange), ['simulate', model, '-q', '-o', csv, '--report', html]);
+    const simulated = (Date.now() - started) / 1000;
+    const header = readFileSync(csv, 'utf8').split('\n', 1)[0].split(',');
+    result = await checkReport(browser, html, header);
+    const size = statSync(html).size;
+    if (name === 'two_hundred_points') {
+      if (size > SIZE_BOUND) result.failures.push(`report of ${size} bytes exceeds the bound of ${SIZE_BOUND}`);
+      lines.push(`large run: 200 moving points over 60 s: report ${(size / 1048576).toFixed(2)} MB (bound ${SIZE_BOUND / 1048576} MB), opened in ${result.seconds.toFixed(2)} s, simulated and written in ${simulated.toFixed(2)} s`);
+    }
+    rmSync(csv, { force: true });
+    rmSync(`${csv}.json`, { force: true });
+    lines.push(`${result.failures.length ? 'FAIL' : 'ok  '} ${name}: ${(size / 1024).toFixed(0)} kB, first frame after ${result.seconds.toFixed(2)} s`);
+  } catch (e) {
+    result = { failures: [String(e.stderr ?? '') + String(e.message ?? e)] };
+    lines.push(`FAIL ${name}`);
+  }
+  for (const f of result.failures) lines.push(`    ${f}`);
+  console.log(lines.join('\n'));
+  return result.failures.length === 0;
+}
+
 const browser = await launch();
 decoder = await browser.newPage();
 let passed = 0;
 let failed = 0;
 try {
-  const models = examples();
-  if (!filter || 'two_hundred_points'.includes(filter)) models.push(largeModel());
-  for (const arm of armModels()) if (basename(arm).includes(filter)) models.push(arm);
-  for (const model of models) {
-    const name = basename(model, '.yaml');
-    const html = resolve(join(outDir, `${name}.html`));
-    const csv = join(outDir, `${name}.csv`);
-    let result;
-    try {
-      const started = Date.now();
-      execFileSync(resolve(lagrange), ['simulate', model, '-q', '-o', csv, '--report', html], { stdio: ['ignore', 'ignore', 'pipe'] });
-      const simulated = (Date.now() - started) / 1000;
-      const header = readFileSync(csv, 'utf8').split('\n', 1)[0].split(',');
-      result = await checkReport(browser, html, header);
-      const size = statSync(html).size;
-      if (name === 'two_hundred_points') {
-        if (size > SIZE_BOUND) result.failures.push(`report of ${size} bytes exceeds the bound of ${SIZE_BOUND}`);
-        console.log(`large run: 200 moving points over 60 s: report ${(size / 1048576).toFixed(2)} MB (bound ${SIZE_BOUND / 1048576} MB), opened in ${result.seconds.toFixed(2)} s, simulated and written in ${simulated.toFixed(2)} s`);
-      }
-      rmSync(csv, { force: true });
-      rmSync(`${csv}.json`, { force: true });
-      console.log(`${result.failures.length ? 'FAIL' : 'ok  '} ${name}: ${(size / 1024).toFixed(0)} kB, first frame after ${result.seconds.toFixed(2)} s`);
-    } catch (e) {
-      result = { failures: [String(e.stderr ?? '') + String(e.message ?? e)] };
-      console.log(`FAIL ${name}`);
-    }
-    for (const f of result.failures) console.log(`    ${f}`);
-    if (result.failures.length) ++failed;
-    else ++passed;
-  }
+  const queue = examples();
+  for (const arm of armModels()) if (basename(arm).includes(filter)) queue.push(arm);
+  // Two reports at a time (much of a check is waiting for the page); the large run alone after
+  // them, so that its opening time is its own.
+  const worker = async () => {
+    while (queue.length) (await checkModel(browser, queue.shift())) ? ++passed : ++failed;
+  };
+  await Promise.all([worker(), worker()]);
+  if (!filter || 'two_hundred_points'.includes(filter)) (await checkModel(browser, largeModel())) ? ++passed : ++failed;
 } finally {
   await browser.close();
 }
