@@ -16,4 +16,11 @@ for shot in "${shots[@]}"; do
   "$build/lagrange" simulate "$root/examples/$name.yaml" -q --report "$work/report_$name.html"
   reports+=("$work/report_$name.html@${shot#*@}")
 done
+# A spatial arm: the Panda of examples/robots falling from a bent pose (zero torques), and the
+# bead on its turning hoop.
+"$build/lagrange" simulate "$root/examples/robots/panda.urdf" -q --t-end 1.5 \
+  --initial panda_joint2=-0.6 --initial panda_joint4=-2.2 --initial panda_joint6=1.6 \
+  --initial panda_joint1_dot=0.6 --report "$work/report_panda.html"
+"$build/lagrange" simulate "$root/examples/bead_on_hoop.yaml" -q --report "$work/report_bead_on_hoop.html"
+reports+=("$work/report_panda.html@0.5" "$work/report_bead_on_hoop.html@0.04")
 node "$root/web/screenshots.mjs" "$root/docs" "${reports[@]}"

@@ -14,6 +14,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "io/report_driven.hpp"
+#include "io/report_skeleton.hpp"
 #include "io/report_visual.hpp"
 
 namespace lagrange::io {
@@ -174,6 +176,12 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     outs.insert(outs.end(), o.begin(), o.end());
     for (const Vec3& row : b->rot()) outs.insert(outs.end(), row.begin(), row.end());
   }
+  const Skeleton bones = skeleton(model, traj);
+  const size_t skeleton_at = outs.size();
+  outs.insert(outs.end(), bones.outputs.begin(), bones.outputs.end());
+  const DrivenGuides guides = driven_guides(model, points, eq.kin.q);
+  const size_t guides_at = outs.size();
+  outs.insert(outs.end(), guides.outputs.begin(), guides.outputs.end());
   const size_t static_at = outs.size();
   const Vec3 gravity = model.gravity.value_or(Vec3{0, 0, 0});
   outs.insert(outs.end(), gravity.begin(), gravity.end());
@@ -192,7 +200,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   RowEvaluator eval(eq, cm, traj, parameters, outs);
 
   const size_t np = points.size(), nb = bodies.size();
-  const size_t per_frame = std::max<size_t>(1, 3 * np + 12 * nb);
+  const size_t per_frame =
+      std::max<size_t>(1, 3 * np + 12 * nb + bones.outputs.size() + guides.outputs.size());
   const std::vector<size_t> rows = sample_rows(
       traj.rows(),
       std::min(limits.max_frames, std::max<size_t>(2, limits.max_scene_numbers / per_frame)));
@@ -203,8 +212,12 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
                                                         std::vector<std::array<double, 12>>(nb));
   std::vector<P3> ground(np);
   std::vector<double> statics;
+  std::vector<std::vector<double>> joints(nf);  // skeleton: node positions, then joint axes
+  std::vector<std::vector<double>> curves(nf);  // driven guides, kSamples + 1 points each
   for (size_t f = 0; f < nf; ++f) {
     const std::vector<double>& o = eval.at(rows[f]);
+    joints[f].assign(o.begin() + skeleton_at, o.begin() + guides_at);
+    curves[f].assign(o.begin() + guides_at, o.begin() + static_at);
     for (size_t i = 0; i < np; ++i)
       for (size_t k = 0; k < 3; ++k) pos[f][i][k] = o[3 * i + k];
     for (size_t j = 0; j < nb; ++j)
@@ -216,6 +229,18 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     }
   }
 
+  // A driven guide is drawn when its angle closes the curve over a turn (a hoop, not a line).
+  constexpr size_t kRing = DrivenGuides::kSamples;
+  std::vector<size_t> rings;  // indices into guides.point
+  for (size_t r = 0; r < guides.point.size(); ++r) {
+    const double* c = &curves[0][3 * (kRing + 1) * r];
+    double size = 0, gap = 0;
+    for (size_t k = 0; k <= kRing; ++k)
+      for (size_t d = 0; d < 3; ++d) size = std::max(size, std::abs(c[3 * k + d] - c[d]));
+    for (size_t d = 0; d < 3; ++d) gap = std::max(gap, std::abs(c[3 * kRing + d] - c[d]));
+    if (size > 0 && std::isfinite(size) && gap <= 1e-9 * size) rings.push_back(r);
+  }
+
   // Size of the scene: the box around everything that is drawn.
   P3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   auto grow = [&](const double* x) {
@@ -225,6 +250,9 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   for (size_t f = 0; f < nf; ++f) {
     for (const auto& p : pos[f]) grow(p.data());
     for (const auto& b : pose[f]) grow(b.data());
+    for (size_t k = 0; k < bones.nodes; ++k) grow(&joints[f][3 * k]);
+    for (size_t r : rings)
+      for (size_t k = 0; k < kRing; ++k) grow(&curves[f][3 * ((kRing + 1) * r + k)]);
   }
   double extent = hi[0] >= lo[0] ? dist(lo, hi) : 0.0;
   if (!(extent > 1e-9)) extent = 1.0;
@@ -269,7 +297,11 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   for (const auto& d : model.dampers) add_declared(d.a, d.b, "damper");
   std::vector<bool> used(np + anchors.size(), false);
   for (const auto& [a, b] : declared) used[a] = used[b] = true;
+  std::set<size_t> on_ring;
+  for (size_t r : rings) on_ring.insert(guides.point[r]);
   for (const auto& [a, b] : rigid_links(all, extent, declared, 4 * (np + anchors.size()) + 8)) {
+    // A point on a drawn hoop is held by the hoop, not by a rod to the hoop's centre.
+    if ((on_ring.count(a) && b >= np) || (on_ring.count(b) && a >= np)) continue;
     segments.push_back({{"a", a}, {"b", b}, {"kind", "link"}});
     used[a] = used[b] = true;
   }
@@ -278,7 +310,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   // moving points stand for the masses.
   const bool hand_written = particle_mass.empty() && model.bodies.empty();
   for (size_t i = 0; i < np; ++i)
-    if (!used[i] && ground_of[i] >= 0 && (hand_written || particle_mass.count(points[i]->name))) {
+    if (!used[i] && !on_ring.count(i) && ground_of[i] >= 0 &&
+        (hand_written || particle_mass.count(points[i]->name))) {
       segments.push_back({{"a", ground_of[i]}, {"b", i}, {"kind", "guide"}});
       used[i] = used[static_cast<size_t>(ground_of[i])] = true;
     }
@@ -346,6 +379,29 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     if (best >= 0 && moving_groups.size() <= 4) trail.push_back(best);
   }
 
+  // The longest bone from each link's joint at the first frame, by link name.
+  std::map<std::string, double> link_length;
+  if (bones.nodes > 0) {
+    const auto& nodes = bones.layout["nodes"];
+    for (const auto& t : model.tree)
+      if (t.body >= 0) link_length[model.bodies[static_cast<size_t>(t.body)].name] = 0;
+    for (const auto& bone : bones.layout["bones"]) {
+      const size_t a = bone[0], b = bone[1];
+      if (nodes[a]["kind"] != "joint") continue;
+      const auto it = link_length.find(nodes[a]["name"].get<std::string>());
+      if (it == link_length.end()) continue;
+      const double* pa = &joints[0][3 * a];
+      const double* pb = &joints[0][3 * b];
+      it->second = std::max(it->second, std::hypot(pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]));
+    }
+  }
+
+  double mean_link = 0;
+  size_t measured = 0;
+  for (const auto& [name, length] : link_length)
+    if (length > 0) mean_link += length, ++measured;
+  if (measured > 0) mean_link /= static_cast<double>(measured);
+
   // Bodies: shape from the declared shape or the inertia, centred on the centre of mass.
   nlohmann::json jbodies = nlohmann::json::array();
   for (size_t j = 0; j < nb; ++j) {
@@ -357,10 +413,21 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     BodyShape shape =
         shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
                            s[0], I, Eigen::Vector3d(s[10], s[11], s[12]), 0.08 * extent);
-    // A body small against the scene (a kite on a long tether) is enlarged to be seen.
+    // A body small against the scene (a kite on a long tether) is enlarged to be seen. A link of
+    // a joint tree keeps its size, but is drawn at most 1.2 times as long as the link (its longest
+    // bone; a published inertia can be far from the link's solid, the skeleton shows the link).
     const double largest = std::max({shape.size[0], shape.size[1], shape.size[2]});
-    if (largest < 0.06 * extent)
+    const auto bone = link_length.find(bodies[j]->name);
+    if (bone != link_length.end()) {
+      // A link whose child sits on its joint (a wrist) measures by its centre of mass, or else by
+      // the mean link.
+      double length = std::max(bone->second, 2 * std::hypot(s[10], s[11], s[12]));
+      if (!(length > 0)) length = mean_link;
+      if (length > 0 && largest > 1.2 * length)
+        for (double& x : shape.size) x *= 1.2 * length / largest;
+    } else if (largest < 0.06 * extent) {
       for (double& x : shape.size) x *= 0.06 * extent / largest;
+    }
     if (const double* scale = visual_lookup(visual.size, bodies[j]->name))
       for (double& x : shape.size) x *= *scale;
     nlohmann::json b{{"name", bodies[j]->name}, {"shape", shape.kind}};
@@ -417,6 +484,30 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   j["t"] = times;
   j["positions"] = flat_pos;
   j["poses"] = flat_pose;
+  if (!rings.empty()) {
+    nlohmann::json jr{{"points", nlohmann::json::array()}, {"samples", kRing}};
+    for (size_t r : rings) jr["points"].push_back(guides.point[r]);
+    std::vector<double> at;
+    for (size_t f = 0; f < nf; ++f)
+      for (size_t r : rings)
+        for (size_t k = 0; k < 3 * kRing; ++k)
+          at.push_back(round_decimals(curves[f][3 * (kRing + 1) * r + k], decimals));
+    jr["positions"] = at;
+    j["rings"] = jr;
+  }
+  if (bones.nodes > 0) {
+    nlohmann::json sk = bones.layout;
+    std::vector<double> at, axes;
+    for (size_t f = 0; f < nf; ++f) {
+      for (size_t k = 0; k < 3 * bones.nodes; ++k)
+        at.push_back(round_decimals(joints[f][k], decimals));
+      for (size_t k = 3 * bones.nodes; k < joints[f].size(); ++k)
+        axes.push_back(round_decimals(joints[f][k], 5));
+    }
+    sk["positions"] = at;
+    sk["directions"] = axes;
+    j["skeleton"] = sk;
+  }
   return j;
 }
 

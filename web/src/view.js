@@ -1,8 +1,12 @@
-// The 3-D view: points, bodies, segments, trails and the ground of the scene JSON
-// (src/io/report_scene.cpp), posed at any time by interpolating between frames.
+// The 3-D view: points, bodies, segments, trails, the skeleton of joint trees, driven hoops and
+// the ground of the scene JSON (src/io/report_scene.cpp), posed at any time by interpolating
+// between frames; the camera frames everything drawn over the whole run.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { bracket, interpolate } from './timeline.js';
+import { Skeleton } from './skeleton.js';
+import { Rings } from './rings.js';
+import { Fit } from './framing.js';
 
 const PALETTE = ['#d9534f', '#2f7ed8', '#f0ad4e', '#5cb85c', '#8e44ad', '#16a085'];
 const BODY_COLOR = '#e8a33d';
@@ -51,8 +55,8 @@ export class View {
     this.build();
     this.camera = new THREE.PerspectiveCamera(40, 1, scene.extent * 1e-3, scene.extent * 100);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
-    this.resetCamera();
     this.resize();
+    this.resetCamera();
     window.addEventListener('resize', () => this.resize());
     this.controls.addEventListener('change', () => this.render());
   }
@@ -89,7 +93,9 @@ export class View {
         geometry = new THREE.CylinderGeometry(b.size[0], b.size[0], b.size[2], 32);
         geometry.rotateX(Math.PI / 2); // three's cylinders run along y, the body's along z
       } else geometry = new THREE.BoxGeometry(b.size[0], b.size[1], b.size[2]);
-      const mesh = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: b.color ?? BODY_COLOR, roughness: 0.6 }));
+      // Over a skeleton the links are see-through, so that the joints inside them show.
+      const see = s.skeleton ? { transparent: true, opacity: 0.35, depthWrite: false } : {};
+      const mesh = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: b.color ?? BODY_COLOR, roughness: 0.6, ...see }));
       const a = b.axes;
       const basis = new THREE.Matrix4().set(a[0], a[1], a[2], 0, a[3], a[4], a[5], 0, a[6], a[7], a[8], 0, 0, 0, 0, 1);
       mesh.quaternion.setFromRotationMatrix(basis);
@@ -134,44 +140,87 @@ export class View {
       this.scene.add(line);
       return line;
     });
+    if (s.skeleton) this.skeleton = new Skeleton(this.scene, s.skeleton, this.markerSize(), this.up);
+    if (s.rings) this.rings = new Rings(this.scene, s.rings, 0.006 * e);
     this.addGround();
   }
 
-  // The ground: a grid square to gravity, just below everything that moves.
+  // The skeleton's markers scale with the tree itself at the first frame (a slider flung far
+  // away must not fatten the joints), at most with the scene.
+  markerSize() {
+    const sk = this.s.skeleton;
+    const box = new THREE.Box3();
+    sk.nodes.forEach((n, k) => {
+      if (n.kind !== 'rail') box.expandByPoint(new THREE.Vector3().fromArray(sk.positions, 3 * k));
+    });
+    const d = box.isEmpty() ? 0 : box.getSize(new THREE.Vector3()).length();
+    return d > 1e-3 * this.s.extent ? Math.min(d, this.s.extent) : this.s.extent;
+  }
+
+  // Calls fn(x, y, z, r) with spheres that hold everything drawn over all frames: points with
+  // their radius, the corners of bodies' shapes at their poses, the skeleton and the hoops.
+  eachDrawn(fn) {
+    const s = this.s;
+    const p = new THREE.Vector3();
+    const c = new THREE.Vector3();
+    const nb = s.bodies.length;
+    const rot = new THREE.Matrix4();
+    const half = s.bodies.map((b) => (b.shape === 'box' ? b.size.map((x) => x / 2) : [b.size[0], b.size[1], b.shape === 'sphere' ? b.size[0] : b.size[2] / 2]));
+    const axes = s.bodies.map((b) => new THREE.Matrix4().set(...b.axes.slice(0, 3), 0, ...b.axes.slice(3, 6), 0, ...b.axes.slice(6, 9), 0, 0, 0, 0, 1));
+    for (let f = 0; f < s.t.length; ++f) {
+      s.points.forEach((pt, i) => {
+        const o = f * this.stride + 3 * i;
+        if (pt.kind !== 'unused') fn(s.positions[o], s.positions[o + 1], s.positions[o + 2], pt.radius);
+      });
+      for (let j = 0; j < nb; ++j) {
+        const r = s.poses;
+        const o = (f * nb + j) * 12;
+        rot.set(r[o + 3], r[o + 4], r[o + 5], r[o], r[o + 6], r[o + 7], r[o + 8], r[o + 1], r[o + 9], r[o + 10], r[o + 11], r[o + 2], 0, 0, 0, 1);
+        c.fromArray(s.bodies[j].center);
+        const h = half[j];
+        for (let k = 0; k < 8; ++k) {
+          p.set(k & 1 ? h[0] : -h[0], k & 2 ? h[1] : -h[1], k & 4 ? h[2] : -h[2]).applyMatrix4(axes[j]).add(c).applyMatrix4(rot);
+          fn(p.x, p.y, p.z, 0);
+        }
+      }
+      if (this.skeleton) this.skeleton.eachDrawn(f, fn);
+      if (this.rings) this.rings.eachDrawn(f, fn);
+    }
+  }
+
+  // The box around everything drawn over all frames.
+  bounds() {
+    const box = new THREE.Box3();
+    this.eachDrawn((x, y, z, r) => {
+      box.min.set(Math.min(box.min.x, x - r), Math.min(box.min.y, y - r), Math.min(box.min.z, z - r));
+      box.max.set(Math.max(box.max.x, x + r), Math.max(box.max.y, y + r), Math.max(box.max.z, z + r));
+    });
+    if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+    return box;
+  }
+
+  // The ground: a grid square to gravity, just below everything drawn.
   addGround() {
     const s = this.s;
-    let low = Infinity;
-    const box = new THREE.Box3();
-    const p = new THREE.Vector3();
-    const nf = s.t.length;
-    const np = s.points.length;
-    for (let f = 0; f < nf; ++f) {
-      for (let i = 0; i < np; ++i) {
-        p.fromArray(s.positions, f * this.stride + 3 * i);
-        box.expandByPoint(p);
-        low = Math.min(low, p.dot(this.up));
-      }
-      for (let j = 0; j < s.bodies.length; ++j) {
-        p.fromArray(s.poses, (f * s.bodies.length + j) * 12);
-        box.expandByPoint(p);
-        low = Math.min(low, p.dot(this.up) - Math.max(...s.bodies[j].size));
-      }
-    }
-    if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+    const box = this.bounds();
     this.box = box;
+    let low = Infinity;
+    for (let k = 0; k < 8; ++k) {
+      const c = new THREE.Vector3(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z);
+      low = Math.min(low, c.dot(this.up));
+    }
     const size = 2.5 * s.extent;
     const grid = new THREE.GridHelper(size, 20, '#b5b5aa', '#d9d9d0');
     grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), this.up);
     const center = box.getCenter(new THREE.Vector3());
     const along = center.dot(this.up);
-    grid.position.copy(center).addScaledVector(this.up, low - 0.08 * s.extent - along);
+    grid.position.copy(center).addScaledVector(this.up, low - 0.02 * s.extent - along);
     this.scene.add(grid);
   }
 
   resetCamera() {
     const s = this.s;
     const center = this.box.getCenter(new THREE.Vector3());
-    const dist = 1.6 * s.extent + 1e-9;
     let dir;
     if (s.normal) dir = v3(s.normal);
     else {
@@ -182,6 +231,9 @@ export class View {
       dir = h1.multiplyScalar(0.8).addScaledVector(h2, -1.0).addScaledVector(this.up, 0.55).normalize();
     }
     this.camera.up.copy(this.up);
+    const fit = new Fit(center, dir, this.up, this.camera.fov, this.camera.aspect);
+    this.eachDrawn((x, y, z, r) => fit.add(x, y, z, r));
+    const dist = fit.distance + 1e-9 * s.extent;
     this.camera.position.copy(center).addScaledVector(dir, dist);
     this.controls.target.copy(center);
     this.controls.update();
@@ -240,6 +292,8 @@ export class View {
       seg.line.geometry.attributes.position.needsUpdate = true;
       if (seg.g.kind === 'damper') seg.line.computeLineDistances();
     }
+    if (this.skeleton) this.skeleton.pose(i, w);
+    if (this.rings) this.rings.pose(i, w);
     for (const trail of this.trails) trail.geometry.setDrawRange(0, i + 1 + (w > 0 ? 1 : 0));
     this.render();
   }
