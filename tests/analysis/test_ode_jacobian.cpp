@@ -221,12 +221,67 @@ TEST(AutoMethod, StiffDamperGoesImplicit) {
   }
 }
 
+// `auto` with the example's own tolerances over `t_end`: the method it ran, and the trajectory
+// against DOP853 at rtol 1e-10 (largest coordinate difference over the samples up to
+// `compared`, which fall on the same times).
+struct AutoRun {
+  std::string method;
+  double worst = 0.0;
+};
+AutoRun run_auto(Analysed& s, double t_end, double compared) {
+  SimulationOptions so;
+  so.t_end = t_end;
+  so.output_step = s.model->simulate.output_step;
+  so.integrator.rtol = 1e-10;
+  so.integrator.atol = 1e-12;
+  const Trajectory ref = simulate(*s.dyn, so, s.q, s.v);
+  EXPECT_EQ(ref.status, Trajectory::Status::Complete) << ref.message;
+  so.integrator.method = "auto";
+  so.integrator.rtol = s.model->simulate.rtol;
+  so.integrator.atol = s.model->simulate.atol;
+  so.jacobian = ode_jacobian(*s.jac, *s.dyn, 0.0, state(s));
+  const Trajectory tr = simulate(*s.dyn, so, s.q, s.v);
+  EXPECT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
+  EXPECT_EQ(tr.rows(), ref.rows());
+  AutoRun out{tr.stats.method, 0.0};
+  for (size_t r = 0; r < std::min(tr.rows(), ref.rows()); ++r) {
+    EXPECT_EQ(tr.at(r, "t"), ref.at(r, "t"));
+    if (tr.at(r, "t") > compared) continue;
+    for (const std::string& name : s.cm->coordinate_names)
+      out.worst = std::max(out.worst, std::abs(tr.at(r, name) - ref.at(r, name)));
+  }
+  return out;
+}
+
 TEST(AutoMethod, DoublePendulumStaysExplicit) {
   Analysed s = testing::analyse_example("double_pendulum.yaml");
   const std::vector<double> y0 = state(s);
   const OdeJacobian jac = ode_jacobian(*s.jac, *s.dyn, 0.0, y0);
   EXPECT_LT(spectral_radius_estimate(jac, 0.0, y0), 50.0);
   EXPECT_EQ(choose_ode_method(jac, 0.0, y0, s.model->simulate.output_step), "dop853");
+  // and through the whole run: DOP853's stiffness test never concludes (the motion is chaotic:
+  // compared over the first 2 s).
+  const AutoRun run = run_auto(s, s.model->simulate.t_end, 2.0);
+  EXPECT_EQ(run.method, "dop853");
+  EXPECT_LT(run.worst, 1e-5);
+}
+
+// docs/theory.md §5.6, "Noticing stiffness during the run": the elastic tether starts at its
+// unstretched length (ρ·Δt_out small at t = 0: auto starts explicit); once the line is taut its
+// axial modes hold DOP853 at its stability boundary, its stiffness test concludes within the
+// first tenth of a second, and the run continues on cvode:jacobian from the next sample (1 s of
+// the example's 5: the reference is DOP853 at its stability boundary all along).
+TEST(AutoMethod, ElasticTetherTurnsImplicitDuringTheRun) {
+  Analysed s = testing::analyse_example("elastic_tether.yaml");
+  const std::vector<double> y0 = state(s);
+  const OdeJacobian jac = ode_jacobian(*s.jac, *s.dyn, 0.0, y0);
+  EXPECT_EQ(choose_ode_method(jac, 0.0, y0, s.model->simulate.output_step), "dop853");
+  const AutoRun run = run_auto(s, 1.0, 1.0);
+  EXPECT_EQ(run.method.rfind("dop853, stiff at t = ", 0), 0u) << run.method;
+  const size_t from = run.method.find(": cvode:jacobian from t = ");
+  ASSERT_NE(from, std::string::npos) << run.method;
+  EXPECT_LT(std::stod(run.method.substr(from + 26)), 0.2) << run.method;
+  EXPECT_LT(run.worst, 1e-4);
 }
 
 }  // namespace
