@@ -48,10 +48,6 @@ void validate_size(size_t size, size_t got, const char* what) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 /// `auto` that began explicit: DOP853 until its stiffness test concludes, then cvode:jacobian
 /// from the sample it stopped at (docs/theory.md §5.6, "Noticing stiffness during the run").
 IntegratorStats integrate_switching(const OdeProblem& problem, const IntegratorOptions& options,
