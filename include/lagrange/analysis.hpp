@@ -29,10 +29,12 @@ class AnalysisError : public std::runtime_error {
 /// inputs w (columns of the *_w blocks in DynamicsJacobian::input_names() order).
 struct StateJacobian {
   Eigen::VectorXd qdot, a, lambda;  ///< nq, nv, m
-  Eigen::MatrixXd a_q, a_v, a_w;    ///< ∂a/∂q (nv×nq), ∂a/∂v (nv×nv), ∂a/∂w (nv×nw)
-  Eigen::MatrixXd G, C_q, Cdot_q;   ///< m×nv ∂Ċ/∂v, m×nq ∂C/∂q, m×nq ∂Ċ/∂q
-  Eigen::VectorXd y;                ///< the model's outputs (Equations::outputs)
-  Eigen::MatrixXd y_q, y_v, y_w;    ///< their derivatives
+  /// ∂q̇/∂q (nq×nq), ∂q̇/∂v (nq×nv): for a free body Ṙ = R(Ω + Ξ), drift correction included.
+  Eigen::MatrixXd qdot_q, qdot_v;
+  Eigen::MatrixXd a_q, a_v, a_w;   ///< ∂a/∂q (nv×nq), ∂a/∂v (nv×nv), ∂a/∂w (nv×nw)
+  Eigen::MatrixXd G, C_q, Cdot_q;  ///< m×nv ∂Ċ/∂v, m×nq ∂C/∂q, m×nq ∂Ċ/∂q
+  Eigen::VectorXd y;               ///< the model's outputs (Equations::outputs)
+  Eigen::MatrixXd y_q, y_v, y_w;   ///< their derivatives
 };
 
 /// The dynamics tape's outputs (M, h + Q, q̇, G, c, Ċ, C) and named model outputs with their exact
@@ -75,10 +77,10 @@ class DynamicsJacobian {
   Tape tape_;
 };
 
-/// The exact Jacobian of y' = f(y), y = (q, v), q̇ = v: [0 I; ∂a/∂q ∂a/∂v] from `jac`, for
-/// cvode:jacobian (OdeProblem::jacobian), on the pattern of the entries non-zero at y0 or at two
-/// states nearby (docs/theory.md §5.6). Refers to `jac` and `dyn`, which must outlive it;
-/// std::invalid_argument for models with free bodies (their q̇ is not v).
+/// The exact Jacobian of y' = f(y), y = (q, v): [∂q̇/∂q ∂q̇/∂v; ∂a/∂q ∂a/∂v] from `jac` (for a
+/// free body's nine entries of R as the integrator sees them), for cvode:jacobian
+/// (OdeProblem::jacobian), on the pattern of the entries non-zero at y0 or at two states nearby
+/// (docs/theory.md §5.6). Refers to `jac` and `dyn`, which must outlive it.
 OdeJacobian ode_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
                          const std::vector<double>& y0);
 

@@ -66,7 +66,9 @@ std::string choose_ode_method(const OdeJacobian& jacobian, double t, const std::
 /// Every method name integrate() and integrate_dae() accept, in the order help texts list them:
 /// dop853 (the default), arkode (its default table), arkode:<table> for each named ARKODE explicit
 /// table, cvode, cvode:jacobian (CVODE on the problem's exact sparse Jacobian), auto
-/// (choose_ode_method), rk4, midpoint, ida.
+/// (choose_ode_method at t0; starting on dop853 with a Jacobian at hand, it continues on
+/// cvode:jacobian from the first sample after DOP853's stiffness test concludes, and
+/// IntegratorStats::method says when), rk4, midpoint, ida.
 const std::vector<std::string>& integrator_methods();
 
 /// integrator_methods() joined by ", " (for messages that list the valid names).
@@ -76,7 +78,9 @@ struct IntegratorStats {
   long steps = 0;
   long rhs_evals = 0;
   long failed_steps = 0;
-  std::string method;  ///< what ran: plain `arkode` names its table, e.g. arkode:dormand-prince
+  /// what ran: plain `arkode` names its table, e.g. arkode:dormand-prince; `auto` that switched
+  /// says where, e.g. "dop853, stiff at t = 0.0706: cvode:jacobian from t = 0.07"
+  std::string method;
 };
 
 /// What the observer wants after seeing an output sample.

@@ -129,11 +129,10 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
   values_ = values.size();
   outputs_ = outputs.size();
 
-  // docs/theory.md §5.1: ∂e/∂x for each value e and each column symbol it contains; q̇ is not
-  // differentiated (the tangent chart supplies the kinematics' derivatives).
+  // docs/theory.md §5.1: ∂e/∂x for each value e and each column symbol it contains; q̇ too
+  // (docs/theory.md §5.6: a free body's Ṙ = R(Ω + Ξ) for the first-order form's Jacobian).
   std::vector<GiNaC::ex> all = values;
   for (size_t r = 0; r < values.size(); ++r) {
-    if (r >= c.qdot_out() && r < c.G_out()) continue;
     std::vector<size_t> cols = differentiate.columns_in(values[r]);
     for (const auto& [symbol, ks] : implies)
       if (values[r].has(symbol)) cols.insert(cols.end(), ks.begin(), ks.end());
@@ -186,6 +185,8 @@ StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* 
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(n + m, cols), Y = Eigen::MatrixXd::Zero(ny, cols);
   J.C_q = Eigen::MatrixXd::Zero(m, nq);
   J.Cdot_q = Eigen::MatrixXd::Zero(m, nq);
+  J.qdot_q = Eigen::MatrixXd::Zero(nq, nq);
+  J.qdot_v = Eigen::MatrixXd::Zero(nq, n);
   for (size_t e = 0; e < pattern_.size(); ++e) {
     const size_t r = pattern_[e].first;
     const long k = static_cast<long>(pattern_[e].second);
@@ -197,8 +198,12 @@ StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* 
       if (i != j) R(j, k) -= d * J.a[i];
     } else if (r < c.qdot_out()) {  // f'
       R(static_cast<long>(r - c.rhs_out()), k) += d;
-    } else if (r < c.G_out()) {
-      continue;                  // q̇: not differentiated
+    } else if (r < c.G_out()) {  // q̇'
+      const long row = static_cast<long>(r - c.qdot_out());
+      if (k < nq)
+        J.qdot_q(row, k) = d;
+      else if (k < nq + n)
+        J.qdot_v(row, k - nq) = d;
     } else if (r < c.c_out()) {  // G'ᵀλ and G'a
       const long row = static_cast<long>(c.G_pattern[r - c.G_out()].first);
       const long j = static_cast<long>(c.G_pattern[r - c.G_out()].second);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -12,24 +13,48 @@ namespace lagrange {
 
 namespace {
 
-/// The pattern's rows of the acceleration block per column of y: the entries of [a_q a_v] that
-/// are non-zero at `states` (structural non-zeros are non-zero at a generic state).
+/// ∂f_r/∂y_j from one evaluation: rows 0..nq of f are q̇, then the accelerations.
+double entry(const StateJacobian& J, size_t nq, size_t r, size_t j) {
+  const long row = static_cast<long>(r < nq ? r : r - nq);
+  const long col = static_cast<long>(j < nq ? j : j - nq);
+  if (r < nq) return j < nq ? J.qdot_q(row, col) : J.qdot_v(row, col);
+  return j < nq ? J.a_q(row, col) : J.a_v(row, col);
+}
+
+/// Per column of y, the rows of f whose derivative is non-zero at some of `states`
+/// (structural non-zeros are non-zero at a generic state).
 std::vector<std::vector<bool>> probe(const DynamicsJacobian& jac, Dynamics& dyn, double t,
                                      const std::vector<std::vector<double>>& states) {
   const CompiledModel& cm = jac.model();
-  const size_t nq = cm.nq, nv = cm.nv;
-  std::vector<std::vector<bool>> used(nq + nv, std::vector<bool>(nv, false));
+  const size_t nq = cm.nq, n = cm.nq + cm.nv;
+  std::vector<std::vector<bool>> used(n, std::vector<bool>(n, false));
   for (const auto& y : states) {
     const StateJacobian J = jac.evaluate(dyn, t, y.data(), y.data() + nq);
-    for (size_t j = 0; j < nq + nv; ++j)
-      for (size_t i = 0; i < nv; ++i) {
-        const long r = static_cast<long>(i);
-        const double d =
-            j < nq ? J.a_q(r, static_cast<long>(j)) : J.a_v(r, static_cast<long>(j - nq));
-        if (d != 0.0) used[j][i] = true;
-      }
+    for (size_t j = 0; j < n; ++j)
+      for (size_t r = 0; r < n; ++r)
+        if (entry(J, nq, r, j) != 0.0) used[j][r] = true;
   }
   return used;
+}
+
+bool finite(const StateJacobian& J) {
+  return J.qdot_q.allFinite() && J.qdot_v.allFinite() && J.a_q.allFinite() && J.a_v.allFinite();
+}
+
+/// The derivatives at (t, y); at a kink of max/min (|x| at x = 0, e.g. a slack tether segment at
+/// rest), where they do not exist, one-sided ones: those at a state moved by 1e-9 relative
+/// (docs/theory.md §5.6). Non-finite entries are left for the caller's check otherwise.
+StateJacobian evaluate(const DynamicsJacobian& jac, Dynamics& dyn, double t, const double* y) {
+  const size_t nq = jac.model().nq, n = nq + jac.model().nv;
+  StateJacobian J = jac.evaluate(dyn, t, y, y + nq);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int attempt = 0; attempt < 3 && !finite(J); ++attempt) {
+    std::vector<double> moved(y, y + n);
+    for (double& x : moved) x += 1e-9 * (std::abs(x) + 1.0) * unit(random);
+    J = jac.evaluate(dyn, t, moved.data(), moved.data() + nq);
+  }
+  return J;
 }
 
 }  // namespace
@@ -38,16 +63,12 @@ std::vector<std::vector<bool>> probe(const DynamicsJacobian& jac, Dynamics& dyn,
 OdeJacobian ode_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
                          const std::vector<double>& y0) {
   const CompiledModel& cm = jac.model();
-  const size_t nq = cm.nq, nv = cm.nv, n = nq + nv;
-  if (cm.plain != nq || nq != nv)
-    throw std::invalid_argument(fmt::format(
-        "the exact ODE Jacobian needs plain coordinates only (q̇ = v); this model has {} free "
-        "bod{} (use cvode or dop853)",
-        cm.rotations.size(), cm.rotations.size() == 1 ? "y" : "ies"));
+  const size_t nq = cm.nq, n = nq + cm.nv;
   if (y0.size() != n)
     throw std::invalid_argument(
         fmt::format("ode_jacobian: expected a state of {} values, got {}", n, y0.size()));
-  // The state itself and two states nearby (relative and absolute changes of 1e-3, fixed seed).
+  // The state itself and two states nearby (relative and absolute changes of 1e-3, fixed seed):
+  // R then leaves SO(3) a little, where the drift correction's derivatives are generic too.
   std::vector<std::vector<double>> states{y0};
   std::mt19937 random(22);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -58,33 +79,20 @@ OdeJacobian ode_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
   }
   const std::vector<std::vector<bool>> used = probe(jac, dyn, t0, states);
 
+  // The diagonal is kept for the Newton matrix I − γJ.
   OdeJacobian out;
   out.column_starts.push_back(0);
   for (size_t j = 0; j < n; ++j) {
-    // rows: q̇_j = v_j gives (j − nq, j) for a velocity column; the diagonal is kept for the
-    // Newton matrix I − γJ; then the accelerations.
-    if (j < nq) out.rows.push_back(static_cast<long>(j));
-    if (j >= nq) out.rows.push_back(static_cast<long>(j - nq));
-    for (size_t i = 0; i < nv; ++i)
-      if (used[j][i] || nq + i == j) out.rows.push_back(static_cast<long>(nq + i));
+    for (size_t r = 0; r < n; ++r)
+      if (used[j][r] || r == j) out.rows.push_back(static_cast<long>(r));
     out.column_starts.push_back(static_cast<long>(out.rows.size()));
   }
   const OdeJacobian pattern = out;  // the values callback reads the pattern from its own copy
-  out.values = [&jac, &dyn, pattern, nq](double t, const double* y, double* values) {
-    const StateJacobian J = jac.evaluate(dyn, t, y, y + nq);
-    const size_t n = 2 * nq;
+  out.values = [&jac, &dyn, pattern, nq, n](double t, const double* y, double* values) {
+    const StateJacobian J = evaluate(jac, dyn, t, y);
     for (size_t j = 0; j < n; ++j)
-      for (long e = pattern.column_starts[j]; e < pattern.column_starts[j + 1]; ++e) {
-        const size_t r = static_cast<size_t>(pattern.rows[static_cast<size_t>(e)]);
-        double d = 0.0;
-        if (r < nq)
-          d = j == nq + r ? 1.0 : 0.0;
-        else if (j < nq)
-          d = J.a_q(static_cast<long>(r - nq), static_cast<long>(j));
-        else
-          d = J.a_v(static_cast<long>(r - nq), static_cast<long>(j - nq));
-        values[e] = d;
-      }
+      for (long e = pattern.column_starts[j]; e < pattern.column_starts[j + 1]; ++e)
+        values[e] = entry(J, nq, static_cast<size_t>(pattern.rows[static_cast<size_t>(e)]), j);
   };
   return out;
 }

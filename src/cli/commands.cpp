@@ -181,7 +181,8 @@ int run_simulate(const Options& opt) {
     fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
                p.dynamics->machine_code_error());
   // cvode:jacobian integrates on the exact Jacobian, derived here; auto chooses by the
-  // stiffness it shows at the initial state, dop853 where it cannot be had (docs/theory.md §5.6).
+  // stiffness it shows at the initial state and, starting explicit, by DOP853's stiffness test
+  // during the run; dop853 throughout where the Jacobian cannot be had (docs/theory.md §5.6).
   std::unique_ptr<DynamicsJacobian> jacobian;
   const std::string method = so.integrator.method;
   const bool needs_jacobian = method == "cvode:jacobian";
@@ -194,18 +195,20 @@ int run_simulate(const Options& opt) {
       std::vector<double> y0 = p.q;
       y0.insert(y0.end(), p.v.begin(), p.v.end());
       so.jacobian = ode_jacobian(*jacobian, *p.dynamics, so.t0, y0);
-      if (method == "auto")
-        so.integrator.method = choose_ode_method(so.jacobian, so.t0, y0, so.output_step);
+      // auto stays auto when it starts explicit: integrate() watches DOP853's stiffness test.
+      if (method == "auto" &&
+          choose_ode_method(so.jacobian, so.t0, y0, so.output_step) == "cvode:jacobian")
+        so.integrator.method = "cvode:jacobian";
     } catch (const std::invalid_argument& e) {
       if (needs_jacobian)
         throw UsageError(fmt::format("--integrator cvode:jacobian: {}", e.what()));
-      so.jacobian = {};  // auto on a model with free bodies: the explicit default
+      so.jacobian = {};  // auto without a Jacobian: the explicit default
     } catch (const AnalysisError& e) {
       if (needs_jacobian) throw;
       so.jacobian = {};  // singular KKT at the start: the explicit default
     }
   }
-  if (so.integrator.method == "auto") so.integrator.method = "dop853";
+  if (so.integrator.method == "auto" && !so.jacobian.values) so.integrator.method = "dop853";
   p.dynamics->set_baumgarte(baumgarte_rate(model.stabilization, so.integrator.method));
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
@@ -270,7 +273,8 @@ int run_simulate(const Options& opt) {
     if (!opt.plot.empty()) fmt::print("  wrote {}\n", opt.plot);
   }
   if (!opt.report.empty() && traj.rows() > 0) {
-    write_run_report(p, traj, so.integrator.method, t_sim, opt.report);
+    write_run_report(p, traj, traj.stats.method.empty() ? so.integrator.method : traj.stats.method,
+                     t_sim, opt.report);
     if (!opt.quiet) fmt::print("  wrote {}\n", opt.report);
   }
   if (traj.status == Trajectory::Status::Failed) {

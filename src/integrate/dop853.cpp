@@ -178,12 +178,34 @@ void Dop853::accept(double h, bool last, double h_next) {
   y_ = y_new_;
   t_ = last ? t_end_ : t_old_ + h;
   f(t_, y_.data(), k_[kStages]);
+  test_stiffness(h);
   first_is_last_ = true;
   h_old_ = h;
   h_ = h_next;
   rejections_ = 0;
   dense_ready_ = false;
   ++stats_.steps;
+}
+
+// docs/theory.md §5.6, "Noticing stiffness during the run": stage 12 and the solution both sit
+// at t + h, so h‖f(y₁) − f(Y₁₂)‖ / ‖y₁ − Y₁₂‖ estimates h·ρ along the difference (Hairer's
+// dop853.f). Here every accepted step is tested (two sums of n terms).
+void Dop853::test_stiffness(double h) {
+  if (stiff()) return;
+  double num = 0.0, den = 0.0;
+  const std::vector<double>& f_new = k_[kStages];
+  const std::vector<double>& f_stage = k_[kStages - 1];
+  for (size_t i = 0; i < n_; ++i) {
+    num += (f_new[i] - f_stage[i]) * (f_new[i] - f_stage[i]);
+    den += (y_[i] - stage_[i]) * (y_[i] - stage_[i]);
+  }
+  if (!(den > 0.0)) return;
+  if (h * std::sqrt(num / den) > kStabilityBoundary) {
+    soft_tests_ = 0;
+    if (++stiff_tests_ == kStiffSteps) stiff_since_ = t_;
+  } else if (++soft_tests_ == kSoftSteps) {
+    stiff_tests_ = 0;
+  }
 }
 
 // Hairer's starting step: an Euler step of 0.01 in the scaled norm, refined by the change of f
@@ -235,8 +257,18 @@ void Dop853::build_dense() {
 
 IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOptions& options,
                                  const OutputGrid& grid, std::vector<double>& y,
-                                 const Observer& observer) {
+                                 const Observer& observer, StiffHandover* handover) {
   Dop853 method(problem, options, y, grid.time(grid.intervals()));
+  size_t sample = 0;
+  // With a handover, a sample observed once the stiffness test has concluded is the last.
+  const Observer watch = [&](double t, double* yy, double* yp) {
+    const ObserverAction action = observer ? observer(t, yy, yp) : ObserverAction::Continue;
+    const size_t k = sample++;
+    if (action != ObserverAction::Continue || !method.stiff() || k == grid.intervals())
+      return action;
+    *handover = {true, method.stiff_since(), k, std::vector<double>(yy, yy + y.size())};
+    return ObserverAction::Stop;
+  };
   method.start(grid.time(0), false);
   StepBudget budget(options.max_steps);
   double t_reached = grid.time(0);
@@ -253,7 +285,10 @@ IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOpti
     method.start(t, keep_step);
   };
   keeping_stats(
-      [&] { walk_dense(grid, observer, options.after_step, false, y, step, interpolate, restart); },
+      [&] {
+        walk_dense(grid, handover ? watch : observer, options.after_step, false, y, step,
+                   interpolate, restart);
+      },
       [&] { return method.stats(); });
   return method.stats();
 }

@@ -30,6 +30,16 @@ class Dop853 {
   /// Moves the end the steps land on (at or after time()).
   void set_end(double t_end) { t_end_ = t_end; }
   IntegratorStats stats() const { return stats_; }
+  /// Hairer's stiffness test (docs/theory.md §5.6, "Noticing stiffness during the run"): true
+  /// once h·ρ, estimated after each accepted step from its last stages, has exceeded the
+  /// stability boundary on kStiffSteps tests with no kSoftSteps passing ones in a row between.
+  bool stiff() const { return stiff_tests_ >= kStiffSteps; }
+  /// The time of the step that made the test conclude (stiff() true).
+  double stiff_since() const { return stiff_since_; }
+
+  static constexpr double kStabilityBoundary = 6.1;  ///< h·ρ at DOP853's (Hairer's value)
+  static constexpr long kStiffSteps = 15;
+  static constexpr long kSoftSteps = 6;
 
  private:
   void f(double t, const double* y, std::vector<double>& out);
@@ -38,6 +48,7 @@ class Dop853 {
   double error(double h);
   double weight(size_t i, double size) const;
   void accept(double h, bool last, double h_next);
+  void test_stiffness(double h);
   double initial_step();
   void build_dense();
 
@@ -55,6 +66,8 @@ class Dop853 {
   bool dense_ready_ = false;
   long rejections_ = 0;
   double previous_error_ = 1e-4;
+  long stiff_tests_ = 0, soft_tests_ = 0;
+  double stiff_since_ = 0.0;
   IntegratorStats stats_;
 };
 

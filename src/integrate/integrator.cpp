@@ -11,6 +11,8 @@
 #include "integrate/erk_tables.hpp"
 #include "integrate/methods.hpp"
 #include "integrate/output_grid.hpp"
+#include "integrate/walk_grid.hpp"
+#include "lagrange/integration_failure.hpp"
 
 namespace lagrange {
 
@@ -46,15 +48,54 @@ void validate_size(size_t size, size_t got, const char* what) {
   }
 }
 
+/// `auto` that began explicit: DOP853 until its stiffness test concludes, then cvode:jacobian
+/// from the sample it stopped at (docs/theory.md §5.6, "Noticing stiffness during the run").
+IntegratorStats integrate_switching(const OdeProblem& problem, const IntegratorOptions& options,
+                                    const integration::OutputGrid& grid, std::vector<double>& y,
+                                    const Observer& observer) {
+  using integration::operator+;
+  integration::StiffHandover handover;
+  IntegratorStats stats =
+      integration::integrate_dop853(problem, options, grid, y, observer, &handover);
+  stats.method = "dop853";
+  if (!handover.stiff) return stats;
+  IntegratorOptions implicit = options;
+  implicit.method = "cvode:jacobian";
+  bool first = true;  // the sample the handover starts from is in the trajectory already
+  const Observer rest = [&](double t, double* yy, double* yp) {
+    if (first) {
+      first = false;
+      return ObserverAction::Continue;
+    }
+    return observer ? observer(t, yy, yp) : ObserverAction::Continue;
+  };
+  const integration::OutputGrid tail = grid.from(handover.sample);
+  const std::string method =
+      fmt::format("dop853, stiff at t = {:.6g}: cvode:jacobian from t = {:.6g}", handover.detected,
+                  tail.time(0));
+  try {
+    y = handover.y;
+    stats = stats + integration::integrate_cvode(problem, implicit, tail, y, rest);
+  } catch (const IntegrationFailure& e) {
+    IntegratorStats so_far = stats + e.stats();
+    so_far.method = method;
+    throw IntegrationFailure(e, so_far);
+  }
+  stats.method = method;
+  return stats;
+}
+
 }  // namespace
 
 IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& given, double t0,
                           std::vector<double> y0, double t_end, double dt,
                           const Observer& observer) {
   IntegratorOptions options = given;
+  bool switching = false;  // auto that starts explicit may turn implicit during the run
   if (options.method == "auto") {
     validate_size(problem.size, y0.size(), "y0");
     options.method = choose_ode_method(problem.jacobian, t0, y0, dt);
+    switching = options.method == "dop853" && problem.jacobian.values && options.step == 0.0;
   }
   const std::string& method = options.method;
   const std::vector<std::string>& known = integrator_methods();
@@ -73,6 +114,8 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& gi
         "integrator: cvode:jacobian needs the problem's exact Jacobian (OdeProblem::jacobian)");
   if (method == "cvode" || method == "cvode:jacobian") {
     stats = integration::integrate_cvode(problem, options, grid, y0, observer);
+  } else if (switching) {
+    stats = integrate_switching(problem, options, grid, y0, observer);
   } else if (method == "dop853") {
     stats = integration::integrate_dop853(problem, options, grid, y0, observer);
   } else if (method == "rk4") {
@@ -82,9 +125,10 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& gi
   } else {
     stats = integration::integrate_arkode(problem, options, grid, y0, observer);
   }
-  stats.method = method == "arkode"
-                     ? std::string("arkode:") + integration::default_erk_table(options.rtol).name
-                     : method;
+  if (method == "arkode")
+    stats.method = std::string("arkode:") + integration::default_erk_table(options.rtol).name;
+  else if (!switching)
+    stats.method = method;
   return stats;
 }
 

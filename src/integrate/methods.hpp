@@ -18,11 +18,21 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
                                  const OutputGrid& grid, std::vector<double>& y,
                                  const Observer& observer);
 
+/// Where a DOP853 run stopped because its stiffness test concluded (Dop853::stiff).
+struct StiffHandover {
+  bool stiff = false;
+  double detected = 0.0;  ///< the time of the step that concluded the test
+  size_t sample = 0;      ///< the grid sample the run stopped at (observed already)
+  std::vector<double> y;  ///< the state there, as the observer saw it
+};
+
 /// DOP853 (Dormand–Prince 8(5,3), Hairer's error estimate and step control), samples from its
-/// continuous extension of order 7; options.step > 0 fixes the step (no error control).
+/// continuous extension of order 7; options.step > 0 fixes the step (no error control). With
+/// `handover`, the run ends at the first sample after the stiffness test concludes, and says
+/// where in it (docs/theory.md §5.6, "Noticing stiffness during the run").
 IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOptions& options,
                                  const OutputGrid& grid, std::vector<double>& y,
-                                 const Observer& observer);
+                                 const Observer& observer, StiffHandover* handover = nullptr);
 
 /// CVODE BDF (orders 1–5) with Newton iteration; `cvode`: a dense direct linear solver on
 /// difference-quotient Jacobians, `cvode:jacobian`: problem.jacobian, in KLU when the build has

@@ -31,7 +31,17 @@ OutputGrid::OutputGrid(double t0, double t_end, double dt) : t0_(t0), t_end_(t_e
 }
 
 double OutputGrid::time(size_t k) const {
+  k += first_;
   return k >= intervals_ ? t_end_ : t0_ + static_cast<double>(k) * dt_;
+}
+
+OutputGrid OutputGrid::from(size_t k) const {
+  if (k > intervals())
+    throw std::out_of_range(
+        fmt::format("output grid: sample {} of a grid of {} intervals", k, intervals()));
+  OutputGrid rest = *this;
+  rest.first_ += k;
+  return rest;
 }
 
 }  // namespace lagrange::integration

@@ -17,11 +17,10 @@ DriftCorrection::DriftCorrection(Dynamics& dynamics, const SimulationOptions& op
 
 bool DriftCorrection::correct(double t, double* y, double allowed) {
   const CompiledModel& cm = dynamics_.model();
-  const double drift =
-      orthonormalize_rotations(cm, y, options_.project ? options_.projection_tol : HUGE_VAL);
+  const double drift = orthonormalize_rotations(cm, y, options_.project ? allowed : HUGE_VAL);
   rotation_drift_ = std::max(rotation_drift_, drift);
   if (!options_.project) return false;
-  bool moved = drift > options_.projection_tol;
+  bool moved = drift > allowed;
   if (cm.m > 0) {
     dynamics_.constraints(t, y, y + cm.nq, C_.data(), Cdot_.data());
     if (max_abs(C_) > allowed || max_abs(Cdot_) > allowed) {

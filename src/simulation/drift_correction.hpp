@@ -18,8 +18,8 @@ class DriftCorrection {
   /// onto C = 0, Ċ = 0 where max |C| or |Ċ| > tol (every coordinate may move); true when y moved.
   /// At output samples: tol = projection_tol.
   bool operator()(double t, double* y) { return correct(t, y, options_.projection_tol); }
-  /// After an internal step: the constraints only when their drift exceeds
-  /// step_drift_tolerance() (docs/theory.md §4.3, "Projecting when the drift matters").
+  /// After an internal step: R and the constraints only when their drift exceeds
+  /// step_drift_tolerance() (docs/theory.md §4.3, "Projecting when the drift matters"; §4.4).
   bool after_step(double t, double* y) { return correct(t, y, step_tol_); }
   /// Largest ‖RᵀR − 1‖_F seen before a correction (Trajectory::rotation_drift).
   double largest_rotation_drift() const { return rotation_drift_; }

@@ -37,6 +37,17 @@ TEST(OutputGrid, EmptySpanHasOnlyTheInitialSample) {
   EXPECT_EQ(grid.time(0), 3.0);
 }
 
+// A handover mid-run (auto turning implicit) continues on the same sample times, bit for bit.
+TEST(OutputGrid, TailKeepsTheSampleTimes) {
+  const OutputGrid grid(0.0, 2.0, 0.3);
+  const OutputGrid tail = grid.from(3);
+  ASSERT_EQ(tail.intervals(), grid.intervals() - 3);
+  for (size_t k = 0; k <= tail.intervals(); ++k) EXPECT_EQ(tail.time(k), grid.time(k + 3));
+  EXPECT_EQ(grid.from(2).from(1).time(0), grid.time(3));
+  EXPECT_EQ(grid.from(grid.intervals()).intervals(), 0u);
+  EXPECT_THROW(grid.from(grid.intervals() + 1), std::out_of_range);
+}
+
 TEST(OutputGrid, RejectsBadInput) {
   EXPECT_THROW(OutputGrid(0.0, 1.0, 0.0), std::invalid_argument);
   EXPECT_THROW(OutputGrid(0.0, 1.0, -0.1), std::invalid_argument);
