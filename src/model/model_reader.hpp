@@ -162,6 +162,10 @@ class ModelReader {
   /// `stop_when: {name: "lhs < rhs"}`: the texts, checked for one comparison; their names are
   /// checked against the trajectory columns once the model is compiled.
   void read_stop_when(const YAML::Node& node);
+  // read_visual.cpp
+  /// `visual: {color, size, trail, hide}`: names of points, bodies or elements, CSS colours,
+  /// positive sizes; read by the report, checked here so that `check` finds its mistakes.
+  void read_visual(const YAML::Node& node);
 
   // read_generated.cpp — names and state that elements generate (docs/model-language.md).
   Model& model() { return m_; }

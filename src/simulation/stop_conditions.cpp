@@ -43,7 +43,11 @@ GiNaC::ex parse_side(const StopSpec& spec, const std::string& side, size_t offse
 }  // namespace
 
 StopConditions::StopConditions(const CompiledModel& cm, const std::vector<std::string>& columns)
-    : specs_(cm.stop_when), columns_(columns.size()), parameters_(cm.np) {
+    : StopConditions(cm.stop_when, cm, columns) {}
+
+StopConditions::StopConditions(const std::vector<StopSpec>& specs, const CompiledModel& cm,
+                               const std::vector<std::string>& columns)
+    : specs_(specs), columns_(columns.size()), parameters_(cm.np) {
   if (specs_.empty()) return;
   std::map<std::string, GiNaC::symbol> names;
   std::vector<GiNaC::symbol> inputs;
