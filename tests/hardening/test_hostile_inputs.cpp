@@ -160,6 +160,47 @@ TEST(ModelFile, AFileThatNeverEndsIsRefusedWithBoundedMemory) {
   EXPECT_LT(r.max_rss_kb, 400 * 1024);
 }
 
+TEST(SizeLimits, TwoThousandCoordinatesCountWrittenAndGeneratedTogether) {
+  // 2000 written coordinates and a link's joint: 2001 once passed where the docs say 2000
+  std::string yaml = "coordinates: {";
+  for (int i = 0; i < 2000; ++i) yaml += (i ? ", q" : "q") + std::to_string(i) + ": {initial: 0}";
+  yaml +=
+      "}\npotential: q0^2\nlinks:\n  arm:\n    joint: {name: elbow, type: revolute}\n"
+      "    mass: 1\n    com: [1, 0, 0]\n    inertia: [0, 0, 0.1]\n";
+  ScratchDir dir("limit-2001");
+  spit(dir.path() / "m.yaml", yaml);
+  const RunResult r = run_lagrange(dir.path(), {"check", (dir.path() / "m.yaml").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("m.yaml:5:19: error: expected at most 2000 coordinates in the model "
+                       "(written and generated together), got more"),
+            std::string::npos)
+      << r.err.substr(0, 500);
+}
+
+TEST(SizeLimits, ATenThousandLinkUrdfIsRefusedBeforeItsFramesAreBuilt) {
+  // once 12 minutes and 4.9 GB before anything was said
+  std::string urdf = "<robot name=\"snake\">\n<link name=\"l0\"/>\n";
+  for (int i = 1; i <= 10000; ++i) {
+    const std::string n = std::to_string(i), p = std::to_string(i - 1);
+    urdf += "<link name=\"l" + n +
+            "\"><inertial><origin xyz=\"0.05 0 0\"/><mass value=\"0.1\"/><inertia ixx=\"1e-4\" "
+            "ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial></link>\n"
+            "<joint name=\"j" +
+            n + "\" type=\"revolute\"><parent link=\"l" + p + "\"/><child link=\"l" + n +
+            "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\"0 0 1\"/></joint>\n";
+  }
+  urdf += "</robot>\n";
+  ScratchDir dir("limit-urdf");
+  spit(dir.path() / "snake.urdf", urdf);
+  const RunResult r = run_lagrange(dir.path(), {"check", (dir.path() / "snake.urdf").string()},
+                                   std::chrono::seconds(120));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("expected at most 2000 coordinates in the model"), std::string::npos)
+      << r.err.substr(0, 500);
+  EXPECT_NE(r.err.find("has 10000 movable joints"), std::string::npos) << r.err.substr(0, 500);
+  EXPECT_LT(r.max_rss_kb, 1024 * 1024);
+}
+
 // Ctrl-C `delay` after the start; the run must end with 130 within `limit` of the signal.
 RunResult interrupt_after(const fs::path& dir, const std::vector<std::string>& args,
                           std::chrono::milliseconds delay, double limit) {
