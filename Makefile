@@ -60,13 +60,15 @@ FUZZ_SECONDS ?= 600
 FUZZ_RUNS ?=
 FUZZ_RUNS_MODEL ?=
 FUZZ_RUNS_EXPRESSION ?=
+FUZZ_RUNS_URDF ?=
 fuzz:
 	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
 	  -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF \
 	  -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
-	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression fuzz_urdf
 	@FUZZ_RUNS=$(FUZZ_RUNS) FUZZ_RUNS_MODEL=$(FUZZ_RUNS_MODEL) FUZZ_RUNS_EXPRESSION=$(FUZZ_RUNS_EXPRESSION) \
+	  FUZZ_RUNS_URDF=$(FUZZ_RUNS_URDF) \
 	  ./fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 clean:

@@ -30,6 +30,11 @@ struct CompiledModel {
   std::vector<bool> fixed;        ///< nq: coordinates kept by the initial-state projection
   std::vector<size_t> rotations;  ///< per free body, the index in q of R11 (R row-major, 9 entries)
   std::vector<StopSpec> stop_when;  ///< the model's stop conditions (lagrange/stop_conditions.hpp)
+  /// Conditions out of an element's domain (Model::fail_when): the run fails where one becomes
+  /// true.
+  std::vector<StopSpec> fail_when;
+  /// T + U is a constant of motion (conserves_energy()): a run that changes it fails.
+  bool conservative = false;
 
   /// Structural non-zeros: M lower triangle (i ≥ j), G (row, velocity column) and ∂C/∂q
   /// (row, coordinate column), in tape output order.

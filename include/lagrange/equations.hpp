@@ -90,6 +90,11 @@ std::string recursive_unsuitable(const Model& model);
 /// Formulation; std::invalid_argument with recursive_unsuitable()'s reason when it does not apply.
 Equations derive(const Model& model, Formulation form = Formulation::Lagrangian);
 
+/// True when T + U is a constant of motion of the derived model: no forces, dampers, torques or
+/// inputs, no t in T, U or the constraints, U free of velocities and a written kinetic energy
+/// quadratic in them (docs/theory.md §8.2). simulate() then checks the energy at every sample.
+bool conserves_energy(const Equations& eq);
+
 /// Symbolic accelerations a = M⁻¹(h + Q) for unconstrained systems with nv ≤ 4 (for tests),
 /// normalised. Throws std::invalid_argument when constrained or nv > 4.
 std::vector<GiNaC::ex> solve_accelerations(const Equations& eq);

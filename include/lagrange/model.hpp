@@ -225,6 +225,10 @@ struct Model {
   SimulateOptions simulate;
   std::vector<StopSpec> stop_when;  ///< `stop_when:` conditions, in file order
   std::vector<MetricSpec> metrics;  ///< `metrics:`, in file order
+  /// Conditions that leave an element's physical domain (a winch's reeled-out length below 0),
+  /// added by the elements: a run fails, located in time, where one becomes true. The name says
+  /// what went wrong; loc is the element's.
+  std::vector<StopSpec> fail_when;
 
   /// Index of a named entity, or -1.
   int coordinate_index(const std::string& name) const;

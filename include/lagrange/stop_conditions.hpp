@@ -19,6 +19,9 @@ class StopConditions {
   /// Compiles cm.stop_when against `columns` (trajectory_columns(cm)) and cm's parameters;
   /// ModelError at the condition for an unknown name or a vector-valued side.
   StopConditions(const CompiledModel& cm, const std::vector<std::string>& columns);
+  /// The same for other conditions over those columns (cm.fail_when).
+  StopConditions(const std::vector<StopSpec>& specs, const CompiledModel& cm,
+                 const std::vector<std::string>& columns);
 
   bool empty() const { return specs_.empty(); }
   size_t size() const { return specs_.size(); }

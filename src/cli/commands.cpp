@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
 #include "cli/report_command.hpp"
 #include "lagrange/analysis.hpp"
@@ -210,6 +211,7 @@ int run_simulate(const Options& opt) {
   }
   if (so.integrator.method == "auto" && !so.jacobian.values) so.integrator.method = "dop853";
   p.dynamics->set_baumgarte(baumgarte_rate(model.stabilization, so.integrator.method));
+  const KeepWorkOnInterrupt keep;  // from here Ctrl-C keeps the rows so far
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);
   const double t_sim = seconds_since(t2);

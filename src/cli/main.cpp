@@ -13,17 +13,11 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/version.hpp"
 #include "lagrange/analysis.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/integrator.hpp"
-
-namespace {
-std::atomic<bool> g_interrupt{false};
-extern "C" void on_sigint(int) {
-  g_interrupt.store(true);
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lagrange::cli;
@@ -213,8 +207,7 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
   }
-  std::signal(SIGINT, on_sigint);
-  opt.interrupt = &g_interrupt;
+  opt.interrupt = install_sigint_handler();
   opt.terminal = isatty(fileno(stderr)) != 0;
   try {
     if (*derive) return run_derive(opt);

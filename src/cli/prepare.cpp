@@ -69,7 +69,16 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   Prepared p;
   const auto t0 = Clock::now();
   p.model = std::make_unique<const Model>(source.read(overrides));
-  p.equations = derive(*p.model, formulation(*p.model, dynamics));
+  const Formulation form = formulation(*p.model, dynamics);
+  try {
+    p.equations = derive(*p.model, form);
+  } catch (const GiNaC::pole_error&) {
+    // A joint with no inertia about its own axis (a point mass on it) has D = SᵀIS = 0 exactly
+    // and the articulated-body algorithm divides by it: the Lagrangian form reaches the initial
+    // state check below, which says which coordinate has no inertia (issue 25 item 6).
+    if (form != Formulation::Recursive) throw;
+    p.equations = derive(*p.model, Formulation::Lagrangian);
+  }
   p.derive_seconds = seconds_since(t0);
   const auto t1 = Clock::now();
   p.compiled = compile(p.equations);

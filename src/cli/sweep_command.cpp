@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
@@ -339,6 +340,7 @@ int run_sweep_mpi(const Options& opt) {
 }  // namespace
 
 int run_sweep(const Options& opt) {
+  const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
 #ifdef LAGRANGE_HAVE_MPI
   if (started_by_mpirun()) return run_sweep_mpi(opt);
 #else

@@ -57,6 +57,8 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   }
   cm->output_names = eq.output_names;
   cm->stop_when = model.stop_when;
+  cm->fail_when = model.fail_when;
+  cm->conservative = conserves_energy(eq);
   for (const auto& u : model.inputs) {
     cm->input_names.push_back(u.name);
     cm->external_inputs.push_back(u.external);

@@ -4,12 +4,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "elements/links.hpp"
 #include "lagrange/rigid_body.hpp"
 #include "model/expression_algebra.hpp"
 #include "model/model_reader.hpp"
+#include "model/size_limits.hpp"
 
 namespace lagrange::elements {
 
@@ -156,6 +158,19 @@ TreeJoint tree_joint(const JointSpec& j, const Vec3& k, const GiNaC::ex& q, int 
 }  // namespace
 
 void declare_chain(ModelReader& r, LinkChain& chain) {
+  // The size limit before any frame is composed: a chain's frames are products of all the
+  // rotations above them, so 10 000 links would take minutes to reach the limit one by one.
+  size_t coordinates = r.model().coordinates.size();
+  for (const LinkSpec& link : chain.links)
+    if (link.joint.type != JointSpec::Type::Fixed && ++coordinates > model::kMaxCoordinates)
+      throw ModelError(
+          link.joint.loc,
+          fmt::format("expected at most {} coordinates in the model (written and "
+                      "generated together), got more: {} has {} movable joints",
+                      model::kMaxCoordinates, chain.title,
+                      std::count_if(chain.links.begin(), chain.links.end(), [](const LinkSpec& l) {
+                        return l.joint.type != JointSpec::Type::Fixed;
+                      })));
   std::vector<Frame> frames;
   chain.coordinate.assign(chain.links.size(), -1);
   const int first = static_cast<int>(r.model().tree.size());

@@ -311,11 +311,21 @@ void declare_urdf(model::ModelReader& r, const YAML::Node& node, LinkChain& chai
     r.check_keys(node, {"file", "initial", "rate"}, "urdf");
     if (!node["file"]) r.fail(node, "expected 'file' (the URDF file) in urdf, got none");
     file.reset(node["file"]);
-    initial.reset(node["initial"]);
-    rate.reset(node["rate"]);
+    // an absent key gives an invalid node, which reset() refuses (issue 25 item 6)
+    if (node["initial"]) initial.reset(node["initial"]);
+    if (node["rate"]) rate.reset(node["rate"]);
   }
-  std::filesystem::path p = r.scalar(file, "URDF file");
+  const std::string name = r.scalar(file, "URDF file");
+  if (name.empty()) r.fail(file, "expected the name of a URDF file in urdf, got ''");
+  std::filesystem::path p = name;
   if (p.is_relative()) p = std::filesystem::path(r.source().file()).parent_path() / p;
+  // A file named in a model file that cannot be opened is the model file's mistake, at its line.
+  std::error_code ec;
+  if (std::filesystem::path(r.source().file()).extension() != ".urdf" &&
+      !std::filesystem::is_regular_file(p, ec))
+    r.fail(file,
+           fmt::format("cannot open the URDF file '{}': {}", model::clip(p.string(), 200),
+                       std::filesystem::exists(p, ec) ? "not a regular file" : "no such file"));
   chain = read_urdf(p.lexically_normal().string());
   // A URDF given on its own (model/yaml_reader.cpp) is named after its <robot name>.
   if (std::filesystem::path(r.source().file()).extension() == ".urdf" && !chain.robot.empty())

@@ -126,6 +126,12 @@ void lower_winches(ModelReader& r, ElementContext& ctx) {
     } else {
       m.outputs.push_back(NamedExpr{w.name + ".power", GiNaC::ex(0), loc});
     }
+    // ℓ ≤ 0 leaves the drum's domain (a tether of negative length): the run fails there.
+    m.fail_when.push_back(
+        StopSpec{fmt::format("{} reeled its tether in completely: its reeled-out length must stay "
+                             "positive",
+                             what),
+                 c.name + " < 0", loc});
     m.element_summaries.push_back(std::move(summary));
   }
 }

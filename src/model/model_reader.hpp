@@ -165,6 +165,10 @@ class ModelReader {
   /// `metrics: {name: AGG(EXPR[, WINDOW])}`, kept as text: their names are the trajectory's
   /// columns, known once the model is compiled (src/sweep/metrics.cpp checks them).
   void read_metrics(const YAML::Node& node);
+  // read_visual.cpp
+  /// `visual: {color, size, trail, hide}`: names of points, bodies or elements, CSS colours,
+  /// positive sizes; read by the report, checked here so that `check` finds its mistakes.
+  void read_visual(const YAML::Node& node);
 
   // read_generated.cpp — names and state that elements generate (docs/model-language.md).
   Model& model() { return m_; }

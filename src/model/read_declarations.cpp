@@ -4,13 +4,9 @@
 
 #include "model/latex_names.hpp"
 #include "model/model_reader.hpp"
+#include "model/size_limits.hpp"
 
 namespace lagrange::model {
-
-namespace {
-/// More coordinates than this cannot be derived in reasonable memory (M alone has n² entries).
-constexpr size_t kMaxCoordinates = 2000;
-}  // namespace
 
 void ModelReader::read_parameters(const YAML::Node& node) {
   for (const auto& kv : node) {

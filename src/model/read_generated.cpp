@@ -4,6 +4,7 @@
 
 #include "model/latex_names.hpp"
 #include "model/model_reader.hpp"
+#include "model/size_limits.hpp"
 
 namespace lagrange::model {
 
@@ -31,6 +32,10 @@ const Coordinate& ModelReader::add_coordinate(const std::string& name, double in
 
 const Coordinate& ModelReader::add_coordinate(const std::string& name, double initial, double rate,
                                               const SourceLoc& loc) {
+  if (m_.coordinates.size() >= kMaxCoordinates)
+    throw ModelError(loc, fmt::format("expected at most {} coordinates in the model (written and "
+                                      "generated together), got more at '{}'",
+                                      kMaxCoordinates, clip(name)));
   Coordinate c{name,
                GiNaC::symbol(name, latex_name(name)),
                GiNaC::symbol(name + "_dot", latex_name(name, "\\dot")),

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "elements/elements.hpp"
 #include "lagrange/reader.hpp"
@@ -25,7 +24,7 @@ const std::vector<std::string>& top_level_keys() {
       "points",      "particles",  "gravity",     "kinetic",   "potential",
       "generalized_forces",        "forces",      "torques",   "springs",
       "dampers",     "constraints", "outputs",    "stabilization", "simulate",
-      "stop_when",   "metrics",    "visual"};  // visual: read by the report (src/io/report_visual.cpp)
+      "stop_when",   "metrics",    "visual"};  // visual: drawn by the report (src/io/report_visual.cpp)
   // clang-format on
   static const std::vector<std::string> all = [] {
     std::vector<std::string> k = keys;
@@ -35,6 +34,9 @@ const std::vector<std::string>& top_level_keys() {
   }();
   return all;
 }
+
+/// The largest model file read (a model of 2000 coordinates is a few hundred KiB).
+constexpr size_t kMaxModelBytes = size_t{16} << 20;
 
 /// A section's node, or nothing when the key is absent or has no value.
 std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
@@ -95,6 +97,7 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "simulate")) read_simulate(*n);
   if (auto n = section(root, "stop_when")) read_stop_when(*n);
   if (auto n = section(root, "metrics")) read_metrics(*n);
+  if (auto n = section(root, "visual")) read_visual(*n);
   warn_angle_parameters();
   return m_;
 }
@@ -133,20 +136,35 @@ Model read_model_file(const std::string& path, const ParameterOverrides& overrid
     // A URDF robot on its own: zero torques, gravity −9.81 along z, named after <robot name>
     // (docs/model-language.md).
     // Relative to the file itself, so that messages name the path as typed.
-    std::string quoted = std::filesystem::path(path).filename().string(), escaped;
-    for (char c : quoted) escaped += c == '\'' ? std::string("''") : std::string(1, c);
-    return read_model_string(fmt::format("name: '{}'\nurdf: '{}'\ngravity: [0, 0, -9.81]\n",
-                                         std::filesystem::path(path).stem().string(), escaped),
-                             path, overrides);
+    // Both go into single-quoted YAML scalars, where a quote is written twice.
+    auto quoted = [](const std::string& text) {
+      std::string out;
+      for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+      return out;
+    };
+    const std::filesystem::path file(path);
+    return read_model_string(
+        fmt::format("name: '{}'\nurdf: '{}'\ngravity: [0, 0, -9.81]\n",
+                    quoted(file.stem().string()), quoted(file.filename().string())),
+        path, overrides);
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw ModelError(SourceLoc{path},
                      fmt::format("cannot open the model file: {}", std::strerror(errno)));
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read at most kMaxModelBytes: /dev/zero or a runaway file would
+  // otherwise be read until memory runs out (issue 25 item 6).
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<size_t>(in.gcount()));
+    if (text.size() > model::kMaxModelBytes)
+      throw ModelError(SourceLoc{path},
+                       fmt::format("expected a model file of at most {} MiB, got more",
+                                   model::kMaxModelBytes >> 20));
+  }
   if (in.bad()) throw ModelError(SourceLoc{path}, "cannot read the model file");
-  return read_model_string(text.str(), path, overrides);
+  return read_model_string(text, path, overrides);
 }
 
 }  // namespace lagrange

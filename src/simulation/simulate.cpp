@@ -11,6 +11,7 @@
 #include "lagrange/stop_conditions.hpp"
 #include "simulation/drift_correction.hpp"
 #include "simulation/row_writer.hpp"
+#include "simulation/sample_checks.hpp"
 #include "simulation/start_state.hpp"
 
 namespace lagrange {
@@ -52,6 +53,9 @@ const char* Trajectory::status_name() const {
 }
 
 namespace {
+
+// Thrown from the dynamics when the run's interrupt flag is set; caught by simulate().
+struct Interrupted {};
 
 // The state the integrator last asked about, kept so that a failure inside the integrator (too
 // much work, step size too small, convergence) can say where it happened.
@@ -137,6 +141,13 @@ class StopWatch {
     return fired;
   }
 
+  /// The first condition that fired since the previous sample by the values `g`, or size().
+  size_t first_fired(const double* g) const {
+    for (size_t i = 0; started_ && i < g_.size(); ++i)
+      if (g_prev_[i] <= 0 && g[i] > 0) return i;
+    return g_.size();
+  }
+
   size_t which = 0;
   double when = 0.0;
   std::vector<double> state;
@@ -211,20 +222,33 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   OdeProblem ode;
   ode.size = n;
   ode.jacobian = opt.jacobian;
-  ode.rhs = [&dyn, nq, &lambda, &last](double t, const double* yy, double* yd) {
+  // Ctrl-C between samples (issue 25 item 9): the next evaluation of the dynamics ends the run
+  // with the rows so far, as at a sample.
+  const auto poll_interrupt = [&opt] {
+    if (opt.interrupt != nullptr && opt.interrupt->load(std::memory_order_relaxed))
+      throw Interrupted{};
+  };
+  ode.rhs = [&dyn, nq, &lambda, &last, &poll_interrupt](double t, const double* yy, double* yd) {
+    poll_interrupt();
     last.reported = true;
     dyn.forward(t, yy, yy + nq, yd, yd + nq, lambda.data());
     last.reported = false;
     last.record(t, yy, yy + nq, yd + nq);
   };
-  const StopConditions stop(cm, traj.columns);
-  StopWatch watch(stop.size(), n);
-  std::vector<double> stop_row, stop_g(stop.size());
-  const StopWatch::Evaluate stop_values = [&](double t, const double* yy, double* g) {
-    stop_row.clear();
-    rows.write(dyn, t, yy, yy + nq, stop_row);
-    stop.evaluate(stop_row.data(), dyn.parameters().data(), g);
+  // The model's stop conditions end the run; its elements' domain conditions (cm.fail_when)
+  // fail it, both located between samples.
+  const StopConditions stop(cm, traj.columns), guards(cm.fail_when, cm, traj.columns);
+  StopWatch watch(stop.size(), n), guard_watch(guards.size(), n);
+  std::vector<double> stop_row, stop_g(stop.size()), guard_g(guards.size());
+  const auto values_of = [&](const StopConditions& conditions) -> StopWatch::Evaluate {
+    return [&](double t, const double* yy, double* g) {
+      stop_row.clear();
+      rows.write(dyn, t, yy, yy + nq, stop_row);
+      conditions.evaluate(stop_row.data(), dyn.parameters().data(), g);
+    };
   };
+  const StopWatch::Evaluate stop_values = values_of(stop), guard_values = values_of(guards);
+  SampleChecks checks(cm, traj.columns);
   const StopWatch::Advance advance = [&](double t_from, const std::vector<double>& y0,
                                          double t_to) {
     IntegratorOptions refine = opt.integrator;
@@ -239,24 +263,47 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     return y;
   };
   // At each output sample: check the state is finite, correct the drift (the sample of an ODE
-  // method is its dense output, corrected for the row only), record the row, honour interruption.
+  // method is its dense output, corrected for the row only), record the row and check it (the
+  // same checks for every method, docs/theory.md §8.2; a row that fails them is dropped), honour
+  // interruption.
   Observer observer = [&](double t, double* yy, double* yp) {
     ObserverAction action = ObserverAction::Continue;
-    for (size_t i = 0; i < n; ++i)
-      if (!std::isfinite(yy[i])) {
-        last.reported = true;
-        throw SimulationError(
-            t, fmt::format("the state is not finite ({} = {})",
-                           i < nq ? cm.coordinate_names[i] : cm.velocity_names[i - nq], yy[i]));
-      }
+    const size_t width = traj.columns.size();
+    last.reported = true;  // the sample's checks name their own values
+    checks.state(t, yy);
+    last.reported = false;
     if (correct_drift(t, yy) && dae) {  // keep (λ, y') consistent with the projected state
       dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
       std::fill(yp + n, yp + n + m, 0.0);
       action = ObserverAction::StateChanged;
     }
     rows.append(dyn, t, yy, yy + nq, traj);
+    try {
+      const double* row = traj.data.data() + traj.data.size() - width;
+      if (!guards.empty()) {
+        guards.evaluate(row, dyn.parameters().data(), guard_g.data());
+        size_t which = guard_watch.first_fired(guard_g.data());
+        double when = t;
+        try {
+          if (guard_watch.fired(t, yy, guard_g.data(), guard_values, advance))
+            which = guard_watch.which, when = guard_watch.when;
+        } catch (const SimulationError& e) {
+          if (which == guards.size()) throw;
+          when = e.time();  // the dynamics give out at the edge of the domain: the crossing
+        }
+        if (which < guards.size()) {
+          const StopSpec& g = guards.spec(which);
+          throw SimulationError(
+              when, fmt::format("{}: {} became true ({})", g.name, g.text, g.loc.str()));
+        }
+      }
+      checks.row(t, row);
+    } catch (const SimulationError&) {
+      traj.data.resize(traj.data.size() - width);
+      last.reported = true;
+      throw;
+    }
     if (!stop.empty()) {  // the conditions read the row just written
-      const size_t width = traj.columns.size();
       stop.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),
                     stop_g.data());
       if (watch.fired(t, yy, stop_g.data(), stop_values, advance)) {
@@ -290,8 +337,9 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       problem.differential.assign(n + m, true);
       std::fill(problem.differential.begin() + static_cast<long>(n), problem.differential.end(),
                 false);
-      problem.residual = [&dyn, n, nq, &last](double t, const double* yy, const double* ypp,
-                                              double* r) {
+      problem.residual = [&dyn, n, nq, &last, &poll_interrupt](double t, const double* yy,
+                                                               const double* ypp, double* r) {
+        poll_interrupt();
         last.reported = true;
         dyn.dae_residual(t, yy, yy + nq, ypp, ypp + nq, yy + n, r);
         last.reported = false;
@@ -305,6 +353,11 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
       traj.stats = integrate(ode, integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
+  } catch (const Interrupted&) {
+    traj.status = Trajectory::Status::Interrupted;
+    const size_t rows = traj.rows();
+    traj.message = fmt::format("interrupted at t = {:.6g}",
+                               rows ? traj.data[(rows - 1) * traj.columns.size()] : opt.t0);
   } catch (const SimulationError& e) {
     if (const auto* failure = dynamic_cast<const IntegrationFailure*>(&e))
       traj.stats = failure->stats();  // the work done until the failure (issue 25 item 10)

@@ -29,7 +29,11 @@ GiNaC::ex parse_side(const StopSpec& spec, const std::string& side, size_t offse
 }  // namespace
 
 StopConditions::StopConditions(const CompiledModel& cm, const std::vector<std::string>& columns)
-    : specs_(cm.stop_when), columns_(columns.size()), parameters_(cm.np) {
+    : StopConditions(cm.stop_when, cm, columns) {}
+
+StopConditions::StopConditions(const std::vector<StopSpec>& specs, const CompiledModel& cm,
+                               const std::vector<std::string>& columns)
+    : specs_(specs), columns_(columns.size()), parameters_(cm.np) {
   if (specs_.empty()) return;
   const RowSymbols names(columns, cm.parameter_names);
   std::vector<GiNaC::ex> g;

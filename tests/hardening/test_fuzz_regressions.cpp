@@ -7,10 +7,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "../fuzz/model_budget.hpp"
+#include "../fuzz/urdf_input.hpp"
 #include "hardening/cli_runner.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/equations.hpp"
@@ -66,7 +68,8 @@ std::string replay_expression(const std::string& text) {
   }
 }
 
-void replay_all(const std::vector<fs::path>& files, std::string (*replay)(const std::string&)) {
+void replay_all(const std::vector<fs::path>& files,
+                const std::function<std::string(const std::string&)>& replay) {
   for (const auto& file : files) {
     SCOPED_TRACE(file.string());
     const auto start = std::chrono::steady_clock::now();
@@ -95,6 +98,22 @@ TEST(FuzzRegressions, SeedCorporaReplay) {
   const auto expressions = inputs_in(kSource / "fuzz/corpus/expression");
   ASSERT_FALSE(expressions.empty());
   for (const auto& file : expressions) EXPECT_EQ(replay_expression(slurp(file)), "ok") << file;
+}
+
+TEST(FuzzRegressions, UrdfSeedsReplay) {
+  // fuzz_urdf's seeds: the bundled robots read, the hostile ones diagnosed (number bombs, hex,
+  // a cycle, a mimic joint, deep nesting, entities, a truncated file, a link that is a point mass).
+  ScratchDir dir("fuzz-urdf");
+  const std::string path = (dir.path() / "robot.urdf").string();
+  for (const char* robot : {"panda.urdf", "ur5.urdf"})
+    EXPECT_EQ(fuzz::read_urdf_bytes(slurp(kSource / "examples/robots" / robot), path), "ok");
+  const auto seeds = inputs_in(kSource / "fuzz/corpus/urdf");
+  ASSERT_GE(seeds.size(), 10u);
+  replay_all(seeds, [&](const std::string& text) { return fuzz::read_urdf_bytes(text, path); });
+  EXPECT_EQ(fuzz::read_urdf_bytes(slurp(kSource / "fuzz/corpus/urdf/two_links.urdf"), path), "ok");
+  EXPECT_NE(fuzz::read_urdf_bytes(slurp(kSource / "fuzz/corpus/urdf/number_bomb.urdf"), path)
+                .find("robot.urdf:"),
+            std::string::npos);
 }
 
 TEST(FuzzRegressions, DeepNestingIsAnErrorNotAStackOverflow) {

@@ -142,6 +142,127 @@ TEST(RuntimeFailure, InfiniteAccelerationOnACollapse) {
   EXPECT_NE(err.find("r_ddot = -"), std::string::npos) << err;  // the state, where it went
 }
 
+TEST(CompleteButWrong, EveryIntegratorStopsAtTheCollapse) {
+  // The radial fall onto −1/r again at the default tolerances, under every method. cvode, ida and
+  // rk4 once stepped across r = 0 and exited 0 with T + U gone from −1 to 2.4e34, 6.4e26 and
+  // 657 (issue 25 item 5). The energy of this conservative model is a constant of motion, so
+  // every method now fails within one output step of the collapse at π/(2√2).
+  const double collapse = 3.14159265358979 / (2 * std::sqrt(2.0));
+  for (const char* method :
+       {"dop853", "arkode", "cvode", "cvode:jacobian", "ida", "rk4", "midpoint"}) {
+    SCOPED_TRACE(method);
+    ScratchDir dir(std::string("collapse-") + method);
+    const Failure f = run_failing(dir,
+                                  "name: collapse\ncoordinates:\n  r: {initial: 1}\n"
+                                  "kinetic: der(r)^2/2\npotential: -1/r\n"
+                                  "simulate: {t_end: 3, output_step: 0.01}\n",
+                                  {"--integrator", method});
+    const double t = f.sidecar.at("failure_time").get<double>();
+    EXPECT_GT(t, collapse - 0.01);
+    EXPECT_LE(t, collapse + 0.01);
+    // the kept rows conserve the energy −1 of the start, up to the last ones next to the
+    // singularity, where the methods' own error grows (rk4's to 3e-3 at t = 1.10)
+    const size_t energy = 5;  // t, r, r_dot, kinetic, potential, energy
+    for (const auto& row : f.rows) {
+      if (row[0] < 1.095) EXPECT_NEAR(row[energy], -1.0, 1e-3) << "t = " << row[0];
+    }
+  }
+}
+
+TEST(CompleteButWrong, TheEnergyCheckNamesTheJumpAndTheSamples) {
+  ScratchDir dir("collapse-energy");
+  const Failure f = run_failing(dir,
+                                "name: collapse\ncoordinates:\n  r: {initial: 1}\n"
+                                "kinetic: der(r)^2/2\npotential: -1/r\n"
+                                "simulate: {t_end: 3, output_step: 0.01}\n",
+                                {"--integrator", "rk4"});
+  const std::string& err = f.result.err;
+  EXPECT_NE(err.find("the energy T + U of this conservative model"), std::string::npos) << err;
+  EXPECT_NE(err.find("went from -1 at t = 0 to "), std::string::npos) << err;
+  EXPECT_NE(err.find("stepped across a singularity"), std::string::npos) << err;
+  // the row past the jump is not kept
+  EXPECT_LT(f.rows.back()[0], f.sidecar.at("failure_time").get<double>());
+}
+
+TEST(CompleteButWrong, EnergyThatIsNotAConstantOfMotionIsNotChecked) {
+  // L = ẋ²/2 + x ẋ − x²/2: the x ẋ term is d(x²/2)/dt, so the motion is the unit oscillator, but
+  // the conserved energy is ẋ²/2 + x²/2, not T + U (which swings by x ẋ, as much as T itself).
+  // The run is complete, and right: x = cos t.
+  ScratchDir dir("gauge");
+  const fs::path model = dir.path() / "m.yaml", csv = dir.path() / "out.csv";
+  spit(model,
+       "coordinates:\n  x: {initial: 1}\nkinetic: der(x)^2/2 + x*der(x)\npotential: x^2/2\n"
+       "simulate: {t_end: 6, output_step: 0.1, rtol: 1e-10, atol: 1e-12}\n");
+  const RunResult r = run_lagrange(
+      dir.path(), {"simulate", model.string(), "-o", csv.string(), "-q", "--integrator", "rk4"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  size_t columns = 0;
+  const auto rows = parse_csv(slurp(csv), &columns);
+  ASSERT_EQ(rows.size(), 61u);
+  for (const auto& row : rows) EXPECT_NEAR(row[1], std::cos(row[0]), 1e-6) << "t = " << row[0];
+}
+
+TEST(CompleteButWrong, AnEnergyWithoutAValueFailsTheRun) {
+  // The motion is a free particle (T's last term has no q or v in it), but T has no value
+  // past t = 0.5: the rows once carried -nan in kinetic and energy with exit 0.
+  ScratchDir dir("nan-energy");
+  const Failure f = run_failing(dir,
+                                "name: undefined energy\ncoordinates:\n  x: {initial: 0, rate: 1}\n"
+                                "kinetic: der(x)^2/2 + sqrt(1/2 - t)\n"
+                                "simulate: {t_end: 1, output_step: 0.01}\n",
+                                {});
+  const double t = f.sidecar.at("failure_time").get<double>();
+  EXPECT_NEAR(t, 0.51, 1e-9);  // the first sample past 1/2
+  EXPECT_EQ(f.rows.size(), 51u);
+  EXPECT_NE(f.result.err.find("the energy 'kinetic' is not finite"), std::string::npos)
+      << f.result.err;
+  for (const auto& row : f.rows) EXPECT_NEAR(row[1], row[0], 1e-12);  // x = t until then
+}
+
+const std::string kWinch =
+    "name: winch\nparameters: {R: 0.2, J: 0.05, mu: 0.4, L: 30, g: 9.81}\n"
+    "gravity: [0, 0, -g]\n"
+    "winches:\n  drum:\n    tether: line\n    radius: R\n    inertia: J\n"
+    "    total_length: L\n";
+const std::string kWinchLine =
+    "tethers:\n  line:\n    between: [[0, 0, 0], free]\n    segments: 2\n"
+    "    mass_per_length: mu\n";
+
+TEST(CompleteButWrong, AWinchReelingInThroughZeroFailsWhereItHappens) {
+  // A prescribed reeled-out length 1 − t reaches 0 at exactly t = 1; the run once went on to
+  // −0.67 m with exit 0. Located between samples like a stop condition.
+  ScratchDir dir("winch-prescribed");
+  const Failure f = run_failing(
+      dir,
+      kWinch + "    reeled_out: 1 - t\n" + kWinchLine + "simulate: {t_end: 2, output_step: 0.03}\n",
+      {});
+  EXPECT_NEAR(f.sidecar.at("failure_time").get<double>(), 1.0, 1e-9);
+  EXPECT_NE(f.result.err.find("winch 'drum' reeled its tether in completely"), std::string::npos)
+      << f.result.err;
+  EXPECT_NE(f.result.err.find("drum.reeled_out < 0 became true ("), std::string::npos)
+      << f.result.err;
+  EXPECT_NE(f.result.err.find("model.yaml:5:3)"), std::string::npos) << f.result.err;
+  for (const auto& row : f.rows) EXPECT_GT(row[1], 0.0);
+}
+
+TEST(CompleteButWrong, AWinchPulledInByItsMotorFailsWhereItHappens) {
+  // The issue's case: a motor torque reels the hanging tether in through zero.
+  ScratchDir dir("winch-torque");
+  const Failure f = run_failing(dir,
+                                kWinch + "    torque: -20\n    initial: {reeled_out: 1}\n" +
+                                    kWinchLine + "simulate: {t_end: 2, output_step: 0.01}\n",
+                                {});
+  const double t = f.sidecar.at("failure_time").get<double>();
+  ASSERT_GE(f.rows.size(), 2u);
+  const auto& last = f.rows.back();
+  EXPECT_GT(last[1], 0.0);  // the last kept row still has tether out
+  EXPECT_GT(t, last[0]);    // and the crossing lies after it, within one step
+  EXPECT_LT(t, last[0] + 0.01);
+  // ℓ(t) is smooth: the crossing is where the last row's ℓ + ℓ̇ (t − t_row) ≈ 0 to O(dt²)
+  const size_t speed_column = 8;  // t, ℓ, node1 xyz, node2 xyz, ℓ̇
+  EXPECT_NEAR(t, last[0] - last[1] / last[speed_column], 2e-3);
+}
+
 TEST(RuntimeFailure, IntegratorGivesUpOnAStiffSpring) {
   // ω = 10¹⁰ rad/s: the explicit method's stable step is far below what max_steps can cover
   // before the first output sample, so ARKODE gives up with too much work.

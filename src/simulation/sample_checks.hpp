@@ -1,0 +1,34 @@
+#pragma once
+// What every output sample must satisfy before a run may be called complete, whichever method
+// integrated it (docs/theory.md §8.2): a finite state and finite energies, multipliers and
+// residuals, and for a model that conserves energy, T + U kept.
+
+#include <string>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+
+namespace lagrange {
+
+/// The checks of one run's samples, in order; throws SimulationError at the first that fails.
+class SampleChecks {
+ public:
+  /// `columns`: trajectory_columns(cm).
+  SampleChecks(const CompiledModel& cm, const std::vector<std::string>& columns);
+  /// The state y = (q, v) at t: every entry finite, else SimulationError naming the first.
+  void state(double t, const double* y) const;
+  /// A row written at t (its columns above): T, U, T + U, the multipliers, residuals and
+  /// reactions finite (outputs are the user's and may be undefined somewhere); for a conservative
+  /// model, |E − E₀| at most half the largest T + |U| of any sample so far, else the integrator
+  /// stepped across a singularity (§8.2).
+  void row(double t, const double* row);
+
+ private:
+  const CompiledModel& cm_;
+  std::vector<std::string> columns_;
+  size_t kinetic_ = 0, outputs_end_ = 0;
+  bool started_ = false;
+  double t_prev_ = 0.0, t0_ = 0.0, e0_ = 0.0, scale_ = 0.0, scale_at_ = 0.0;
+};
+
+}  // namespace lagrange
