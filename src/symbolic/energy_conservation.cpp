@@ -1,17 +1,10 @@
 // docs/theory.md §8.2, "Samples checked before a run is called complete": when T + U is a
 // constant of motion.
 #include "lagrange/equations.hpp"
+#include "symbolic/memo_diff.hpp"
 #include "symbolic/time_partials.hpp"
 
 namespace lagrange {
-
-namespace {
-
-bool has_time(const Model& model, const GiNaC::ex& e) {
-  return e.has(model.t);
-}
-
-}  // namespace
 
 bool conserves_energy(const Equations& eq) {
   const Model& model = *eq.model;
@@ -22,13 +15,22 @@ bool conserves_energy(const Equations& eq) {
     return false;
   for (const GiNaC::ex& q : model.generalized_forces)
     if (!q.is_zero()) return false;
+  // Which of t and the velocities each expression contains, memoised over the DAG: a long
+  // chain's recursive T shares its subtrees, which GiNaC's has() walks again at every use.
+  std::vector<GiNaC::symbol> watched{model.t};
+  watched.insert(watched.end(), eq.kin.v.begin(), eq.kin.v.end());
+  symbolic::MemoDiff scan(watched);
+  const auto has_time = [&](const GiNaC::ex& e) {
+    const std::vector<size_t>& in = scan.columns_in(e);
+    return !in.empty() && in.front() == 0;  // ascending: t is column 0
+  };
   // A Lagrangian or constraints that depend on t exchange energy with whatever moves them.
-  if (has_time(model, eq.T) || has_time(model, eq.U)) return false;
+  if (has_time(eq.T) || has_time(eq.U)) return false;
   for (const GiNaC::ex& c : eq.C)
-    if (has_time(model, c)) return false;
+    if (has_time(c)) return false;
   // Velocity-dependent potentials make T + U differ from the energy function Σ v ∂L/∂v − L.
-  for (const auto& [role, index] : symbolic::state_symbols(eq.kin, eq.U))
-    if (role != 'q') return false;
+  for (size_t k : scan.columns_in(eq.U))
+    if (k > 0) return false;
   // So does a written kinetic energy with terms that are not quadratic in the velocities
   // (Euler's theorem: Σ v ∂T/∂v = 2T exactly for a homogeneous quadratic T). Particles and
   // bodies give quadratic forms; only the written part needs the test.

@@ -5,8 +5,9 @@
 
 #include <ginac/ginac.h>
 
-#include <unordered_map>
 #include <vector>
+
+#include "compile/ginac_util.hpp"
 
 namespace lagrange::symbolic {
 
@@ -22,14 +23,8 @@ class MemoDiff {
   GiNaC::ex diff(const GiNaC::ex& e, size_t k);
 
  private:
-  struct Hash {
-    size_t operator()(const GiNaC::ex& e) const { return e.gethash(); }
-  };
-  struct Equal {
-    bool operator()(const GiNaC::ex& a, const GiNaC::ex& b) const { return a.is_equal(b); }
-  };
   template <class T>
-  using Map = std::unordered_map<GiNaC::ex, T, Hash, Equal>;
+  using Map = tape_detail::ExMap<T>;
 
   /// ∂f(a₁…a_n)/∂aᵢ as an expression of the arguments.
   GiNaC::ex partial(const GiNaC::ex& f, size_t i);
