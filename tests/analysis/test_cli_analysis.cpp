@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "analysis/euler_top.hpp"
 #include "cli/shell_run.hpp"
 
 namespace {
@@ -147,16 +148,7 @@ TEST(CliTrim, UnknownOrNoFreeCoordinatesAreUsageErrors) {
 
 // The top of test_steady_state.cpp in Euler angles: steady precession at φ̇ = 4.55, ψ̇ = 20 has
 // cos θ = (I₃ s Ω − m g l) / ((I₁ − I₃) Ω²) (derived there).
-const char* const kTop = R"(
-name: top in Euler angles
-parameters: {m: 1.0, g: 9.81, l: 0.1, I1: 0.006, I3: 0.01}
-coordinates:
-  phi: {initial: 0, rate: 4.55}
-  theta: {initial: 0.8, rate: 0}
-  psi: {initial: 0, rate: 20}
-kinetic: I1/2*(der(theta)^2 + der(phi)^2*sin(theta)^2) + I3/2*(der(psi) + der(phi)*cos(theta))^2
-potential: m*g*l*cos(theta)
-)";
+const char* const kTop = lagrange::testing::kEulerTop;
 
 double number_after(const std::string& text, const std::string& key) {
   const size_t at = text.find(key);

@@ -17,22 +17,14 @@
 #include <cmath>
 
 #include "analysis/analysed.hpp"
+#include "analysis/euler_top.hpp"
 
 namespace lagrange {
 namespace {
 
 constexpr double kM = 1.0, kG = 9.81, kL = 0.1, kI1 = 0.006, kI3 = 0.01, kSpin = 20.0;
 
-const char* const kTop = R"(
-name: top in Euler angles
-parameters: {m: 1.0, g: 9.81, l: 0.1, I1: 0.006, I3: 0.01}
-coordinates:
-  phi: {initial: 0, rate: 4.55}
-  theta: {initial: 0.8, rate: 0}
-  psi: {initial: 0, rate: 20}
-kinetic: I1/2*(der(theta)^2 + der(phi)^2*sin(theta)^2) + I3/2*(der(psi) + der(phi)*cos(theta))^2
-potential: m*g*l*cos(theta)
-)";
+const char* const kTop = testing::kEulerTop;
 
 TEST(SteadyState, TopFindsTheNutationAngleOfSteadyPrecession) {
   auto s = testing::analyse_string(kTop);
