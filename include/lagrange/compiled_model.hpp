@@ -11,6 +11,19 @@
 
 namespace lagrange {
 
+/// One term of a load column: observable `observable` times a (when `acceleration` ≥ 0), λ (when
+/// `multiplier` ≥ 0) or 1 (docs/theory.md §4.11).
+struct LoadTerm {
+  size_t observable = 0;
+  int acceleration = -1, multiplier = -1;
+};
+
+/// A load column (Model::loads): one part is the value, three are a vector whose length it is.
+struct LoadColumn {
+  std::string name;
+  std::vector<std::vector<LoadTerm>> parts;
+};
+
 /// Sizes, names and tapes of a derived model. All tapes share the input layout
 /// [t, q(nq), v(nv), u(k), u̇(k), ü(k), p(np)] (see input_offset()). The last parameter of a
 /// model with free bodies is `stabilization.gamma`, the SO(3) drift correction rate (§4.4).
@@ -26,6 +39,8 @@ struct CompiledModel {
   /// scales are the last observables.
   std::vector<std::string> reaction_names;
   std::vector<size_t> reaction_constraints;
+  /// Load columns, recorded last; their coefficients follow the reactions' scales in observables.
+  std::vector<LoadColumn> loads;
   std::vector<double> q0, v0;     ///< initial state from the model (nq, nv)
   std::vector<bool> fixed;        ///< nq: coordinates kept by the initial-state projection
   std::vector<size_t> rotations;  ///< per free body, the index in q of R11 (R row-major, 9 entries)
@@ -33,6 +48,8 @@ struct CompiledModel {
   /// Conditions out of an element's domain (Model::fail_when): the run fails where one becomes
   /// true.
   std::vector<StopSpec> fail_when;
+  /// Model::warn_when: the first sample where one holds adds a warning to the trajectory.
+  std::vector<StopSpec> warn_when;
   /// T + U is a constant of motion (conserves_energy()): a run that changes it fails.
   bool conservative = false;
 
@@ -44,7 +61,7 @@ struct CompiledModel {
   /// Outputs: M_pattern values, rhs = h + Q (nv), q̇ (nq), G_pattern values, c (m), Ċ (m),
   /// C (m), Cq_pattern values.
   Tape dynamics;
-  /// Outputs: T, U, the model's outputs, then the reactions' scales.
+  /// Outputs: T, U, the model's outputs, the reactions' scales, then the loads' coefficients.
   Tape observables;
   /// Outputs: u (k), u̇ (k), ü (k) as functions of t and p.
   Tape inputs;

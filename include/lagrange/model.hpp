@@ -153,6 +153,22 @@ struct Reaction {
   SourceLoc loc;
 };
 
+/// One signed force component of a Load: `expr` (in t, q, v, u, p and, linearly, the
+/// coordinates' acceleration symbols `a`) plus Σ λ_c · coefficient over `multipliers`
+/// (constraint index, coefficient in t, q, v, u, p).
+struct LoadPart {
+  GiNaC::ex expr;
+  std::vector<std::pair<size_t, GiNaC::ex>> multipliers;
+};
+
+/// An output column that a load cell would read (docs/theory.md §4.11): one part is a signed
+/// force, three parts are a force vector whose length is recorded. Needs the solved a and λ.
+struct Load {
+  std::string name;
+  std::vector<LoadPart> parts;
+  SourceLoc loc;
+};
+
 /// What an element lowered into the model, for `derive` to show in readable form: a title, a
 /// few representative equations (one segment's, not N copies) and plain-text notes.
 struct ElementSummary {
@@ -220,6 +236,7 @@ struct Model {
   std::vector<NamedExpr> constraints;
   std::vector<NamedExpr> outputs;
   std::vector<Reaction> reactions;
+  std::vector<Load> loads;  ///< load-cell columns (winch drums, tether anchors)
   std::vector<ElementSummary> element_summaries;
   Stabilization stabilization;
   SimulateOptions simulate;
@@ -229,6 +246,9 @@ struct Model {
   /// added by the elements: a run fails, located in time, where one becomes true. The name says
   /// what went wrong; loc is the element's.
   std::vector<StopSpec> fail_when;
+  /// Conditions under which an element's model stops being physical without failing the run (a
+  /// kite below the ground of its wind profile): the first sample where one holds adds a warning.
+  std::vector<StopSpec> warn_when;
 
   /// Index of a named entity, or -1.
   int coordinate_index(const std::string& name) const;

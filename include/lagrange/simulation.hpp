@@ -21,6 +21,8 @@ struct Trajectory {
   std::string message;  ///< failure reason (empty when complete)
   double failure_time = 0.0;
   std::vector<std::string> notes;  ///< e.g. what the initial-state projection changed
+  /// Results that may not mean what they seem (CompiledModel::warn_when), once per condition.
+  std::vector<std::string> warnings;
   /// Largest ‖RᵀR − 1‖_F of any free body before it was re-orthonormalised, after an internal
   /// step or at an output sample (the drift the integrator leaves over one step; 0 without free
   /// bodies).

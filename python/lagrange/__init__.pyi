@@ -77,6 +77,9 @@ class Run:
     def notes(self) -> List[str]:
         """What the engine noted, e.g. how it projected the initial state."""
     @property
+    def warnings(self) -> List[str]:
+        """Results that may not mean what they seem, e.g. a kite below the ground of its wind."""
+    @property
     def stats(self) -> Dict[str, Union[int, float, str]]:
         """steps, rhs_evals, failed_steps, method, rotation_drift."""
     def report(self, path: str) -> None:

@@ -104,6 +104,9 @@ void bind_run(py::module_& m) {
           "notes", [](const Run& r) { return r.trajectory.notes; },
           "What the engine noted, e.g. how it projected the initial state.")
       .def_property_readonly(
+          "warnings", [](const Run& r) { return r.trajectory.warnings; },
+          "Results that may not mean what they seem, e.g. a kite below the ground of its wind.")
+      .def_property_readonly(
           "stats", [](const Run& r) { return stats(r.trajectory); },
           "Integrator statistics: steps, rhs_evals, failed_steps, method, rotation_drift.")
       .def(

@@ -218,6 +218,7 @@ int run_simulate(const Options& opt) {
   if (so.progress) fmt::print(stderr, "\r{:60}\r", "");
   if (!opt.quiet)
     for (const auto& note : traj.notes) fmt::print(stderr, "note: {}\n", note);
+  for (const auto& warning : traj.warnings) fmt::print(stderr, "warning: {}\n", warning);
   if (opt.compile == "auto" && !opt.quiet && !p.dynamics->machine_code_error().empty())
     fmt::print(stderr, "note: machine code: {}; the tape interpreter ran instead\n",
                p.dynamics->machine_code_error());

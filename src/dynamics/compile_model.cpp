@@ -1,3 +1,5 @@
+#include <stdexcept>
+
 #include "lagrange/compiled_model.hpp"
 
 namespace lagrange {
@@ -34,6 +36,43 @@ ModelInitialState model_initial_state(const Model& model) {
   return s;
 }
 
+namespace {
+
+// docs/theory.md §4.11: a load is linear in a and λ; its coefficients join the observables
+// (appended to `obs`), and the row writer sums them with the solved a and λ.
+std::vector<LoadColumn> load_columns(const Model& model, std::vector<GiNaC::ex>& obs) {
+  std::vector<LoadColumn> columns;
+  for (const Load& load : model.loads) {
+    LoadColumn column{load.name, {}};
+    for (const LoadPart& part : load.parts) {
+      std::vector<LoadTerm> terms;
+      GiNaC::exmap zero;
+      for (size_t i = 0; i < model.coordinates.size(); ++i) {
+        const GiNaC::symbol& a = model.coordinates[i].a;
+        if (!part.expr.has(a)) continue;
+        zero[a] = 0;
+        terms.push_back(LoadTerm{obs.size(), static_cast<int>(i), -1});
+        obs.push_back(part.expr.diff(a));
+      }
+      for (const LoadTerm& term : terms)
+        for (const auto& [sym, unused] : zero)
+          if (obs[term.observable].has(sym))
+            throw std::logic_error("load '" + load.name + "' is not linear in the accelerations");
+      terms.push_back(LoadTerm{obs.size(), -1, -1});
+      obs.push_back(part.expr.subs(zero));
+      for (const auto& [c, coefficient] : part.multipliers) {
+        terms.push_back(LoadTerm{obs.size(), -1, static_cast<int>(c)});
+        obs.push_back(coefficient);
+      }
+      column.parts.push_back(std::move(terms));
+    }
+    columns.push_back(std::move(column));
+  }
+  return columns;
+}
+
+}  // namespace
+
 std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   const Model& model = *eq.model;
   auto cm = std::make_shared<CompiledModel>();
@@ -58,6 +97,7 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   cm->output_names = eq.output_names;
   cm->stop_when = model.stop_when;
   cm->fail_when = model.fail_when;
+  cm->warn_when = model.warn_when;
   cm->conservative = conserves_energy(eq);
   for (const auto& u : model.inputs) {
     cm->input_names.push_back(u.name);
@@ -94,6 +134,7 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   std::vector<GiNaC::ex> obs{eq.T, eq.U};
   for (const auto& e : eq.outputs) obs.push_back(e);
   for (const auto& e : eq.reaction_scales) obs.push_back(e);
+  cm->loads = load_columns(model, obs);
   cm->observables = Tape::compile(obs, in, eq.definitions);
 
   std::vector<GiNaC::ex> sig;

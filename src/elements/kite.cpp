@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <sstream>
 
 #include "elements/tether.hpp"
 #include "model/model_reader.hpp"
@@ -140,8 +141,10 @@ struct KiteLoads {
   GiNaC::ex power, cl, cd, q_area;  ///< F, its power F·ṙ (+ M·ω), C_L, C_D and ½ρS|v_a|²
 };
 
-void add_outputs(Model& m, const std::string& name, const KiteLoads& l, const GiNaC::exmap& values,
-                 const KiteSymbols& s, const SourceLoc& loc) {
+// The kite's columns, and a warning when it flies below the ground of its wind profile: height
+// 0 (the roughness length z0 for the logarithmic profile, where its wind falls to zero).
+void add_outputs(Model& m, const ElementContext& ctx, const std::string& name, const KiteLoads& l,
+                 const GiNaC::exmap& values, const KiteSymbols& s, const SourceLoc& loc) {
   auto out = [&](const std::string& col, const GiNaC::ex& e) {
     m.outputs.push_back(NamedExpr{name + "." + col, e, loc});
   };
@@ -154,6 +157,15 @@ void add_outputs(Model& m, const std::string& name, const KiteLoads& l, const Gi
   out("azimuth", values.at(s.azimuth));
   out("elevation", values.at(s.elevation));
   out("heading", values.at(s.heading));
+  out("height", values.at(s.height));
+  const bool log = ctx.wind && ctx.wind->profile == Wind::Profile::Logarithmic;
+  std::ostringstream ground;
+  ground << (log ? ctx.wind->roughness : GiNaC::ex(0));
+  m.warn_when.push_back(StopSpec{
+      fmt::format("kite '{}' flies below the ground of its wind profile ({}): the wind and the "
+                  "tether's shape there are not physical",
+                  name, log ? "the roughness length z0" : "height 0"),
+      fmt::format("{}.height < {}", name, ground.str()), loc});
 }
 
 // Point-mass kite (awebox three_dof_kite.py, docs/theory.md §4.7): F = ½ρS|v_a|² (C_L ê_L −
@@ -231,7 +243,7 @@ void lower_point_mass(ModelReader& r, const KiteSpec& k, const ElementContext& c
 
   if (!mass.is_zero()) m.particles.push_back(Particle{point, mass, loc, true});
   m.forces.push_back(PointForce{point, loads.force, loc});
-  add_outputs(m, k.name, loads, values, s, loc);
+  add_outputs(m, ctx, k.name, loads, values, s, loc);
   m.outputs.push_back(NamedExpr{k.name + ".roll", roll.subs(values), loc});
 
   ElementSummary summary{
@@ -390,7 +402,7 @@ void lower_rigid(ModelReader& r, const KiteSpec& k, const ElementContext& ctx) {
                 mb_state[2] * body.w[2];
   m.forces.push_back(PointForce{cg_name, force, loc});
   m.torques.push_back(BodyTorque{body.name, mb_state, true, loc});
-  add_outputs(m, k.name, loads, values, s, loc);
+  add_outputs(m, ctx, k.name, loads, values, s, loc);
   m.outputs.push_back(NamedExpr{k.name + ".alpha", flow.alpha, loc});
   m.outputs.push_back(NamedExpr{k.name + ".beta", flow.beta, loc});
 

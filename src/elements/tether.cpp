@@ -401,7 +401,9 @@ void add_constant_length_masses(ModelReader& r, const Tether& t) {
 }
 
 // docs/theory.md §4.5: Cⱼ = ½(|rⱼ − rⱼ₋₁|² − (ℓ/N)²); the segment's tension is λⱼ ℓ/N.
-void add_length_constraints(Model& m, const Tether& t, const SourceLoc& loc) {
+// Returns the index of segment 1's constraint.
+size_t add_length_constraints(Model& m, const Tether& t, const SourceLoc& loc) {
+  const size_t first = m.constraints.size();
   const GiNaC::ex seg = t.length / GiNaC::numeric(static_cast<int>(t.segments));
   for (size_t j = 1; j <= t.segments; ++j) {
     const Vec3 d = sub(m.find_point(t.nodes[j])->pos, m.find_point(t.nodes[j - 1])->pos);
@@ -413,6 +415,33 @@ void add_length_constraints(Model& m, const Tether& t, const SourceLoc& loc) {
       m.reactions.push_back(
           Reaction{t.name + ".tension_ground", m.constraints.size() - 1, seg, loc});
   }
+  return first;
+}
+
+// docs/theory.md §4.11: the force a fixed first end's support carries, −S from node 0's
+// Euler–Lagrange equation: Q₀ + λ₁ (r₁ − r₀) (or the elastic pull) + m₀ g for the lumped model,
+// + (mₛ/2) g − (mₛ/6) r̈₁ for the full one. Only for a constant length at a support at rest.
+void add_anchor_load(Model& m, const Tether& t, const Vec3& node_force,
+                     std::optional<size_t> segment1, const SourceLoc& loc) {
+  const Vec3& r0 = m.find_point(t.nodes[0])->pos;
+  const Vec3& r1 = m.find_point(t.nodes[1])->pos;
+  for (const auto& x : r0)
+    if (!m.time_derivative(x).is_zero()) return;
+  const GiNaC::ex N = GiNaC::numeric(static_cast<int>(t.segments));
+  const Vec3 g = m.gravity.value_or(Vec3{0, 0, 0});
+  Load load{t.name + ".load_ground", {}, loc};
+  for (size_t k = 0; k < 3; ++k) {
+    LoadPart part{node_force[k], {}};
+    if (t.full) {
+      const GiNaC::ex ms = t.mass_per_length * t.length / N;
+      part.expr += ms / 2 * g[k] - ms / 6 * m.time_derivative(m.time_derivative(r1[k]));
+    } else {
+      part.expr += t.mass_per_length * t.length / (N + 1) * g[k];
+    }
+    if (segment1) part.multipliers.emplace_back(*segment1, r1[k] - r0[k]);
+    load.parts.push_back(std::move(part));
+  }
+  m.loads.push_back(std::move(load));
 }
 
 // docs/theory.md §4.10: Q_ℓ on the winch's coordinate; strain, tension and elastic energy as
@@ -444,10 +473,11 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
       add_constant_length_masses(r, t);
     std::vector<Vec3> force = tether_drag(m, t, ctx.wind ? &*ctx.wind : nullptr);
     std::optional<ElasticSegments> elastic;
+    std::optional<size_t> segment1;
     if (t.elasticity)
       elastic = add_elastic_segments(m, t, loc);
     else
-      add_length_constraints(m, t, loc);
+      segment1 = add_length_constraints(m, t, loc);
     GiNaC::ex power = 0;  // of drag and node damping: Σ Fⱼ·ṙⱼ (not of the elastic segments)
     for (size_t j = 0; j <= n; ++j) {
       const Vec3& pos = m.find_point(t.nodes[j])->pos;
@@ -461,6 +491,7 @@ void lower_tethers(ModelReader& r, const YAML::Node& /*node*/, ElementContext& c
       bool any = false;
       for (const auto& f : total) any = any || !f.is_zero();
       if (any) m.forces.push_back(PointForce{t.nodes[j], total, loc});
+      if (j == 0 && !t.variable_length) add_anchor_load(m, t, total, segment1, loc);
     }
     ElementSummary summary{fmt::format("Tether '{}': {} {}segments, {} model{}", t.name, n,
                                        t.elasticity ? "elastic " : "", t.full ? "full" : "lumped",

@@ -113,19 +113,25 @@ void lower_winches(ModelReader& r, ElementContext& ctx) {
     summary.equations.emplace_back("T_drum", drum);
     m.outputs.push_back(NamedExpr{w.name + ".speed", c.v, loc});
     m.outputs.push_back(NamedExpr{w.name + ".angle", c.q / w.radius, loc});
+    // docs/theory.md §4.11: the drum's momentum balance gives the pull of the line on it,
+    // F = (J/R² + μ(L − ℓ)) ℓ̈ − Q_motor, Q_motor = τ/R or the reel's −λ.
+    LoadPart load{(w.inertia / (w.radius * w.radius) + tether->mass_per_length * stored) * c.a, {}};
     if (w.torque || w.node["torque"]) {
       const GiNaC::ex tau = r.scalar_expr(w.node["torque"], model::kAll, "torque of " + what);
       m.generalized_forces[w.coordinate] += tau / w.radius;
       summary.equations.emplace_back("Q_" + c.name, tau / w.radius);
       m.outputs.push_back(NamedExpr{w.name + ".power", tau * c.v / w.radius, loc});
+      load.expr -= tau / w.radius;
     } else if (w.reeled_out) {
       m.constraints.push_back(NamedExpr{w.name + ".reel", c.q - *w.reeled_out, loc});
       summary.equations.emplace_back("C_reel", m.constraints.back().expr);
       // The reel force on ℓ is −λ; its power −λ ℓ̇.
       m.reactions.push_back(Reaction{w.name + ".power", m.constraints.size() - 1, -c.v, loc});
+      load.multipliers.emplace_back(m.constraints.size() - 1, GiNaC::ex(1));
     } else {
       m.outputs.push_back(NamedExpr{w.name + ".power", GiNaC::ex(0), loc});
     }
+    m.loads.push_back(Load{w.name + ".load", {load}, loc});
     // ℓ ≤ 0 leaves the drum's domain (a tether of negative length): the run fails there.
     m.fail_when.push_back(
         StopSpec{fmt::format("{} reeled its tether in completely: its reeled-out length must stay "

@@ -34,6 +34,8 @@ std::string group_of(const CompiledModel& cm, const std::string& column) {
   if (in(cm.output_names)) return "outputs";
   if (in(cm.constraint_names)) return "multipliers";
   if (in(cm.reaction_names)) return "tensions";
+  for (const LoadColumn& load : cm.loads)
+    if (load.name == column) return "tensions";
   return "residuals";
 }
 

@@ -33,6 +33,7 @@ void write_trajectory_csv(const Trajectory& traj, const std::string& path) {
   side["failed_steps"] = traj.stats.failed_steps;
   if (traj.rotation_drift > 0) side["rotation_drift"] = traj.rotation_drift;
   if (!traj.notes.empty()) side["notes"] = traj.notes;
+  if (!traj.warnings.empty()) side["warnings"] = traj.warnings;
   side["csv_bytes"] = text.size();  // the file this sidecar describes (issue 25 item 1)
   write_file_with_sidecar(path, text, side.dump(2) + "\n");
 }

@@ -1,6 +1,6 @@
 #pragma once
-// One output row of a trajectory: t, q, v, T, U, T + U, outputs, λ, max|C|, max|Ċ|, reactions
-// (trajectory_columns). simulate() and the Stepper write their samples with it.
+// One output row of a trajectory: t, q, v, T, U, T + U, outputs, λ, max|C|, max|Ċ|, reactions,
+// loads (trajectory_columns). simulate() and the Stepper write their samples with it.
 
 #include <vector>
 
@@ -20,6 +20,7 @@ class RowWriter {
   void write(Dynamics& dyn, double t, const double* q, const double* v, std::vector<double>& row);
 
  private:
+  double load_value(const LoadColumn& load) const;  // after forward(): a_ and lambda_ are set
   std::vector<double> obs_, qdot_, a_, lambda_, C_, Cdot_;
 };
 

@@ -27,6 +27,7 @@ std::vector<std::string> trajectory_columns(const CompiledModel& cm) {
     cols.insert(cols.end(), {"constraint_residual", "constraint_rate_residual"});
     for (const auto& r : cm.reaction_names) cols.push_back(r);
   }
+  for (const auto& load : cm.loads) cols.push_back(load.name);
   return cols;
 }
 
@@ -238,6 +239,9 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   // The model's stop conditions end the run; its elements' domain conditions (cm.fail_when)
   // fail it, both located between samples.
   const StopConditions stop(cm, traj.columns), guards(cm.fail_when, cm, traj.columns);
+  const StopConditions cautions(cm.warn_when, cm, traj.columns);
+  std::vector<double> caution_g(cautions.size());
+  std::vector<bool> cautioned(cautions.size(), false);
   StopWatch watch(stop.size(), n), guard_watch(guards.size(), n);
   std::vector<double> stop_row, stop_g(stop.size()), guard_g(guards.size());
   const auto values_of = [&](const StopConditions& conditions) -> StopWatch::Evaluate {
@@ -298,6 +302,16 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         }
       }
       checks.row(t, row);
+      if (!cautions.empty()) {
+        cautions.evaluate(row, dyn.parameters().data(), caution_g.data());
+        for (size_t i = 0; i < cautions.size(); ++i)
+          if (caution_g[i] > 0 && !cautioned[i]) {
+            cautioned[i] = true;
+            const StopSpec& c = cautions.spec(i);
+            traj.warnings.push_back(
+                fmt::format("from t = {:.6g}: {} ({}, {})", t, c.name, c.text, c.loc.str()));
+          }
+      }
     } catch (const SimulationError&) {
       traj.data.resize(traj.data.size() - width);
       last.reported = true;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "elements/kite.hpp"
@@ -143,6 +144,44 @@ kites:
   EXPECT_NEAR(tr.at(last, "main.tension_ground"), tension, 1e-8 * tension);
   EXPECT_NEAR(tr.at(last, "wing.lift"), lift, 1e-8 * lift);
   EXPECT_NEAR(tr.at(last, "wing.drag"), drag, 1e-8 * drag);
+  EXPECT_TRUE(tr.warnings.empty());
+}
+
+// A kite that drops out of a light wind swings through the ground plane: the run goes on (the
+// model has no ground) but says once, at the first sample below, that the kite is below the
+// ground of its wind profile (issue 20, item 6); the balanced kite above never warns.
+TEST(PointMassKite, WarnsOnceWhenItFliesBelowTheGroundOfItsWind) {
+  for (const std::string wind :
+       {"{speed: 3}", "{speed: 3, profile: logarithmic, roughness: 0.5}"}) {
+    auto sys = testing::load_string(R"(
+coordinates:
+  x: {initial: 141.4213562373095}
+  y: {initial: 0}
+  z: {initial: 141.4213562373095}
+points:
+  kite: [x, y, z]
+gravity: [0, 0, -9.81]
+wind: )" + wind + R"(
+tethers:
+  main: {between: [[0, 0, 0], kite], segments: 1, length: 200, mass_per_length: 0.0046}
+kites:
+  wing: {point: kite, preset: ap2, CL: 0.8, CD: 0.6}
+)");
+    const Trajectory tr = run_for(sys, 15, 0.05);
+    ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
+    const double ground = wind.find("roughness") != std::string::npos ? 0.5 : 0.0;
+    size_t first = 0;
+    while (first < tr.rows() && tr.at(first, "wing.height") >= ground) ++first;
+    ASSERT_LT(first, tr.rows()) << "the kite never went below the ground";
+    EXPECT_DOUBLE_EQ(tr.at(first, "wing.height"), tr.at(first, "z"));
+    ASSERT_EQ(tr.warnings.size(), 1u) << wind;
+    EXPECT_EQ(tr.warnings[0].rfind(fmt::format("from t = {:.6g}: kite 'wing' flies below the "
+                                               "ground",
+                                               tr.at(first, "t")),
+                                   0),
+              0u)
+        << tr.warnings[0];
+  }
 }
 
 // d(T + U)/dt = P_aero + P_tether drag + P_winch: a rolling point-mass kite on a three-segment

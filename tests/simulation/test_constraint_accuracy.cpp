@@ -9,43 +9,17 @@
 #include <vector>
 
 #include "support/harness.hpp"
+#include "support/winch_with_payload.hpp"
 
 namespace lagrange::testing {
 namespace {
 
-// A drum reeling a hanging tether with a payload under a constant motor torque τ: the tether is
-// straight, everything on the line moves at ℓ̇, so (J/R² + μL + m_p) ℓ̈ = m_p g + μ g ℓ + τ/R.
-constexpr double kR = 0.2, kJ = 0.05, kMu = 0.4, kL = 30, kG = 9.81, kMp = 2.0, kTau = -0.5;
-constexpr double kEll0 = 1.0, kRate0 = 0.5;
-
-double closed_form(double t) {
-  const double me = kJ / (kR * kR) + kMu * kL + kMp, w = std::sqrt(kMu * kG / me);
-  const double b = (kMp * kG + kTau / kR) / me;
-  return (kEll0 + b / (w * w)) * std::cosh(w * t) + kRate0 / w * std::sinh(w * t) - b / (w * w);
-}
-
-const char* const kParameters =
-    "parameters: {R: 0.2, J: 0.05, mu: 0.4, L: 30, g: 9.81, mp: 2.0, tau: -0.5}\n";
-
-std::string winch_with_payload() {
-  return std::string("name: winch with payload\n") + kParameters + R"(gravity: [0, 0, -g]
-coordinates:
-  px: {initial: 0}
-  py: {initial: 0}
-  pz: {initial: -1, rate: -0.5}
-points: {load: [px, py, pz]}
-particles: {load: mp}
-winches:
-  drum: {tether: line, radius: R, inertia: J, total_length: L, torque: tau,
-         initial: {reeled_out: 1, rate: 0.5, fixed: true}}
-tethers:
-  line: {between: [[0, 0, 0], load], segments: 6, mass_per_length: mu}
-simulate: {t_end: 4, output_step: 0.01}
-)";
-}
+using winch_payload::closed_form;
+using winch_payload::model;
+using winch_payload::parameters;
 
 std::string one_coordinate_twin() {
-  return std::string("name: winch twin\n") + kParameters + R"(coordinates:
+  return std::string("name: winch twin\n") + parameters() + R"(coordinates:
   ell: {initial: 1, rate: 0.5}
 kinetic: (J/R^2 + mu*L + mp)/2*der(ell)^2
 potential: -mp*g*ell - mu*g*ell^2/2
@@ -69,7 +43,7 @@ double sample_error(Loaded& sys, const std::string& column, double rtol) {
 }
 
 TEST(ConstraintAccuracy, WinchWithPayloadMeetsTheToleranceAsItsOneCoordinateTwinDoes) {
-  Loaded constrained = load_string(winch_with_payload());
+  Loaded constrained = load_string(model());
   Loaded twin = load_string(one_coordinate_twin());
   std::vector<double> errors;
   for (const double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
