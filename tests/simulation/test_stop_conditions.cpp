@@ -127,5 +127,33 @@ TEST(StopConditionsCli, SummaryAndSidecarSayWhichConditionFiredAndWhen) {
   EXPECT_EQ(side["t_last"].get<double>(), side["stop_time"].get<double>());
 }
 
+// An element's warning condition (a kite below the ground of its wind) does not end the run: it
+// is printed once, under -q too, and kept in the sidecar.
+TEST(StopConditionsCli, AKiteBelowTheGroundIsWarnedOnceEvenUnderQuiet) {
+  ScratchDir dir("warn-" + std::to_string(getpid()));
+  spit(dir.path() / "k.yaml",
+       "name: k\ncoordinates: {x: {initial: 141.42}, y: {initial: 0}, z: {initial: 141.42}}\n"
+       "points: {kite: [x, y, z]}\ngravity: [0, 0, -9.81]\nwind: {speed: 3}\n"
+       "tethers: {main: {between: [[0, 0, 0], kite], segments: 1, length: 200, "
+       "mass_per_length: 0.0046}}\n"
+       "kites: {wing: {point: kite, preset: ap2, CL: 0.8, CD: 0.6}}\n"
+       "simulate: {t_end: 15, output_step: 0.05}\n");
+  const RunResult r = run_lagrange(dir.path(), {"simulate", (dir.path() / "k.yaml").string(), "-q",
+                                                "-o", (dir.path() / "k.csv").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string warning = "warning: from t = ";
+  const size_t at = r.err.find(warning);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, at + 1), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("kite 'wing' flies below the ground of its wind profile (height 0)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("wing.height < 0, "), std::string::npos) << r.err;
+  const auto side = nlohmann::json::parse(slurp(dir.path() / "k.csv.json"));
+  EXPECT_EQ(side["status"], "complete");
+  ASSERT_EQ(side["warnings"].size(), 1u);
+  EXPECT_EQ(side["warnings"][0].get<std::string>().rfind("from t = ", 0), 0u);
+}
+
 }  // namespace
 }  // namespace lagrange::hardening
