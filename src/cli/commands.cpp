@@ -138,7 +138,9 @@ int run_export(const Options& opt) {
 }
 
 int run_check(const Options& opt) {
-  const Prepared p = prepare(opt.model, opt.sets, opt.initial);
+  // The formulation simulate takes (docs/theory.md §4.9): a joint tree is checked on its
+  // articulated-body equations, which grow linearly with the links.
+  const Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const CompiledModel& cm = *p.compiled;
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
              p.model->name, cm.nq, cm.m, cm.np, cm.k);

@@ -20,7 +20,9 @@ InitialConsistency require_consistent_initial_state(const Model& model, Dynamics
                                                     std::vector<double>& q, std::vector<double>& v);
 
 /// Forward dynamics at (q, v), t = 0. A singular mass matrix there (a zero mass, a zero-length
-/// link) is a ModelError at the coordinate without inertia, naming the parameters it depends on.
+/// link) is a ModelError at the coordinate without inertia, naming the parameters it depends on;
+/// in the recursive form, so is an articulated-body pivot that is not positive (docs/theory.md
+/// §4.9).
 void require_regular_initial_state(const Model& model, const Equations& eq, Dynamics& dyn,
                                    const std::vector<double>& q, const std::vector<double>& v);
 
