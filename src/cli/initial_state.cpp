@@ -80,42 +80,6 @@ std::string parameters_in(const Model& model, const std::vector<double>& values,
   return text;
 }
 
-// docs/theory.md §4.9, Pivots: the articulated-body algorithm eliminates M from the leaves, its
-// pivots D are those of that elimination, and M is positive definite exactly when all are
-// positive. A pivot that is not, at the state of `dyn`'s last evaluation, is a ModelError at
-// its coordinate.
-void require_positive_pivots(const Model& model, const Equations& eq, const Dynamics& dyn) {
-  const Tape tape = Tape::compile(eq.pivots, eq.tape_inputs(), eq.definitions);
-  std::vector<double> D(tape.num_outputs()), work(tape.work_size());
-  tape.eval(dyn.last_inputs().data(), D.data(), work.data());
-  double scale = 0;
-  for (const double d : D)
-    if (std::isfinite(d)) scale = std::max(scale, std::abs(d));
-  // The elimination's first failing pivot is a number; the pivots eliminated after it divide
-  // by it and are not.
-  const auto failing = [&](bool finite) {
-    return std::find_if(D.begin(), D.end(), [&](double d) {
-      return !(d > 1e-13 * scale) && static_cast<bool>(std::isfinite(d)) == finite;
-    });
-  };
-  auto bad = failing(true);
-  if (bad == D.end()) bad = failing(false);
-  if (bad != D.end()) {
-    const auto i = static_cast<size_t>(bad - D.begin());
-    const Coordinate& c = model.coordinates[i];
-    const std::string depends =
-        parameters_in(model, dyn.parameters(), eq.pivots[i], eq.definitions);
-    throw ModelError(
-        c.loc,
-        fmt::format("coordinate '{}' has {} inertia at the initial state: the articulated-body "
-                    "pivot D of its joint (the inertia about it of the links it carries) is "
-                    "{:.6g}{}{}; expected positive masses and non-zero lengths",
-                    c.name, D[i] < 0 ? "a negative" : "no", D[i],
-                    D[i] < 0 ? ", so the mass matrix is indefinite" : "",
-                    depends.empty() ? "" : " with " + depends));
-  }
-}
-
 }  // namespace
 
 InitialConsistency require_consistent_initial_state(const Model& model, Dynamics& dyn,
@@ -196,7 +160,41 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
     throw ModelError(
         where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
   }
-  if (eq.recursive) require_positive_pivots(model, eq, dyn);
+}
+
+// docs/theory.md §4.9, Pivots: the articulated-body algorithm eliminates M from the leaves, its
+// pivots D are those of that elimination, and M is positive definite exactly when all are
+// positive.
+void require_positive_pivots(const Model& model, const Equations& eq, const Dynamics& dyn) {
+  const Tape tape = Tape::compile(eq.pivots, eq.tape_inputs(), eq.definitions);
+  std::vector<double> D(tape.num_outputs()), work(tape.work_size());
+  tape.eval(dyn.last_inputs().data(), D.data(), work.data());
+  double scale = 0;
+  for (const double d : D)
+    if (std::isfinite(d)) scale = std::max(scale, std::abs(d));
+  // The elimination's first failing pivot is a number; the pivots eliminated after it divide
+  // by it and are not.
+  const auto failing = [&](bool finite) {
+    return std::find_if(D.begin(), D.end(), [&](double d) {
+      return !(d > 1e-13 * scale) && static_cast<bool>(std::isfinite(d)) == finite;
+    });
+  };
+  auto bad = failing(true);
+  if (bad == D.end()) bad = failing(false);
+  if (bad != D.end()) {
+    const auto i = static_cast<size_t>(bad - D.begin());
+    const Coordinate& c = model.coordinates[i];
+    const std::string depends =
+        parameters_in(model, dyn.parameters(), eq.pivots[i], eq.definitions);
+    throw ModelError(
+        c.loc,
+        fmt::format("coordinate '{}' has {} inertia at the initial state: the articulated-body "
+                    "pivot D of its joint (the inertia about it of the links it carries) is "
+                    "{:.6g}{}{}; expected positive masses and non-zero lengths",
+                    c.name, D[i] < 0 ? "a negative" : "no", D[i],
+                    D[i] < 0 ? ", so the mass matrix is indefinite" : "",
+                    depends.empty() ? "" : " with " + depends));
+  }
 }
 
 }  // namespace lagrange::cli
