@@ -62,6 +62,9 @@ struct Equations {
   /// the symbols of `definitions` (each defined by the inputs and earlier ones, in order).
   bool recursive = false;
   std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> definitions;
+  /// Recursive: velocity i's articulated-body pivot D = SᵀIᴬS (§4.9), in the inputs and
+  /// `definitions`; M is positive definite exactly when every pivot is positive.
+  std::vector<GiNaC::ex> pivots;
 
   std::vector<GiNaC::ex> outputs;          ///< named outputs: the model's, then per free body
   std::vector<std::string> output_names;   ///< its orthonormality error ‖RᵀR − 1‖_F

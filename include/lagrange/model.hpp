@@ -4,6 +4,7 @@
 #include <ginac/ginac.h>
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -102,6 +103,8 @@ struct Body {
   /// Posed: the body-frame angular velocity U(RᵀṘ) when an element composes it along a chain
   /// (ω_child = R_relᵀ ω_parent + k q̇, docs/theory.md §4.8); unset, it is derived from R (§4.4).
   std::optional<Vec3> angular_velocity;
+  /// The `shape:` declared for a `bodies:` entry (box, cylinder or sphere), or "" (an inertia).
+  std::string shape;
   SourceLoc loc;
 
   /// Make this a free body with fresh symbols named `<name>.x`, `<name>.R11`, `<name>.wx`, ….
@@ -211,6 +214,15 @@ struct SimulateOptions {
   SourceLoc loc;
 };
 
+/// The `visual:` section (docs/model-language.md, "How a model looks") as the reader checked it:
+/// how the report draws points, bodies and elements (a name up to '.': `cable` for `cable.n3`).
+struct Visual {
+  std::map<std::string, std::string> color;  ///< name → CSS colour as written
+  std::map<std::string, double> size;        ///< name → radius (points) or scale (bodies), > 0
+  std::vector<std::string> trail, hide;      ///< names whose paths are drawn; names not drawn
+  bool trail_given = false;                  ///< `trail:` was written (even empty)
+};
+
 /// Everything a user described; immutable once read. Symbols are owned here.
 struct Model {
   std::string name;
@@ -242,6 +254,7 @@ struct Model {
   SimulateOptions simulate;
   std::vector<StopSpec> stop_when;  ///< `stop_when:` conditions, in file order
   std::vector<MetricSpec> metrics;  ///< `metrics:`, in file order
+  Visual visual;                    ///< `visual:`, empty when not written
   /// Conditions that leave an element's physical domain (a winch's reeled-out length below 0),
   /// added by the elements: a run fails, located in time, where one becomes true. The name says
   /// what went wrong; loc is the element's.

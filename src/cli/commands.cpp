@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli/initial_state.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
 #include "cli/report_command.hpp"
@@ -138,8 +139,12 @@ int run_export(const Options& opt) {
 }
 
 int run_check(const Options& opt) {
-  const Prepared p = prepare(opt.model, opt.sets, opt.initial);
+  // The formulation simulate takes (docs/theory.md §4.9): a joint tree is checked on its
+  // articulated-body equations, which grow linearly with the links.
+  const Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const CompiledModel& cm = *p.compiled;
+  // prepare() evaluated the dynamics at the initial state last; the recursive form never forms M.
+  if (p.equations.recursive) require_positive_pivots(*p.model, p.equations, *p.dynamics);
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
              p.model->name, cm.nq, cm.m, cm.np, cm.k);
   for (size_t r = 0; r < cm.m; ++r)

@@ -22,8 +22,9 @@ struct Options {
   std::string form = "lagrange";  ///< derive: lagrange | manipulator
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
-  std::string compile = "auto";   ///< simulate --compile: auto | on | off
-  std::string dynamics = "auto";  ///< simulate, export --dynamics: auto | lagrangian | recursive
+  std::string compile = "auto";  ///< simulate --compile: auto | on | off
+  std::string dynamics =
+      "auto";  ///< simulate, export, check --dynamics: auto | lagrangian | recursive
   std::string csv, plot, c_dir;
   std::string report;      ///< simulate --report, report -o: the HTML report to write
   std::string trajectory;  ///< report: the saved trajectory CSV

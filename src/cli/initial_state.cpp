@@ -8,6 +8,7 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/error.hpp"
+#include "lagrange/tape.hpp"
 
 namespace lagrange::cli {
 
@@ -51,6 +52,34 @@ std::string fixed_in_the_way(const CompiledModel& cm, const std::vector<size_t>&
   return text;
 }
 
+// The parameters `e` depends on, through the named intermediates `defs` (each visited once).
+std::string parameters_in(const Model& model, const std::vector<double>& values, const GiNaC::ex& e,
+                          const std::vector<Tape::Definition>& defs) {
+  GiNaC::exmap defined;
+  for (const auto& [symbol, value] : defs) defined[symbol] = value;
+  std::vector<bool> used(model.parameters.size(), false);
+  GiNaC::exset seen;
+  std::vector<GiNaC::ex> todo{e};
+  while (!todo.empty()) {
+    const GiNaC::ex x = todo.back();
+    todo.pop_back();
+    if (!seen.insert(x).second) continue;
+    if (GiNaC::is_a<GiNaC::symbol>(x)) {
+      if (const auto it = defined.find(x); it != defined.end()) todo.push_back(it->second);
+      for (size_t j = 0; j < model.parameters.size(); ++j)
+        if (x.is_equal(model.parameters[j].sym)) used[j] = true;
+      continue;
+    }
+    for (size_t k = 0; k < x.nops(); ++k) todo.push_back(x.op(k));
+  }
+  std::string text;
+  for (size_t j = 0; j < used.size(); ++j)
+    if (used[j])
+      text +=
+          fmt::format("{}{} = {:g}", text.empty() ? "" : ", ", model.parameters[j].name, values[j]);
+  return text;
+}
+
 }  // namespace
 
 InitialConsistency require_consistent_initial_state(const Model& model, Dynamics& dyn,
@@ -89,6 +118,7 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
   try {
     dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
   } catch (const SimulationError& e) {
+    if (eq.recursive) require_positive_pivots(model, eq, dyn);
     // CLN refuses subnormal doubles (floating_point_underflow_exception): flush them to 0.
     auto number = [](double x) { return GiNaC::numeric(std::isnormal(x) ? x : 0.0); };
     GiNaC::exmap at_start;
@@ -129,6 +159,41 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
         model.coordinates.empty() ? SourceLoc{model.file, 1, 1} : model.coordinates[0].loc;
     throw ModelError(
         where, fmt::format("the dynamics cannot be evaluated at the initial state: {}", e.what()));
+  }
+}
+
+// docs/theory.md §4.9, Pivots: the articulated-body algorithm eliminates M from the leaves, its
+// pivots D are those of that elimination, and M is positive definite exactly when all are
+// positive.
+void require_positive_pivots(const Model& model, const Equations& eq, const Dynamics& dyn) {
+  const Tape tape = Tape::compile(eq.pivots, eq.tape_inputs(), eq.definitions);
+  std::vector<double> D(tape.num_outputs()), work(tape.work_size());
+  tape.eval(dyn.last_inputs().data(), D.data(), work.data());
+  double scale = 0;
+  for (const double d : D)
+    if (std::isfinite(d)) scale = std::max(scale, std::abs(d));
+  // The elimination's first failing pivot is a number; the pivots eliminated after it divide
+  // by it and are not.
+  const auto failing = [&](bool finite) {
+    return std::find_if(D.begin(), D.end(), [&](double d) {
+      return !(d > 1e-13 * scale) && static_cast<bool>(std::isfinite(d)) == finite;
+    });
+  };
+  auto bad = failing(true);
+  if (bad == D.end()) bad = failing(false);
+  if (bad != D.end()) {
+    const auto i = static_cast<size_t>(bad - D.begin());
+    const Coordinate& c = model.coordinates[i];
+    const std::string depends =
+        parameters_in(model, dyn.parameters(), eq.pivots[i], eq.definitions);
+    throw ModelError(
+        c.loc,
+        fmt::format("coordinate '{}' has {} inertia at the initial state: the articulated-body "
+                    "pivot D of its joint (the inertia about it of the links it carries) is "
+                    "{:.6g}{}{}; expected positive masses and non-zero lengths",
+                    c.name, D[i] < 0 ? "a negative" : "no", D[i],
+                    D[i] < 0 ? ", so the mass matrix is indefinite" : "",
+                    depends.empty() ? "" : " with " + depends));
   }
 }
 

@@ -20,8 +20,14 @@ InitialConsistency require_consistent_initial_state(const Model& model, Dynamics
                                                     std::vector<double>& q, std::vector<double>& v);
 
 /// Forward dynamics at (q, v), t = 0. A singular mass matrix there (a zero mass, a zero-length
-/// link) is a ModelError at the coordinate without inertia, naming the parameters it depends on.
+/// link) is a ModelError at the coordinate without inertia, naming the parameters it depends on
+/// (in the recursive form through require_positive_pivots).
 void require_regular_initial_state(const Model& model, const Equations& eq, Dynamics& dyn,
                                    const std::vector<double>& q, const std::vector<double>& v);
+
+/// Recursive equations `eq`: their articulated-body pivots at the state of `dyn`'s last
+/// evaluation must all be positive (M positive definite, docs/theory.md §4.9), or a ModelError
+/// names the coordinate without inertia and the parameters its pivot depends on.
+void require_positive_pivots(const Model& model, const Equations& eq, const Dynamics& dyn);
 
 }  // namespace lagrange::cli

@@ -96,6 +96,11 @@ int main(int argc, char** argv) {
   check->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
   check->add_option("--initial", opt.initial, "initial value NAME=VALUE, as for simulate")
       ->delimiter(',');
+  check
+      ->add_option("--dynamics", opt.dynamics,
+                   "auto (default) | lagrangian | recursive: the equations checked, as for "
+                   "simulate")
+      ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
 
   auto* eval = app.add_subcommand(
       "eval", "print M, the bias forces, the accelerations and inverse dynamics at one state");

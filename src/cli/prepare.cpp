@@ -73,9 +73,8 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   try {
     p.equations = derive(*p.model, form);
   } catch (const GiNaC::pole_error&) {
-    // A joint with no inertia about its own axis (a point mass on it) has D = SᵀIS = 0 exactly
-    // and the articulated-body algorithm divides by it: the Lagrangian form reaches the initial
-    // state check below, which says which coordinate has no inertia (issue 25 item 6).
+    // Another exact pole of the articulated-body algorithm than a zero pivot (which derive
+    // reports at its coordinate): the Lagrangian form reaches the initial state check below.
     if (form != Formulation::Recursive) throw;
     p.equations = derive(*p.model, Formulation::Lagrangian);
   }
@@ -94,9 +93,9 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   return p;
 }
 
-bool prepares_as_written(const ModelSource& source) {
+bool prepares_as_written(const ModelSource& source, const std::string& dynamics) {
   try {
-    (void)prepare_with(source, {}, {}, "lagrangian");
+    (void)prepare_with(source, {}, {}, dynamics);
     return true;
   } catch (const ModelError&) {
     return false;
@@ -114,7 +113,7 @@ Prepared prepare_checked(const ModelSource& source, const ParameterOverrides& ov
     throw UsageError(fmt::format("{}: {}", option, e.what()));
   } catch (const ModelError& e) {
     // The file's own mistake stays a model error; a value only the caller brings is its.
-    if (overrides.empty() || !prepares_as_written(source)) throw;
+    if (overrides.empty() || !prepares_as_written(source, dynamics)) throw;
     throw UsageError(fmt::format("{}: the model does not accept this value: {} (found at {})",
                                  given, e.detail(), e.loc().str()));
   }

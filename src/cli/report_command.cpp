@@ -6,7 +6,6 @@
 #include <cctype>
 #include <filesystem>
 
-#include "io/report_visual.hpp"
 #include "lagrange/report.hpp"
 
 namespace lagrange::cli {
@@ -17,13 +16,12 @@ namespace {
 constexpr size_t kReportLagrangianJoints = 12;
 }  // namespace
 
-void check_report(const std::string& path, const Model& model) {
+void check_report(const std::string& path, const Model& /*model*/) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (ext != ".html" && ext != ".htm")
     throw UsageError(fmt::format("--report {}: expected a file name ending in .html", path));
-  io::read_visual(model);
 }
 
 void write_run_report(const Prepared& p, const Trajectory& traj, const std::string& integrator,

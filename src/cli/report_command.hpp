@@ -6,8 +6,8 @@
 
 namespace lagrange::cli {
 
-/// Checks a report before the run: an .html name (UsageError otherwise) and the model's
-/// `visual:` section (ModelError).
+/// Checks a report's file name before the run: .html (UsageError otherwise). The model's
+/// `visual:` section, which the report draws from, was checked by the reader that made `model`.
 void check_report(const std::string& path, const Model& model);
 
 /// Writes the report of a run of `p` to `path`; `wall_seconds` < 0 when unknown.

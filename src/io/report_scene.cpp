@@ -153,7 +153,7 @@ BodyShape shape_from_inertia(const std::string& declared, double mass, const Eig
 nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Trajectory& traj,
                      const std::vector<double>& parameters, const ReportLimits& limits) {
   const Model& model = *eq.model;
-  const Visual visual = read_visual(model);
+  const Visual& visual = model.visual;
   std::set<ex, GiNaC::ex_is_less> moving(eq.kin.q.begin(), eq.kin.q.end());
   moving.insert(model.t);
   for (const auto& in : model.inputs) moving.insert({in.u, in.ud, in.udd});
@@ -409,10 +409,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     Eigen::Matrix3d I;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) I(r, c) = s[1 + 3 * r + c];
-    const auto declared_shape = visual.shapes.find(bodies[j]->name);
-    BodyShape shape =
-        shape_from_inertia(declared_shape == visual.shapes.end() ? "" : declared_shape->second,
-                           s[0], I, Eigen::Vector3d(s[10], s[11], s[12]), 0.08 * extent);
+    BodyShape shape = shape_from_inertia(bodies[j]->shape, s[0], I,
+                                         Eigen::Vector3d(s[10], s[11], s[12]), 0.08 * extent);
     // A body small against the scene (a kite on a long tether) is enlarged to be seen. A link of
     // a joint tree keeps its size, but is drawn at most 1.2 times as long as the link (its longest
     // bone; a published inertia can be far from the link's solid, the skeleton shows the link).

@@ -1,27 +1,12 @@
 #pragma once
-// The `visual:` section of a model file (docs/model-language.md, "How a model looks"): colours,
-// sizes, trails and hidden things of the report's 3-D view, by point, body or element name.
+// Lookups by `visual:` name (docs/model-language.md, "How a model looks"): the reader keeps the
+// section in Model::visual; a name there also stands for an element's points `name.…`.
 
 #include <map>
 #include <string>
 #include <vector>
 
-#include "lagrange/model.hpp"
-
 namespace lagrange::io {
-
-struct Visual {
-  std::map<std::string, std::string> color;  ///< name → CSS colour
-  std::map<std::string, double> size;        ///< name → radius (points) or scale (bodies)
-  std::vector<std::string> trail, hide;
-  bool trail_given = false;                   ///< `trail:` was written (even empty)
-  std::map<std::string, std::string> shapes;  ///< body → declared shape (box, cylinder, sphere)
-};
-
-/// Reads `visual:` and the bodies' declared shapes from the model's file; the names must be
-/// points, bodies or elements of `model` (ModelError at the name otherwise). Empty when the file
-/// cannot be read again (a model read from a string).
-Visual read_visual(const Model& model);
 
 /// The value for `name` in a map keyed by visual names: the longest key equal to `name` or a
 /// prefix of it up to a '.' (`cable` matches `cable.n3`), or nullptr.

@@ -38,6 +38,7 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
   check_sign(body.mass, spec["mass"], true, "mass for " + what);
   if (spec["com"]) body.com = vector_expr(spec["com"], kParams, "centre of mass of " + what);
   body.inertia = read_inertia(body, spec);
+  if (spec["shape"]) body.shape = spec["shape"].begin()->first.Scalar();  // one, read_shape checked
 
   const bool posed = spec["position"] || spec["rotation"];
   if (spec["frame"]) {

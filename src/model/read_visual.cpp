@@ -1,6 +1,6 @@
-// `visual:` (docs/model-language.md, "How a model looks") checked with the rest of the model:
-// only the report draws from it, but a mistake in it is a model error at its line, found by
-// `check` and before any run.
+// `visual:` (docs/model-language.md, "How a model looks") read with the rest of the model into
+// Model::visual, from which the report draws: a mistake in it is a model error at its line,
+// found by `check` and before any run.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -83,6 +83,7 @@ void ModelReader::read_visual(const YAML::Node& node) {
         fail(kv.second, fmt::format("expected a colour ('#rgb', '#rrggbb' or a CSS name such as "
                                     "red) for '{}', got '{}'",
                                     clip(name), clip(c)));
+      m_.visual.color[name] = c;
     }
   }
   if (const YAML::Node sizes = node["size"]; sizes && !sizes.IsNull()) {
@@ -95,14 +96,18 @@ void ModelReader::read_visual(const YAML::Node& node) {
         fail(kv.second, fmt::format("expected a positive number (metres) as the size of '{}', "
                                     "got {}",
                                     clip(name), describe(kv.second)));
+      m_.visual.size[name] = s;
     }
   }
   for (const char* key : {"trail", "hide"}) {
+    const bool trail = std::string(key) == "trail";
     const YAML::Node list = node[key];
-    if (!list || (list.IsNull() && std::string(key) == "trail")) continue;  // trail: none drawn
+    if (trail && list) m_.visual.trail_given = true;
+    if (!list || (list.IsNull() && trail)) continue;  // trail: none drawn
     const std::string where = fmt::format("visual.{}", key);
     expect_seq(list, fmt::format("{} (names, e.g. [bob])", where));
-    for (const auto& item : list) check_name(item);
+    for (const auto& item : list)
+      (trail ? m_.visual.trail : m_.visual.hide).push_back(check_name(item));
   }
 }
 

@@ -24,7 +24,7 @@ const std::vector<std::string>& top_level_keys() {
       "points",      "particles",  "gravity",     "kinetic",   "potential",
       "generalized_forces",        "forces",      "torques",   "springs",
       "dampers",     "constraints", "outputs",    "stabilization", "simulate",
-      "stop_when",   "metrics",    "visual"};  // visual: drawn by the report (src/io/report_visual.cpp)
+      "stop_when",   "metrics",    "visual"};  // visual: read into Model::visual, drawn by the report
   // clang-format on
   static const std::vector<std::string> all = [] {
     std::vector<std::string> k = keys;

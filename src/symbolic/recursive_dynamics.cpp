@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lagrange/equations.hpp"
+#include "lagrange/error.hpp"
 #include "model/expression_algebra.hpp"
 #include "model/vec3_algebra.hpp"
 #include "symbolic/mechanical_terms.hpp"
@@ -250,6 +251,7 @@ void add_recursive_terms(const Kinematics& kin, Equations& eq) {
   std::vector<Force> pA(n);
   std::vector<Force> U(n);
   std::vector<ex> invD(n), u(n);
+  eq.pivots.assign(kin.v.size(), 1);
   GiNaC::ex T = 0;
   for (size_t i = 0; i < n; ++i) {
     const TreeJoint& j = model.tree[i];
@@ -284,7 +286,19 @@ void add_recursive_terms(const Kinematics& kin, Equations& eq) {
                            ? Force{mat_vec(Ia.A, j.axis), mat_t_vec(Ia.B, j.axis)}
                            : Force{mat_vec(Ia.B, j.axis), mat_vec(Ia.C, j.axis)};
       U[i] = {defs.name(Ui.n, at + "U_w"), defs.name(Ui.f, at + "U_v")};
-      invD[i] = defs.name(1 / defs.name(along(j, U[i]), at + "D"), at + "invD");
+      const ex D = defs.name(along(j, U[i]), at + "D");
+      if (D.is_zero()) {
+        // A point mass on its own joint axis: the pivot is zero for every state and parameter.
+        const Coordinate& coordinate = model.coordinates[qi];
+        throw ModelError(coordinate.loc,
+                         fmt::format("coordinate '{}' has no inertia at the initial state (nor "
+                                     "at any other): the links its joint carries have none about "
+                                     "its axis (articulated-body pivot D = 0, docs/theory.md "
+                                     "§4.9); expected positive masses and non-zero lengths",
+                                     coordinate.name));
+      }
+      eq.pivots[qi] = D;
+      invD[i] = defs.name(1 / D, at + "invD");
       u[i] = defs.name(forces.h[qi] + forces.Q[qi] - along(j, pa), at + "u");
       Ia = defs.name(Inertia{sum(Ia.A, outer(U[i].n, U[i].n, invD[i]), -1),
                              sum(Ia.B, outer(U[i].n, U[i].f, invD[i]), -1),

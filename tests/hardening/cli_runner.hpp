@@ -79,6 +79,14 @@ class Child {
 
   void signal(int sig) const { kill(pid_, sig); }
 
+  /// Caps the child's address space at `bytes` (RLIMIT_AS, set from here at once after the
+  /// start): an allocation beyond it fails inside the child instead of swapping the machine.
+  void limit_memory(rlim_t bytes) const {
+    const rlimit cap{bytes, bytes};
+    if (prlimit(pid_, RLIMIT_AS, &cap, nullptr) != 0)
+      throw std::runtime_error("prlimit failed for the child");
+  }
+
   /// Waits for the child (killing it after `limit`) and collects its output.
   RunResult wait(std::chrono::seconds limit = std::chrono::seconds(300)) {
     const auto deadline = std::chrono::steady_clock::now() + limit;

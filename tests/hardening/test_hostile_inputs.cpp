@@ -226,7 +226,7 @@ TEST(Interruption, AReadBlockedOnAFifoEndsAt130) {
 }
 
 TEST(Interruption, ASlowCheckEndsAt130) {
-  // A 40-link planar chain: check derives it in the Lagrangian form for seconds
+  // A 40-link planar chain: check derives it in the Lagrangian form, asked for, for seconds
   std::string yaml = "gravity: [0, -9.81, 0]\nlinks:\n";
   for (int i = 0; i < 40; ++i) {
     yaml += "  l" + std::to_string(i) + ":\n";
@@ -237,7 +237,8 @@ TEST(Interruption, ASlowCheckEndsAt130) {
   }
   ScratchDir dir("sigint-check");
   spit(dir.path() / "chain.yaml", yaml);
-  (void)interrupt_after(dir.path(), {"check", (dir.path() / "chain.yaml").string()},
+  (void)interrupt_after(dir.path(),
+                        {"check", (dir.path() / "chain.yaml").string(), "--dynamics", "lagrangian"},
                         std::chrono::milliseconds(1500), 5.0);
   EXPECT_EQ(dir.files(), std::vector<std::string>{"chain.yaml"});
 }

@@ -297,6 +297,29 @@ TEST(RuntimeFailure, MassMatrixBecomesSingularMidRun) {
   EXPECT_NE(f.result.err.find("x_dot = "), std::string::npos) << f.result.err;
 }
 
+TEST(RuntimeFailure, MidpointNamesAStepThatConvergesOnATautTether) {
+  // The elastic tether's damped segments (D/l₀ = 180 N·s/m on 77 g nodes) make the taut line's
+  // rates some 2000/s: at h = 1 ms a fixed-point sweep scales the change by more than 1. The
+  // message names the step that makes the sweeps contract, and that step runs.
+  ScratchDir dir("midpoint-step");
+  const auto run = [&](const std::string& step) {
+    return run_lagrange(dir.path(), {"simulate", example("elastic_tether.yaml"), "--integrator",
+                                     "midpoint", "--step", step, "--t-end", "0.3", "-q"});
+  };
+  const RunResult failed = run("1e-3");
+  ASSERT_EQ(failed.exit_code, 3) << failed.err;
+  const std::string marker = "lower --step to about ";
+  const size_t at = failed.err.find(marker);
+  ASSERT_NE(at, std::string::npos) << failed.err;
+  EXPECT_NE(failed.err.find("--integrator cvode or ida"), std::string::npos) << failed.err;
+  const std::string suggested = failed.err.substr(at + marker.size()).substr(0, 6);
+  const double h = std::stod(suggested);
+  EXPECT_LT(h, 2e-4) << failed.err;
+  EXPECT_GT(h, 1e-5) << failed.err;
+  const RunResult ok = run(std::to_string(h));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
+
 TEST(RuntimeFailure, SuccessWritesACompleteSidecarWithStatistics) {
   ScratchDir dir("complete");
   const fs::path csv = dir.path() / "out.csv";

@@ -231,6 +231,26 @@ TEST(ReportVisual, ColoursSizesTrailsAndHiddenPoints) {
   EXPECT_EQ(s["trail"], nlohmann::json::array()) << "a hidden point leaves no trail";
 }
 
+TEST(ReportVisual, AModelReadFromTextIsDrawnAsItsVisualSectionSays) {
+  // One parser: the report draws from the reader's Model::visual, so a model with no file to read
+  // again (the Python module's loads()) keeps its colours, sizes and trails.
+  const std::string text = std::string(kPendulum) + R"(visual:
+  color: {bob: DarkRed, mid: '#0a0'}
+  size: {mid: 0.05}
+  trail: [mid]
+)";
+  auto sys = testing::load_model(std::make_unique<Model>(read_model_string(text, "<text>")));
+  const Equations eq = derive(*sys.model);
+  const Trajectory traj = sys.run(sys.options());
+  const auto s =
+      nlohmann::json::parse(report_scene_json(eq, *sys.compiled, traj, sys.dynamics->parameters()));
+  const size_t bob = point_index(s, "bob"), mid = point_index(s, "mid");
+  EXPECT_EQ(s["points"][bob]["color"], "DarkRed");
+  EXPECT_EQ(s["points"][mid]["color"], "#0a0");
+  EXPECT_EQ(s["points"][mid]["radius"], 0.05);
+  EXPECT_EQ(s["trail"], nlohmann::json::array({mid})) << "the trail written, not the default bob";
+}
+
 TEST(ReportVisual, MistakesNameTheLineAndWhatWasExpected) {
   const auto unknown = scratch_model("unknown.yaml", std::string(kPendulum) + R"(visual:
   color: {nope: red}
