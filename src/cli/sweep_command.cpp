@@ -18,6 +18,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
+#include "cli/study_record.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
@@ -161,36 +162,11 @@ Study set_up(const Options& opt) {
   return s;
 }
 
-// What decides a study's cases and rows, one option a line: STUDY/study.txt, which --resume
-// compares so that it finishes the same study.
-std::string description(const Options& opt) {
-  std::string d = fmt::format("model: {}\n", opt.model);
-  const auto list = [&](const char* option, const std::vector<std::string>& values) {
-    for (const auto& v : values) d += fmt::format("{} {}\n", option, v);
-  };
-  const auto number = [&](const char* option, const std::optional<double>& value) {
-    if (value) d += fmt::format("{} {:.17g}\n", option, *value);
-  };
-  list("--vary", opt.vary);
-  list("--random", opt.random);
-  if (!opt.random.empty()) d += fmt::format("--samples {}\n--seed {}\n", opt.samples, opt.seed);
-  list("--set", opt.sets);
-  list("--metric", opt.metrics);
-  number("--t-end", opt.t_end);
-  number("--output-step", opt.output_step);
-  number("--rtol", opt.rtol);
-  number("--atol", opt.atol);
-  number("--step", opt.step);
-  if (opt.integrator) d += fmt::format("--integrator {}\n", *opt.integrator);
-  d += fmt::format("--dynamics {}\n", opt.dynamics);
-  return d;
-}
-
 // The study directory's summary; a UsageError when it cannot be made, holds another study, or
 // --resume is given for a study started with other options.
 std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s) {
   const fs::path about = fs::path(opt.study) / "study.txt";
-  const std::string text = description(opt);
+  const std::string text = study_record(opt, *s.prepared.compiled, s.plan.metrics);
   try {
     if (opt.resume && fs::exists(about)) {
       std::ifstream in(about, std::ios::binary);
@@ -198,9 +174,9 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
       was << in.rdbuf();
       if (was.str() != text)
         throw UsageError(fmt::format(
-            "--resume: {} was started with other options; the same command with --resume "
-            "finishes it. It was:\n{}",
-            opt.study, was.str()));
+            "--resume: {} was started with other options or another model; the same command "
+            "with --resume finishes it, over the same model file. What differs:\n{}",
+            opt.study, record_changes(was.str(), text)));
     }
     fs::create_directories(opt.study);
     auto summary = std::make_unique<sweep::SummaryFile>(

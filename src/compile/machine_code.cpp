@@ -13,7 +13,6 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <openssl/evp.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mman.h>
@@ -29,6 +28,8 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+
+#include "compile/sha256.hpp"
 
 extern char** environ;
 
@@ -88,17 +89,6 @@ struct Fnv {
 
 std::string function_name(size_t i) {
   return fmt::format("lagrange_tape_{}", i);
-}
-
-/// SHA-256 of `bytes` in hex.
-std::string sha256_hex(const std::string& bytes) {
-  unsigned char md[EVP_MAX_MD_SIZE];
-  unsigned int n = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), md, &n, EVP_sha256(), nullptr) != 1)
-    throw MachineCodeError("cannot compute a SHA-256 digest (OpenSSL)");
-  std::string hex;
-  for (unsigned int i = 0; i < n; ++i) hex += fmt::format("{:02x}", md[i]);
-  return hex;
 }
 
 /// The whole content of the open file `fd`; false on a read error.
