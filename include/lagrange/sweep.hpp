@@ -160,6 +160,9 @@ struct PoolOptions {
   /// used), one call at a time (the model reader's GiNaC is not thread-safe) while the other
   /// workers run their cases; a rejected case is reported as failed with the reason.
   std::function<CaseRead(size_t index)> read;
+  /// What evaluates each worker's tapes: SharedMachineCode compiles (or loads from the cache)
+  /// one library that serves every case whose values fold alike (docs/theory.md §8).
+  Evaluation evaluation = Evaluation::Interpreter;
 };
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,

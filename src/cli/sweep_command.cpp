@@ -19,6 +19,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
 #include "cli/study_record.hpp"
+#include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
@@ -26,7 +27,6 @@
 
 #ifdef LAGRANGE_HAVE_MPI
 #include "cli/sweep_mpi.hpp"
-#include "lagrange/dynamics.hpp"
 #endif
 
 namespace lagrange::cli {
@@ -92,6 +92,7 @@ struct Study {
   ParameterOverrides fixed;  ///< --set
   RunSettings settings;
   std::vector<std::string> header;
+  Evaluation evaluation = Evaluation::Interpreter;  ///< the workers'
 };
 
 Study set_up(const Options& opt) {
@@ -143,6 +144,22 @@ sweep::CaseRead read_case(const Options& opt, const Study& s, size_t index) {
   return r;
 }
 
+// --compile auto or on: machine code with the tapes' constants in memory, built (or loaded)
+// here with the study's default values so that the workers load it from the cache; the
+// interpreter when it cannot be had. `build` false: the workers build it (MPI ranks 1 …, which
+// wait for their first case until rank 0 has built it).
+void choose_evaluation(const Options& opt, Study& s, bool build) {
+  if (opt.compile == "off") return;
+  s.evaluation = Evaluation::SharedMachineCode;
+  if (!build) return;
+  s.prepared.dynamics->set_evaluation(Evaluation::SharedMachineCode);
+  if (s.prepared.dynamics->uses_machine_code()) return;
+  s.evaluation = Evaluation::Interpreter;
+  if (opt.compile == "on")
+    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
+               s.prepared.dynamics->machine_code_error());
+}
+
 #ifdef LAGRANGE_HAVE_MPI
 // A worker's cases under MPI (rank 0's own and the other ranks'): each read, run on the
 // worker's Dynamics and turned into its summary row, its trajectory written when kept.
@@ -152,6 +169,10 @@ class CaseRunner {
       : opt_(opt), s_(s), dyn_(s.prepared.compiled, s.prepared.compiled->parameter_defaults) {}
   // False when the case was interrupted (no row then).
   bool operator()(size_t index, std::vector<std::string>& fields) {
+    if (s_.evaluation != Evaluation::Interpreter && !evaluation_set_) {
+      dyn_.set_evaluation(s_.evaluation);  // from the cache rank 0 filled before the first case
+      evaluation_set_ = true;
+    }
     sweep::CaseRead read = read_case(opt_, s_, index);
     if (read.input) read.input->options.interrupt = opt_.interrupt;
     const bool keep = opt_.keep_trajectories && read.input;
@@ -169,6 +190,7 @@ class CaseRunner {
   const Study& s_;
   Dynamics dyn_;
   Trajectory traj_;
+  bool evaluation_set_ = false;
 };
 #endif
 
@@ -257,6 +279,9 @@ int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
     const size_t ran = total - already;
     fmt::print("{}: {} cases ({} run now, {} of them failed) on {}\n", s.prepared.model->name,
                total, ran, progress.failed(), workers);
+    fmt::print("  tapes: {}\n", s.evaluation == Evaluation::Interpreter
+                                    ? std::string("interpreter")
+                                    : s.prepared.dynamics->evaluation_note());
     fmt::print(
         "  derive {:.3f} s and compile {:.3f} s once, run {:.3f} s ({:.1f} cases/s{})\n",
         s.prepared.derive_seconds, s.prepared.compile_seconds, progress.seconds(),
@@ -277,6 +302,7 @@ int run_sweep_mpi(const Options& opt) {
     std::optional<Study> s;
     try {
       s.emplace(set_up(opt));
+      choose_evaluation(opt, *s, false);
     } catch (const std::exception&) {
       return 2;  // rank 0 meets the same mistake and reports it
     }
@@ -284,10 +310,11 @@ int run_sweep_mpi(const Options& opt) {
     mpi_work(std::ref(run));
     return 0;
   }
-  const Study s = set_up(opt);
+  Study s = set_up(opt);
   std::unique_ptr<sweep::SummaryFile> summary;
   try {
     summary = open_summary(opt, s);
+    choose_evaluation(opt, s, true);
   } catch (const UsageError&) {
     mpi_hand_out(mpi, {}, opt.interrupt, {}, {});  // the workers stop at once
     throw;
@@ -319,14 +346,16 @@ int run_sweep(const Options& opt) {
         "MPI: every rank would run the whole study. Run it without mpirun (it uses every core; "
         "-j N chooses), or build lagrange with OpenMPI (libopenmpi-dev) installed");
 #endif
-  const Study s = set_up(opt);
+  Study s = set_up(opt);
   const auto summary = open_summary(opt, s);
+  choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);
   double reading = 0.0;  // added to one read at a time (PoolOptions::read)
   sweep::PoolOptions pool;
   pool.workers = opt.jobs > 0 ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
   pool.interrupt = opt.interrupt;
+  pool.evaluation = s.evaluation;
   pool.read = [&](size_t index) {
     const auto start = Clock::now();
     sweep::CaseRead r = read_case(opt, s, index);

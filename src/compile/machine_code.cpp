@@ -112,7 +112,13 @@ struct Plan {
 Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& options) {
   Plan p;
   p.source = "#include <math.h>\n";
-  for (size_t i = 0; i < tapes.size(); ++i) p.source += tapes[i]->to_native_c(function_name(i));
+  if (!options.constants_at.empty() && options.constants_at.size() != tapes.size())
+    throw MachineCodeError(fmt::format("constants_at: expected {} offsets, got {}", tapes.size(),
+                                       options.constants_at.size()));
+  for (size_t i = 0; i < tapes.size(); ++i)
+    p.source += options.constants_at.empty()
+                    ? tapes[i]->to_native_c(function_name(i))
+                    : tapes[i]->to_shared_c(function_name(i), options.constants_at[i]);
   p.compiler = resolve_compiler(options);
   p.dir = cache_directory(options);
   struct stat st {};

@@ -25,6 +25,7 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
     try {
       // Dynamics holds the specialised tapes and all scratch memory: one per worker.
       Dynamics dyn(model, model->parameter_defaults);
+      if (options.evaluation != Evaluation::Interpreter) dyn.set_evaluation(options.evaluation);
       Trajectory traj;
       for (size_t slot = next++; slot < pending.size() && !stopped(); slot = next++) {
         const size_t index = pending[slot];
