@@ -17,19 +17,22 @@ lagrange=$build/lagrange
 work=$(mktemp -d /tmp/sweep-bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
-# The median wall seconds of farm-bench's report on stdin.
-median_wall() { awk '/ wall s / {print $4}'; }
+# The median wall and cpu (user + system) seconds of farm-bench's report on stdin.
+medians() { awk '/ wall s / {w = $4} / cpu s / {c = $4} END {print w, c}'; }
 
-# bench LABEL CASES COMMAND…: one row, the study directory removed before each run.
+# bench LABEL CASES COMMAND…: one row, the study directory removed before each run. On a
+# shared machine the wall time measures the share of the cores the study got as much as the
+# study; the cpu seconds (every process of the study) show the work itself.
 bench() {
   local label=$1 cases=$2
   shift 2
-  local load wall
+  local load wall cpu
   load=$(uptime | sed 's/.*load average: //')
-  wall=$(farm-bench -n "$runs" --warmup 1 --timeout 900 -- \
-    sh -c "rm -rf '$work/study' && exec \"\$@\" > /dev/null 2>&1" sh "$@" | median_wall)
-  awk -v l="$label" -v w="$wall" -v n="$cases" -v load="$load" \
-    'BEGIN {printf "  %-28s %7.3f s  %7.1f cases/s   (load %s)\n", l, w, n / w, load}'
+  read -r wall cpu < <(farm-bench -n "$runs" --warmup 1 --timeout 900 -- \
+    sh -c "rm -rf '$work/study' && exec \"\$@\" > /dev/null 2>&1" sh "$@" | medians)
+  awk -v l="$label" -v w="$wall" -v c="$cpu" -v n="$cases" -v load="$load" \
+    'BEGIN {printf "  %-28s wall %7.3f s %7.1f cases/s  cpu %7.3f s %6.2f ms/case  (load %s)\n",
+            l, w, n / w, c, 1e3 * c / n, load}'
 }
 
 study() {
