@@ -13,6 +13,7 @@
 #include <string>
 
 #include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
 #include "lagrange/reader.hpp"
 #include "lagrange/sweep.hpp"
@@ -72,6 +73,7 @@ void study(const std::string& file, const std::string& parameter, double low, do
     double in_cases = 0;
     sweep::PoolOptions pool;
     pool.workers = workers;
+    pool.evaluation = Evaluation::SharedMachineCode;  // as `lagrange sweep` runs the cases
     pool.done = [&](const sweep::CaseResult& r) {
       in_cases += r.wall_seconds;
       summary.append(r.index,

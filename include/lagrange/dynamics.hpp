@@ -25,6 +25,11 @@ enum class Evaluation {
   MachineCode,  ///< machine code, compiled at once when not cached; the interpreter if that fails
   Background,   ///< machine code from the cache, else the interpreter until a compiler run in the
                 ///< background finishes (tapes under kBackgroundMinInstructions are not compiled)
+  /// Machine code reading the tapes' constants from memory (Tape::to_shared_c): one library,
+  /// compiled at once when not cached, serves every parameter value whose specialised tapes
+  /// fold alike, so a new value costs no compiler run (parameter studies); the interpreter if
+  /// it cannot be had.
+  SharedMachineCode,
 };
 
 /// Result of projecting a state onto the constraint manifold.

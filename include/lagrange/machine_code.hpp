@@ -19,6 +19,9 @@ struct MachineCodeOptions {
   std::string cache_dir;  ///< empty: $LAGRANGE_CACHE_DIR, else $XDG_CACHE_HOME/lagrange or
                           ///< ~/.cache/lagrange
   const std::atomic<bool>* cancel = nullptr;  ///< when set, a running compiler is stopped
+  /// When not empty (one offset per tape), tape i is compiled as Tape::to_shared_c reading its
+  /// constants from work[constants_at[i] …]: the library serves every tape of its structure.
+  std::vector<size_t> constants_at;
 };
 
 /// Why machine code could not be had (no compiler, an unwritable cache, a compiler error);

@@ -119,6 +119,12 @@ struct CaseInput {
 CaseInput case_input(const Model& case_model, const CompiledModel& base,
                      const SimulationOptions& options);
 
+/// A case's inputs read from the model file with its values, or why it rejects them.
+struct CaseRead {
+  std::optional<CaseInput> input;
+  std::string rejected;  ///< why the model file rejects the values (when input is empty)
+};
+
 /// How one case ended.
 struct CaseResult {
   size_t index = 0;
@@ -136,6 +142,11 @@ struct CaseResult {
 CaseResult run_case(Dynamics& dyn, const CaseInput& input, const std::vector<Metric>& metrics,
                     Trajectory* kept = nullptr);
 
+/// run_case on `read.input`, or, when the model file rejected the case's values, a failed
+/// result giving `read.rejected` as the reason (metrics NaN, nothing kept).
+CaseResult run_case(Dynamics& dyn, const CaseRead& read, const std::vector<Metric>& metrics,
+                    Trajectory* kept = nullptr);
+
 /// Runs the cases numbered `pending` (indices into `inputs`) on `workers` threads, each with its
 /// own Dynamics over `model`, handing each a new case when it finishes one (cases differ in
 /// cost). `done` is called for each finished case, one call at a time, from any thread; cases
@@ -145,6 +156,13 @@ struct PoolOptions {
   const std::atomic<bool>* interrupt = nullptr;
   std::function<void(const CaseResult&)> done;
   std::function<void(size_t index, const Trajectory&)> keep;
+  /// When set, each case is read by this on the worker that runs it (`inputs` is then not
+  /// used), one call at a time (the model reader's GiNaC is not thread-safe) while the other
+  /// workers run their cases; a rejected case is reported as failed with the reason.
+  std::function<CaseRead(size_t index)> read;
+  /// What evaluates each worker's tapes: SharedMachineCode compiles (or loads from the cache)
+  /// one library that serves every case whose values fold alike (docs/theory.md §8).
+  Evaluation evaluation = Evaluation::Interpreter;
 };
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,14 @@ class Tape {
   /// C99 of `void NAME(const double* in, double* out, double* work)` for machine code
   /// (MachineCode): exported, no preamble; `work` has work_size() doubles.
   std::string to_native_c(const std::string& function_name) const;
+  /// As to_native_c, but every constant (constants and coefficients, in the order of
+  /// constants()) read from work[constants_at + i]: one compiled function then serves every
+  /// tape of the same structure (all specialisations of one tape to parameter values that fold
+  /// alike), computing what each one's eval computes, bit for bit (docs/theory.md §9.3).
+  /// work needs constants_at + constants().size() doubles, constants_at ≥ work_size().
+  std::string to_shared_c(const std::string& function_name, size_t constants_at) const;
+  /// The constants to_shared_c reads, in its order.
+  std::vector<double> constants() const;
 
   /// The tape as text through named common subexpressions (how `derive` prints large models):
   /// `definitions` holds (name, expression) for every value read more than once, in evaluation
@@ -87,8 +96,8 @@ class Tape {
   /// Adopt the arrays a TapeBuilder finished (shared by compile and specialize).
   static Tape from_code(tape_detail::TapeCode&& code);
   /// The C text behind to_c and to_native_c.
-  std::string emit_c(const std::string& function_name, bool preamble, bool exported,
-                     bool scratch) const;
+  std::string emit_c(const std::string& function_name, bool preamble, bool exported, bool scratch,
+                     std::optional<size_t> constants_at) const;
   size_t num_inputs_ = 0;
   size_t num_registers_ = 0;
   std::vector<Instr> code_;

@@ -202,6 +202,11 @@ int main(int argc, char** argv) {
   sweep->add_option("--rtol", opt.rtol, "relative tolerance");
   sweep->add_option("--atol", opt.atol, "absolute tolerance");
   sweep->add_option("--step", opt.step, "fixed step, as for simulate");
+  sweep
+      ->add_option("--compile", opt.compile,
+                   "auto (default), on: machine code compiled once for every case (the "
+                   "interpreter if it cannot be had; on also warns) | off: interpreter only")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   sweep->add_option("--dynamics", opt.dynamics, "auto (default) | lagrangian | recursive")
       ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
   sweep->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");

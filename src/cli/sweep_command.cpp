@@ -18,6 +18,8 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
+#include "cli/study_record.hpp"
+#include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
@@ -25,7 +27,6 @@
 
 #ifdef LAGRANGE_HAVE_MPI
 #include "cli/sweep_mpi.hpp"
-#include "lagrange/dynamics.hpp"
 #endif
 
 namespace lagrange::cli {
@@ -68,37 +69,6 @@ StudyPlan plan(const Options& opt) {
   return plan;
 }
 
-// Each case's inputs from the model file read with its values (parameters, initial state and
-// settings may be expressions of them); a value the model rejects makes that case fail.
-struct PreparedCase {
-  std::optional<sweep::CaseInput> input;
-  std::string rejected;  ///< why the model file rejects these values
-};
-
-std::vector<PreparedCase> prepare_cases(const Options& opt, const Prepared& p,
-                                        const std::vector<sweep::Case>& cases) {
-  const ParameterOverrides fixed = parse_sets(opt.sets);
-  const RunSettings settings{opt.t_end, opt.output_step, opt.rtol,
-                             opt.atol,  opt.step,        opt.integrator};
-  std::vector<PreparedCase> out(cases.size());
-  for (const auto& c : cases) {
-    ParameterOverrides values = fixed;
-    for (const auto& [name, value] : c.values) values[name] = value;
-    try {
-      const Model m = read_model_file(opt.model, values);
-      out[c.index].input = sweep::case_input(m, *p.compiled, simulation_options(m, settings));
-    } catch (const ModelError& e) {
-      out[c.index].rejected = fmt::format("the model does not accept these values: {} (at {})",
-                                          e.detail(), e.loc().str());
-    } catch (const UsageError& e) {
-      out[c.index].rejected = e.what();
-    } catch (const sweep::StudyError& e) {
-      throw UsageError(fmt::format("case {}: {}", c.index, e.what()));
-    }
-  }
-  return out;
-}
-
 // The summary row of a finished case: number, values, status, reason, failure time, metrics, wall
 // time.
 std::vector<std::string> row_fields(const sweep::Case& c, const sweep::CaseResult& r) {
@@ -113,24 +83,16 @@ std::vector<std::string> row_fields(const sweep::Case& c, const sweep::CaseResul
   return row;
 }
 
-// A case the model file rejects, as a failed case.
-sweep::CaseResult rejected_case(size_t index, const std::string& why, size_t metrics) {
-  sweep::CaseResult r;
-  r.index = index;
-  r.status = Trajectory::Status::Failed;
-  r.reason = why;
-  r.metrics.assign(metrics, std::nan(""));
-  return r;
-}
-
-// Everything checked and read before a case runs: the plan, the model derived and compiled once,
-// each case's inputs and the summary's columns.
+// Everything checked before a case runs: the plan, the model derived and compiled once, the
+// settings every case shares and the summary's columns. The cases' own model files are read by
+// the workers (read_case).
 struct Study {
   StudyPlan plan;
   Prepared prepared;
-  std::vector<PreparedCase> cases;
+  ParameterOverrides fixed;  ///< --set
+  RunSettings settings;
   std::vector<std::string> header;
-  double read_seconds = 0.0;
+  Evaluation evaluation = Evaluation::Interpreter;  ///< the workers'
 };
 
 Study set_up(const Options& opt) {
@@ -150,9 +112,9 @@ Study set_up(const Options& opt) {
   } catch (const sweep::StudyError& e) {
     throw UsageError(e.what());
   }
-  const auto t_read = Clock::now();
-  s.cases = prepare_cases(opt, p, s.plan.cases);
-  s.read_seconds = seconds_since(t_read);
+  s.fixed = parse_sets(opt.sets);
+  s.settings = {opt.t_end, opt.output_step, opt.rtol, opt.atol, opt.step, opt.integrator};
+  simulation_options(*p.model, s.settings);  // a bad --t-end or tolerance: refused up front
   s.header = {"case"};
   for (const auto& [name, value] : s.plan.cases.front().values) s.header.push_back(name);
   for (const char* c : {"status", "reason", "failure_time"}) s.header.emplace_back(c);
@@ -161,36 +123,82 @@ Study set_up(const Options& opt) {
   return s;
 }
 
-// What decides a study's cases and rows, one option a line: STUDY/study.txt, which --resume
-// compares so that it finishes the same study.
-std::string description(const Options& opt) {
-  std::string d = fmt::format("model: {}\n", opt.model);
-  const auto list = [&](const char* option, const std::vector<std::string>& values) {
-    for (const auto& v : values) d += fmt::format("{} {}\n", option, v);
-  };
-  const auto number = [&](const char* option, const std::optional<double>& value) {
-    if (value) d += fmt::format("{} {:.17g}\n", option, *value);
-  };
-  list("--vary", opt.vary);
-  list("--random", opt.random);
-  if (!opt.random.empty()) d += fmt::format("--samples {}\n--seed {}\n", opt.samples, opt.seed);
-  list("--set", opt.sets);
-  list("--metric", opt.metrics);
-  number("--t-end", opt.t_end);
-  number("--output-step", opt.output_step);
-  number("--rtol", opt.rtol);
-  number("--atol", opt.atol);
-  number("--step", opt.step);
-  if (opt.integrator) d += fmt::format("--integrator {}\n", *opt.integrator);
-  d += fmt::format("--dynamics {}\n", opt.dynamics);
-  return d;
+// Case `index`'s inputs from the model file read with its values (parameters, initial state
+// and settings may be expressions of them), or why the model rejects them: a value it refuses,
+// or one that changes its structure, which the one compiled model cannot follow.
+sweep::CaseRead read_case(const Options& opt, const Study& s, size_t index) {
+  ParameterOverrides values = s.fixed;
+  for (const auto& [name, value] : s.plan.cases.at(index).values) values[name] = value;
+  sweep::CaseRead r;
+  try {
+    const Model m = read_model_file(opt.model, values);
+    r.input = sweep::case_input(m, *s.prepared.compiled, simulation_options(m, s.settings));
+  } catch (const ModelError& e) {
+    r.rejected = fmt::format("the model does not accept these values: {} (at {})", e.detail(),
+                             e.loc().str());
+  } catch (const UsageError& e) {
+    r.rejected = e.what();
+  } catch (const sweep::StudyError& e) {
+    r.rejected = e.what();
+  }
+  return r;
 }
+
+// --compile auto or on: machine code with the tapes' constants in memory, built (or loaded)
+// here with the study's default values so that the workers load it from the cache; the
+// interpreter when it cannot be had. `build` false: the workers build it (MPI ranks 1 …, which
+// wait for their first case until rank 0 has built it).
+void choose_evaluation(const Options& opt, Study& s, bool build) {
+  if (opt.compile == "off") return;
+  s.evaluation = Evaluation::SharedMachineCode;
+  if (!build) return;
+  s.prepared.dynamics->set_evaluation(Evaluation::SharedMachineCode);
+  if (s.prepared.dynamics->uses_machine_code()) return;
+  s.evaluation = Evaluation::Interpreter;
+  if (opt.compile == "on")
+    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
+               s.prepared.dynamics->machine_code_error());
+}
+
+#ifdef LAGRANGE_HAVE_MPI
+// A worker's cases under MPI (rank 0's own and the other ranks'): each read, run on the
+// worker's Dynamics and turned into its summary row, its trajectory written when kept.
+class CaseRunner {
+ public:
+  CaseRunner(const Options& opt, const Study& s)
+      : opt_(opt), s_(s), dyn_(s.prepared.compiled, s.prepared.compiled->parameter_defaults) {}
+  // False when the case was interrupted (no row then).
+  bool operator()(size_t index, std::vector<std::string>& fields) {
+    if (s_.evaluation != Evaluation::Interpreter && !evaluation_set_) {
+      dyn_.set_evaluation(s_.evaluation);  // from the cache rank 0 filled before the first case
+      evaluation_set_ = true;
+    }
+    sweep::CaseRead read = read_case(opt_, s_, index);
+    if (read.input) read.input->options.interrupt = opt_.interrupt;
+    const bool keep = opt_.keep_trajectories && read.input;
+    sweep::CaseResult r = sweep::run_case(dyn_, read, s_.plan.metrics, keep ? &traj_ : nullptr);
+    if (r.status == Trajectory::Status::Interrupted) return false;
+    if (keep)
+      write_trajectory_csv(traj_,
+                           (fs::path(opt_.study) / fmt::format("case_{}.csv", index)).string());
+    fields = row_fields(s_.plan.cases[index], r);
+    return true;
+  }
+
+ private:
+  const Options& opt_;
+  const Study& s_;
+  Dynamics dyn_;
+  Trajectory traj_;
+  bool evaluation_set_ = false;
+};
+#endif
 
 // The study directory's summary; a UsageError when it cannot be made, holds another study, or
 // --resume is given for a study started with other options.
 std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s) {
   const fs::path about = fs::path(opt.study) / "study.txt";
-  const std::string text = description(opt);
+  const std::string text = study_record(opt, *s.prepared.compiled, s.plan.metrics);
   try {
     if (opt.resume && fs::exists(about)) {
       std::ifstream in(about, std::ios::binary);
@@ -198,9 +206,9 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
       was << in.rdbuf();
       if (was.str() != text)
         throw UsageError(fmt::format(
-            "--resume: {} was started with other options; the same command with --resume "
-            "finishes it. It was:\n{}",
-            opt.study, was.str()));
+            "--resume: {} was started with other options or another model; the same command "
+            "with --resume finishes it, over the same model file. What differs:\n{}",
+            opt.study, record_changes(was.str(), text)));
     }
     fs::create_directories(opt.study);
     auto summary = std::make_unique<sweep::SummaryFile>(
@@ -243,27 +251,21 @@ class Progress {
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
-// The cases still to run (not in the summary), after recording those the model file rejects.
-std::vector<size_t> pending_cases(const Study& s, sweep::SummaryFile& summary, Progress& progress) {
+// The cases still to run: those not in the summary.
+std::vector<size_t> pending_cases(const Study& s, const sweep::SummaryFile& summary) {
   std::vector<size_t> pending;
-  for (size_t i = 0; i < s.cases.size(); ++i) {
-    if (summary.done().count(i)) continue;
-    if (s.cases[i].input) {
-      pending.push_back(i);
-      continue;
-    }
-    summary.append(i, row_fields(s.plan.cases[i],
-                                 rejected_case(i, s.cases[i].rejected, s.plan.metrics.size())));
-    progress.add(false);
-  }
+  for (size_t i = 0; i < s.plan.cases.size(); ++i)
+    if (!summary.done().count(i)) pending.push_back(i);
   return pending;
 }
 
 // The end of a study on rank 0 or the one machine: 130 when interrupted, else the table sorted.
+// `reading` is the time the workers spent reading the cases' model files, when measured.
 int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
-             const Progress& progress, size_t already, const std::string& workers) {
+             const Progress& progress, size_t already, const std::string& workers,
+             std::optional<double> reading) {
   const fs::path path = fs::path(opt.study) / "summary.csv";
-  const size_t total = s.cases.size();
+  const size_t total = s.plan.cases.size();
   progress.clear();
   if (progress.done() < total) {
     fmt::print(stderr,
@@ -277,11 +279,14 @@ int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
     const size_t ran = total - already;
     fmt::print("{}: {} cases ({} run now, {} of them failed) on {}\n", s.prepared.model->name,
                total, ran, progress.failed(), workers);
+    fmt::print("  tapes: {}\n", s.evaluation == Evaluation::Interpreter
+                                    ? std::string("interpreter")
+                                    : s.prepared.dynamics->evaluation_note());
     fmt::print(
-        "  derive {:.3f} s and compile {:.3f} s once, read the cases' values {:.3f} s, run "
-        "{:.3f} s ({:.1f} cases/s)\n",
-        s.prepared.derive_seconds, s.prepared.compile_seconds, s.read_seconds, progress.seconds(),
-        static_cast<double>(ran) / std::max(progress.seconds(), 1e-9));
+        "  derive {:.3f} s and compile {:.3f} s once, run {:.3f} s ({:.1f} cases/s{})\n",
+        s.prepared.derive_seconds, s.prepared.compile_seconds, progress.seconds(),
+        static_cast<double>(ran) / std::max(progress.seconds(), 1e-9),
+        reading ? fmt::format(", {:.3f} s of it reading the cases' model files", *reading) : "");
     fmt::print("  wrote {}\n", path.string());
   }
   return 0;
@@ -289,51 +294,42 @@ int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
 
 #ifdef LAGRANGE_HAVE_MPI
 // Under mpirun: every rank sets the study up (the same checks, so a mistake stops them all
-// alike; rank 0 alone reports it); rank 0 hands out the cases and writes the summary.
+// alike; rank 0 alone reports it); rank 0 hands out the cases, runs cases itself between
+// requests and writes the summary.
 int run_sweep_mpi(const Options& opt) {
   MpiSession mpi;
   if (mpi.rank() != 0) {
     std::optional<Study> s;
     try {
       s.emplace(set_up(opt));
+      choose_evaluation(opt, *s, false);
     } catch (const std::exception&) {
       return 2;  // rank 0 meets the same mistake and reports it
     }
-    Dynamics dyn(s->prepared.compiled, s->prepared.compiled->parameter_defaults);
-    Trajectory traj;
-    mpi_work([&](size_t index, std::vector<std::string>& fields) {
-      sweep::CaseInput input = *s->cases.at(index).input;
-      input.options.interrupt = opt.interrupt;
-      sweep::CaseResult r =
-          sweep::run_case(dyn, input, s->plan.metrics, opt.keep_trajectories ? &traj : nullptr);
-      if (r.status == Trajectory::Status::Interrupted) return false;
-      if (opt.keep_trajectories)
-        write_trajectory_csv(traj,
-                             (fs::path(opt.study) / fmt::format("case_{}.csv", index)).string());
-      fields = row_fields(s->plan.cases[index], r);
-      return true;
-    });
+    CaseRunner run(opt, *s);
+    mpi_work(std::ref(run));
     return 0;
   }
-  const Study s = set_up(opt);
+  Study s = set_up(opt);
   std::unique_ptr<sweep::SummaryFile> summary;
   try {
     summary = open_summary(opt, s);
+    choose_evaluation(opt, s, true);
   } catch (const UsageError&) {
-    mpi_hand_out(mpi, {}, opt.interrupt, {});  // the workers stop at once
+    mpi_hand_out(mpi, {}, opt.interrupt, {}, {});  // the workers stop at once
     throw;
   }
   const size_t already = summary->done().size();
-  Progress progress(opt, s.cases.size(), already);
-  const std::vector<size_t> pending = pending_cases(s, *summary, progress);
-  mpi_hand_out(mpi, pending, opt.interrupt,
+  Progress progress(opt, s.plan.cases.size(), already);
+  CaseRunner run(opt, s);
+  mpi_hand_out(mpi, pending_cases(s, *summary), opt.interrupt, std::ref(run),
                [&](size_t index, const std::vector<std::string>& fields) {
                  summary->append(index, fields);
                  progress.add(fields.at(s.header.size() - 1 - s.plan.metrics.size() - 3) == "ok");
                });
-  return conclude(
-      opt, s, *summary, progress, already,
-      fmt::format("{} MPI ranks (1 handing out, {} running cases)", mpi.size(), mpi.size() - 1));
+  return conclude(opt, s, *summary, progress, already,
+                  fmt::format("{} MPI ranks (rank 0 handing out and running cases)", mpi.size()),
+                  std::nullopt);
 }
 #endif
 
@@ -350,16 +346,22 @@ int run_sweep(const Options& opt) {
         "MPI: every rank would run the whole study. Run it without mpirun (it uses every core; "
         "-j N chooses), or build lagrange with OpenMPI (libopenmpi-dev) installed");
 #endif
-  const Study s = set_up(opt);
+  Study s = set_up(opt);
   const auto summary = open_summary(opt, s);
+  choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
-  Progress progress(opt, s.cases.size(), already);
-  const std::vector<size_t> pending = pending_cases(s, *summary, progress);
-  std::vector<sweep::CaseInput> inputs(s.cases.size());
-  for (const size_t i : pending) inputs[i] = *s.cases[i].input;
+  Progress progress(opt, s.plan.cases.size(), already);
+  double reading = 0.0;  // added to one read at a time (PoolOptions::read)
   sweep::PoolOptions pool;
   pool.workers = opt.jobs > 0 ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
   pool.interrupt = opt.interrupt;
+  pool.evaluation = s.evaluation;
+  pool.read = [&](size_t index) {
+    const auto start = Clock::now();
+    sweep::CaseRead r = read_case(opt, s, index);
+    reading += seconds_since(start);
+    return r;
+  };
   pool.done = [&](const sweep::CaseResult& r) {
     summary->append(r.index, row_fields(s.plan.cases[r.index], r));
     progress.add(r.status == Trajectory::Status::Complete);
@@ -369,9 +371,9 @@ int run_sweep(const Options& opt) {
       write_trajectory_csv(traj,
                            (fs::path(opt.study) / fmt::format("case_{}.csv", index)).string());
     };
-  sweep::run_pool(s.prepared.compiled, inputs, pending, s.plan.metrics, pool);
+  sweep::run_pool(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics, pool);
   return conclude(opt, s, *summary, progress, already,
-                  fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"));
+                  fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading);
 }
 
 }  // namespace lagrange::cli

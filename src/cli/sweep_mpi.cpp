@@ -2,6 +2,11 @@
 
 #include <mpi.h>
 
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <thread>
+
 namespace lagrange::cli {
 
 namespace {
@@ -28,7 +33,8 @@ std::vector<std::string> unpack(const std::string& s) {
 }  // namespace
 
 MpiSession::MpiSession() {
-  MPI_Init(nullptr, nullptr);
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
 }
@@ -38,30 +44,75 @@ MpiSession::~MpiSession() {
 }
 
 void mpi_hand_out(const MpiSession& mpi, const std::vector<size_t>& pending,
-                  const std::atomic<bool>* interrupt,
-                  const std::function<void(size_t, const std::vector<std::string>&)>& record) {
+                  const std::atomic<bool>* interrupt, const RunCase& run_here,
+                  const RecordRow& record) {
+  std::mutex mutex;  // guards next, stopped, error and the calls of record
   size_t next = 0;
-  int working = mpi.size() - 1;
-  while (working > 0) {
-    MPI_Status status;
-    MPI_Probe(MPI_ANY_SOURCE, kRow, MPI_COMM_WORLD, &status);
-    int length = 0;
-    MPI_Get_count(&status, MPI_CHAR, &length);
-    std::string text(static_cast<size_t>(length), '\0');
-    MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, kRow, MPI_COMM_WORLD,
-             MPI_STATUS_IGNORE);
-    if (!text.empty()) {
-      const std::vector<std::string> fields = unpack(text);
-      record(std::stoul(fields.at(0)), fields);
+  bool stopped = false;
+  std::exception_ptr error;
+  const auto take = [&]() -> long long {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (stopped || next >= pending.size() || (interrupt && interrupt->load())) return -1;
+    return static_cast<long long>(pending[next++]);
+  };
+  // Rank 0's own cases, taken from the same queue as the other ranks' (no MPI on this thread).
+  std::thread here;
+  if (run_here)
+    here = std::thread([&] {
+      try {
+        for (long long index; (index = take()) >= 0;) {
+          std::vector<std::string> fields;
+          if (!run_here(static_cast<size_t>(index), fields)) return;
+          const std::lock_guard<std::mutex> lock(mutex);
+          record(static_cast<size_t>(index), fields);
+        }
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        error = std::current_exception();
+        stopped = true;
+      }
+    });
+  const auto finish_here = [&] {
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      stopped = true;
     }
-    const bool stop = next >= pending.size() || (interrupt && interrupt->load());
-    const long long index = stop ? -1 : static_cast<long long>(pending[next++]);
-    MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, kCase, MPI_COMM_WORLD);
-    if (stop) --working;
+    if (here.joinable()) here.join();
+  };
+  try {
+    int working = mpi.size() - 1;
+    while (working > 0) {
+      // A blocking probe would spin on the core rank 0's own cases run on: poll and sleep.
+      int arrived = 0;
+      MPI_Status status;
+      MPI_Iprobe(MPI_ANY_SOURCE, kRow, MPI_COMM_WORLD, &arrived, &status);
+      if (!arrived) {
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        continue;
+      }
+      int length = 0;
+      MPI_Get_count(&status, MPI_CHAR, &length);
+      std::string text(static_cast<size_t>(length), '\0');
+      MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, kRow, MPI_COMM_WORLD,
+               MPI_STATUS_IGNORE);
+      if (!text.empty()) {
+        const std::vector<std::string> fields = unpack(text);
+        const std::lock_guard<std::mutex> lock(mutex);
+        record(std::stoul(fields.at(0)), fields);
+      }
+      const long long index = take();
+      MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, kCase, MPI_COMM_WORLD);
+      if (index < 0) --working;
+    }
+  } catch (...) {
+    finish_here();
+    throw;
   }
+  if (here.joinable()) here.join();
+  if (error) std::rethrow_exception(error);
 }
 
-void mpi_work(const std::function<bool(size_t, std::vector<std::string>&)>& run) {
+void mpi_work(const RunCase& run) {
   std::string row;
   for (;;) {
     MPI_Send(row.data(), static_cast<int>(row.size()), MPI_CHAR, 0, kRow, MPI_COMM_WORLD);

@@ -13,7 +13,6 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <openssl/evp.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mman.h>
@@ -29,6 +28,8 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+
+#include "compile/sha256.hpp"
 
 extern char** environ;
 
@@ -90,17 +91,6 @@ std::string function_name(size_t i) {
   return fmt::format("lagrange_tape_{}", i);
 }
 
-/// SHA-256 of `bytes` in hex.
-std::string sha256_hex(const std::string& bytes) {
-  unsigned char md[EVP_MAX_MD_SIZE];
-  unsigned int n = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), md, &n, EVP_sha256(), nullptr) != 1)
-    throw MachineCodeError("cannot compute a SHA-256 digest (OpenSSL)");
-  std::string hex;
-  for (unsigned int i = 0; i < n; ++i) hex += fmt::format("{:02x}", md[i]);
-  return hex;
-}
-
 /// The whole content of the open file `fd`; false on a read error.
 bool read_all(int fd, std::string& out) {
   char buffer[65536];
@@ -122,7 +112,13 @@ struct Plan {
 Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& options) {
   Plan p;
   p.source = "#include <math.h>\n";
-  for (size_t i = 0; i < tapes.size(); ++i) p.source += tapes[i]->to_native_c(function_name(i));
+  if (!options.constants_at.empty() && options.constants_at.size() != tapes.size())
+    throw MachineCodeError(fmt::format("constants_at: expected {} offsets, got {}", tapes.size(),
+                                       options.constants_at.size()));
+  for (size_t i = 0; i < tapes.size(); ++i)
+    p.source += options.constants_at.empty()
+                    ? tapes[i]->to_native_c(function_name(i))
+                    : tapes[i]->to_shared_c(function_name(i), options.constants_at[i]);
   p.compiler = resolve_compiler(options);
   p.dir = cache_directory(options);
   struct stat st {};

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -54,6 +55,63 @@ void append_term(std::string& s, bool first, double coef, const std::uint32_t* f
 /// Appends " + c" / " - |c|" when c ≠ 0, as eval adds it last.
 void append_constant(std::string& s, double c) {
   if (c != 0.0) s += (c < 0 ? " - " : " + ") + literal(std::fabs(c));
+}
+
+/// Where a shared tape's constants are read (Tape::to_shared_c): `array[next]`, `next` counting
+/// up from the first constant's index in the order of Tape::constants().
+struct ConstantSlots {
+  std::string array;
+  size_t next = 0;
+  std::string take() { return fmt::format("{}[{}]", array, next++); }
+};
+
+/// Appends the C statement of a shared tape's instruction: eval's operations in eval's order,
+/// each constant read from `k`. Signed coefficients multiply (c·x = −(|c|·x) and y + c·x =
+/// y − |c|·x exactly), ±1 ones too (1·x = x); the constant term is added only when it is not
+/// zero, as in eval, so that choice is part of the text.
+/// Only for the instructions that hold constants (Const, Sum, SumProd, Prod).
+void append_shared_statement(std::string& s, const Tape::Instr& ins,
+                             const std::vector<std::uint32_t>& args, ConstantSlots& k) {
+  const auto term = [&](bool first, const std::uint32_t* f, std::uint32_t n) {
+    s += (first ? "" : " + ") + k.take();
+    for (std::uint32_t j = 0; j < n; ++j) s += "*" + reg(f[j]);
+  };
+  const auto constant_term = [&] {
+    if (ins.c != 0.0) s += " + " + k.take();
+  };
+  switch (ins.op) {
+    case Op::Const:
+      s += "  " + reg(ins.dst) + " = " + k.take() + ";\n";
+      return;
+    case Op::Sum:
+      s += "  " + reg(ins.dst) + " = ";
+      for (std::uint32_t i = 0; i < ins.b; ++i) term(i == 0, &args[ins.a + i], 1);
+      constant_term();
+      s += ";\n";
+      return;
+    case Op::SumProd: {
+      s += "  " + reg(ins.dst) + " = ";
+      std::uint32_t p = ins.a;
+      for (std::uint32_t t = 0; t < ins.b; ++t) {
+        term(t == 0, &args[p + 1], args[p]);
+        p += args[p] + 1;
+      }
+      constant_term();
+      s += ";\n";
+      return;
+    }
+    case Op::Prod:
+      s += "  " + reg(ins.dst) + " = ";
+      term(true, &args[ins.a], ins.b);
+      s += ";\n";
+      return;
+    default:
+      throw std::logic_error("append_shared_statement: an instruction without constants");
+  }
+}
+
+bool holds_constants(Op op) {
+  return op == Op::Const || op == Op::Sum || op == Op::SumProd || op == Op::Prod;
 }
 
 /// Appends the C statement of one instruction, with eval's operation order.
@@ -126,7 +184,7 @@ bool is_identifier(const std::string& name) {
 }  // namespace
 
 std::string Tape::emit_c(const std::string& function_name, bool preamble, bool exported,
-                         bool scratch) const {
+                         bool scratch, std::optional<size_t> constants_at) const {
   if (!is_identifier(function_name)) {
     throw std::invalid_argument(
         fmt::format("to_c: expected a C identifier as function name, got '{}'", function_name));
@@ -153,7 +211,10 @@ std::string Tape::emit_c(const std::string& function_name, bool preamble, bool e
   const std::string registers =
       split && scratch ? "  double* r = work;\n"
                        : fmt::format("  double r[{}];\n", num_registers_ > 0 ? num_registers_ : 1);
-  const std::string unused = scratch && !split ? "  (void)work;\n" : "";
+  const std::string unused = scratch && !split && !constants_at ? "  (void)work;\n" : "";
+  // A shared tape's constants follow the registers in `work`, which a split tape's parts know
+  // as `r`.
+  ConstantSlots k{split ? "r" : "work", constants_at.value_or(0)};
   if (!split) s += fmt::format("\n{}void {}({}) {{\n", linkage, function_name, parameters);
   if (!split) s += registers + unused;
   for (size_t i = 0; i < code_.size(); ++i) {
@@ -163,7 +224,10 @@ std::string Tape::emit_c(const std::string& function_name, bool preamble, bool e
           fmt::format("\nstatic void {}_part{}(const double* restrict in, double* restrict r) {{\n",
                       function_name, i / kChunk);
     }
-    append_statement(s, code_[i], args_, coeffs_);
+    if (constants_at && holds_constants(code_[i].op))
+      append_shared_statement(s, code_[i], args_, k);
+    else
+      append_statement(s, code_[i], args_, coeffs_);
   }
   if (split) {
     s += fmt::format("}}\n\n{}void {}({}) {{\n", linkage, function_name, parameters);
@@ -180,11 +244,43 @@ std::string Tape::emit_c(const std::string& function_name, bool preamble, bool e
 }
 
 std::string Tape::to_c(const std::string& function_name, bool file_local) const {
-  return emit_c(function_name, !file_local, !file_local, false);
+  return emit_c(function_name, !file_local, !file_local, false, std::nullopt);
 }
 
 std::string Tape::to_native_c(const std::string& function_name) const {
-  return emit_c(function_name, false, true, true);
+  return emit_c(function_name, false, true, true, std::nullopt);
+}
+
+std::string Tape::to_shared_c(const std::string& function_name, size_t constants_at) const {
+  return emit_c(function_name, false, true, true, constants_at);
+}
+
+std::vector<double> Tape::constants() const {
+  std::vector<double> k;
+  for (const Instr& ins : code_) {
+    switch (ins.op) {
+      case Op::Const:
+      case Op::Prod:
+        k.push_back(ins.c);
+        break;
+      case Op::Sum:
+        for (std::uint32_t i = 0; i < ins.b; ++i) k.push_back(coeffs_[ins.a + i]);
+        if (ins.c != 0.0) k.push_back(ins.c);
+        break;
+      case Op::SumProd: {
+        std::uint32_t p = ins.a;
+        for (std::uint32_t t = 0; t < ins.b; ++t) {
+          k.push_back(coeffs_[p]);
+          p += args_[p] + 1;
+        }
+        if (ins.c != 0.0) k.push_back(ins.c);
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  return k;
 }
 
 }  // namespace lagrange

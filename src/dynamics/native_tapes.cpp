@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace lagrange {
 
 namespace dynamics {
@@ -20,6 +22,7 @@ void NativeTapes::reset() {
   why.clear();
   skipped.clear();
   cache_note.clear();
+  shared_key.clear();
 }
 
 void NativeTapes::publish(std::shared_ptr<const MachineCode> lib) {
@@ -71,8 +74,10 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
     return;
   }
   if (tapes[kDynamicsTape]->num_instructions() < Dynamics::kBackgroundMinInstructions) {
-    skip(fmt::format("the {}-instruction tape specialised to the parameter values interprets faster than it compiles",
-                     tapes[kDynamicsTape]->num_instructions()));
+    skip(
+        fmt::format("the {}-instruction tape specialised to the parameter values interprets faster "
+                    "than it compiles",
+                    tapes[kDynamicsTape]->num_instructions()));
     return;
   }
   // The worker owns copies of the tapes: the Dynamics may re-specialise its own meanwhile
@@ -88,6 +93,24 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
       fail(e.what());
     }
   });
+}
+
+void NativeTapes::start_shared(const std::vector<const Tape*>& tapes,
+                               const std::vector<size_t>& offsets) {
+  std::string key;
+  for (size_t i = 0; i < tapes.size(); ++i)
+    key += tapes[i]->to_shared_c(fmt::format("f{}", i), offsets[i]);
+  if (key == shared_key) return;  // the loaded library reads the new constants
+  reset();
+  shared_key = std::move(key);
+  MachineCodeOptions opts = options;
+  opts.cancel = &cancel;
+  opts.constants_at = offsets;
+  try {
+    publish(MachineCode::build(tapes, opts));
+  } catch (const MachineCodeError& e) {
+    fail(e.what());
+  }
 }
 
 std::string NativeTapes::note() const {
@@ -115,7 +138,21 @@ void Dynamics::set_evaluation(Evaluation mode, const MachineCodeOptions& options
 }
 
 void Dynamics::refresh_machine_code() {
-  if (native_) native_->start({&dyn_, &obs_, &sig_});
+  if (!native_) return;
+  const std::vector<const Tape*> tapes{&dyn_, &obs_, &sig_};
+  if (native_->mode != Evaluation::SharedMachineCode) {
+    native_->start(tapes);
+    return;
+  }
+  // docs/theory.md §9.3: each tape's constants follow the registers in work_.
+  work_.resize(std::max({dyn_.work_size(), obs_.work_size(), sig_.work_size(), size_t{1}}));
+  std::vector<size_t> offsets;
+  for (const Tape* t : tapes) {
+    offsets.push_back(work_.size());
+    const std::vector<double> k = t->constants();
+    work_.insert(work_.end(), k.begin(), k.end());
+  }
+  native_->start_shared(tapes, offsets);
 }
 
 bool Dynamics::uses_machine_code() const {

@@ -31,6 +31,10 @@ struct NativeTapes {
   void reset();
   /// Machine code for `tapes` per `mode` (joins any earlier run first).
   void start(const std::vector<const Tape*>& tapes);
+  /// SharedMachineCode: the library of `tapes`' structure, their constants at `offsets` in the
+  /// evaluating Dynamics' work array; nothing to do when it is the structure of the library
+  /// already loaded (or of the one that failed: no compiler run per parameter value).
+  void start_shared(const std::vector<const Tape*>& tapes, const std::vector<size_t>& offsets);
   std::string note() const;
   std::string error() const;
 
@@ -50,6 +54,7 @@ struct NativeTapes {
   std::string why;           // why machine code failed
   std::string skipped;       // why machine code was not tried
   std::string cache_note;    // why a cache entry was not loaded
+  std::string shared_key;    // SharedMachineCode: the C of the structure last built (or tried)
 };
 
 }  // namespace lagrange::dynamics

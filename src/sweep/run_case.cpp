@@ -77,4 +77,14 @@ CaseResult run_case(Dynamics& dyn, const CaseInput& input, const std::vector<Met
   return result;
 }
 
+CaseResult run_case(Dynamics& dyn, const CaseRead& read, const std::vector<Metric>& metrics,
+                    Trajectory* kept) {
+  if (read.input) return run_case(dyn, *read.input, metrics, kept);
+  CaseResult r;
+  r.status = Trajectory::Status::Failed;
+  r.reason = read.rejected;
+  r.metrics.assign(metrics.size(), std::nan(""));
+  return r;
+}
+
 }  // namespace lagrange::sweep

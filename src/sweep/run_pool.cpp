@@ -1,5 +1,6 @@
 // The workers of a study on one machine: threads that each own a Dynamics over the shared,
-// immutable compiled model and take the next case when they finish one.
+// immutable compiled model and take the next case when they finish one, reading it first when
+// the caller reads cases on the workers.
 
 #include <atomic>
 #include <exception>
@@ -18,21 +19,29 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
   std::mutex report;
   std::exception_ptr error;  // the first exception of a worker (a summary that cannot be written)
   std::atomic<bool> failed{false};
+  std::mutex reading;  // one model read at a time: GiNaC is not thread-safe
   const auto stopped = [&] { return failed || (options.interrupt && options.interrupt->load()); };
   const auto work = [&] {
     try {
       // Dynamics holds the specialised tapes and all scratch memory: one per worker.
       Dynamics dyn(model, model->parameter_defaults);
+      if (options.evaluation != Evaluation::Interpreter) dyn.set_evaluation(options.evaluation);
       Trajectory traj;
       for (size_t slot = next++; slot < pending.size() && !stopped(); slot = next++) {
         const size_t index = pending[slot];
-        CaseInput input = inputs[index];
-        input.options.interrupt = options.interrupt;
-        CaseResult result = run_case(dyn, input, metrics, options.keep ? &traj : nullptr);
+        CaseRead read;
+        if (options.read) {
+          const std::lock_guard<std::mutex> lock(reading);
+          read = options.read(index);
+        } else {
+          read.input = inputs[index];
+        }
+        if (read.input) read.input->options.interrupt = options.interrupt;
+        CaseResult result = run_case(dyn, read, metrics, options.keep ? &traj : nullptr);
         result.index = index;
         if (result.status == Trajectory::Status::Interrupted) break;
         const std::lock_guard<std::mutex> lock(report);
-        if (options.keep) options.keep(index, traj);
+        if (options.keep && read.input) options.keep(index, traj);
         if (options.done) options.done(result);
       }
     } catch (...) {

@@ -68,6 +68,47 @@ TEST_F(MachineCodeTest, EveryOpIsBitIdenticalToEval) {
   EXPECT_EQ(differing_outputs(t, code->function(0), {{0.3, -1.7}, {-1.1, 2.5}, {1.9, 0.01}}), 0u);
 }
 
+// Tape::to_shared_c: one library compiled for a specialisation of the pendulum (docs/theory.md
+// §8) serves another set of parameter values, its constants read from the scratch array, and
+// computes what that specialisation's eval computes, bit for bit; a zero parameter folds terms
+// away, a structure of its own and another text. Small (one function) and split tapes.
+TEST_F(MachineCodeTest, SharedCodeServesEverySpecialisationOfItsStructure) {
+  for (const int n : {2, 20}) {
+    const test::Pendulum p = test::make_pendulum(n);
+    const Tape t = Tape::compile(p.outputs, p.inputs);
+    const auto values = [&](double scale) {
+      std::vector<double> v;
+      for (size_t i = p.first_parameter; i < p.inputs.size(); ++i)
+        v.push_back(scale * (0.7 + 0.1 * static_cast<double>(i % 7)));
+      return v;
+    };
+    const Tape a = t.specialize(p.first_parameter, values(1.0));
+    const Tape b = t.specialize(p.first_parameter, values(1.37));
+    const size_t at = std::max(a.work_size(), b.work_size());
+    ASSERT_EQ(a.to_shared_c("f", at), b.to_shared_c("f", at)) << n;
+    std::vector<double> zero_g = values(1.0);
+    zero_g.back() = 0.0;
+    EXPECT_NE(t.specialize(p.first_parameter, zero_g).to_shared_c("f", at), a.to_shared_c("f", at));
+
+    MachineCodeOptions shared = options_;
+    shared.constants_at = {at};
+    const auto code = MachineCode::build({&a}, shared);
+    std::vector<std::vector<double>> points;
+    for (unsigned seed = 0; seed < 5; ++seed) points.push_back(test::pendulum_point(n, seed));
+    const std::vector<double> k = b.constants();
+    std::vector<double> want(b.num_outputs()), got(b.num_outputs()), work(at + k.size());
+    size_t differing = 0;
+    for (const auto& x : points) {
+      b.eval(x.data(), want.data(), work.data());
+      std::copy(k.begin(), k.end(), work.begin() + static_cast<long>(at));
+      code->function(0)(x.data(), got.data(), work.data());
+      for (size_t i = 0; i < want.size(); ++i) differing += !(got[i] == want[i]);
+    }
+    EXPECT_EQ(differing, 0u) << n;
+    EXPECT_NE(want, std::vector<double>(want.size(), 0.0));
+  }
+}
+
 TEST_F(MachineCodeTest, LargeTapeKeepsItsRegistersInTheScratchArray) {
   const int n = 20;  // several 256-statement parts
   const test::Pendulum p = test::make_pendulum(n);

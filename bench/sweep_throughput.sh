@@ -1,0 +1,63 @@
+#!/bin/bash
+# Study throughput (issue 24, docs/sweeps.md "Speed"): 1000 cases of the double pendulum and 100
+# of the figure-eight kite, 10 s each, as a user runs them: `lagrange sweep` with 1 and 2
+# workers, under `mpirun -n 2`, and through Dask with two local worker processes. Every figure
+# is farm-bench's median of RUNS whole-process runs (start-up, derivation and reading included),
+# the machine load (uptime) printed beside it; Dask's sweep call is also timed alone.
+#
+#   bench/sweep_throughput.sh [BUILD_DIR=build] [RUNS=3]
+#
+# Needs the `lagrange` and `_lagrange` targets built, farm-bench, and for the last two rows
+# mpirun (openmpi-bin) and python3-distributed.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$(cd "${1:-$root/build}" && pwd)
+runs=${2:-3}
+lagrange=$build/lagrange
+work=$(mktemp -d /tmp/sweep-bench.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+
+# The median wall and cpu (user + system) seconds of farm-bench's report on stdin.
+medians() { awk '/ wall s / {w = $4} / cpu s / {c = $4} END {print w, c}'; }
+
+# bench LABEL CASES COMMAND…: one row, the study directory removed before each run. On a
+# shared machine the wall time measures the share of the cores the study got as much as the
+# study; the cpu seconds (every process of the study) show the work itself.
+bench() {
+  local label=$1 cases=$2
+  shift 2
+  local load wall cpu
+  load=$(uptime | sed 's/.*load average: //')
+  read -r wall cpu < <(farm-bench -n "$runs" --warmup 1 --timeout 900 -- \
+    sh -c "rm -rf '$work/study' && exec \"\$@\" > /dev/null 2>&1" sh "$@" | medians)
+  awk -v l="$label" -v w="$wall" -v c="$cpu" -v n="$cases" -v load="$load" \
+    'BEGIN {printf "  %-28s wall %7.3f s %7.1f cases/s  cpu %7.3f s %6.2f ms/case  (load %s)\n",
+            l, w, n / w, c, 1e3 * c / n, load}'
+}
+
+study() {
+  local model=$1 name=$2 low=$3 high=$4 cases=$5 metric=$6
+  local args=("$root/examples/$model" --vary "$name=$low:$high:$cases" --t-end 10
+              --metric "$metric" -o "$work/study")
+  echo "$model: $cases cases of 10 s, $name from $low to $high, metric $metric"
+  rm -rf "$work/study"
+  "$lagrange" sweep "${args[@]}" -j 1 | sed -n 's/^  \(derive\|tapes\)/  once: \1/p'
+  bench "lagrange sweep -j 1" "$cases" "$lagrange" sweep "${args[@]}" -q -j 1
+  bench "lagrange sweep -j 2" "$cases" "$lagrange" sweep "${args[@]}" -q -j 2
+  if command -v mpirun > /dev/null; then
+    bench "mpirun -n 2 lagrange sweep" "$cases" mpirun -n 2 --oversubscribe --allow-run-as-root \
+      "$lagrange" sweep "${args[@]}" -q
+  fi
+  if /usr/bin/python3 -c "import distributed" 2> /dev/null; then
+    bench "dask, 2 worker processes" "$cases" env PYTHONPATH="$build/python" /usr/bin/python3 \
+      "$root/bench/sweep_dask.py" "$root/examples/$model" "$name" "$low" "$high" "$cases" 10 \
+      "$metric"
+    echo "  dask, the sweep call alone: $(PYTHONPATH="$build/python" /usr/bin/python3 \
+      "$root/bench/sweep_dask.py" "$root/examples/$model" "$name" "$low" "$high" "$cases" 10 \
+      "$metric" 2> /dev/null | tail -1)   (load $(uptime | sed 's/.*load average: //'))"
+  fi
+}
+
+echo "sweep throughput, $(date -u +%F), $(nproc) cores"
+study double_pendulum.yaml l2 0.5 1.5 1000 "max(abs(theta1))"
+study figure_eight.yaml W 6 10 100 "mean(drum.power, t > 5)"
