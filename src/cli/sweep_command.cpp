@@ -86,7 +86,9 @@ std::vector<PreparedCase> prepare_cases(const Options& opt, const Prepared& p,
     for (const auto& [name, value] : c.values) values[name] = value;
     try {
       const Model m = read_model_file(opt.model, values);
-      out[c.index].input = sweep::case_input(m, *p.compiled, simulation_options(m, settings));
+      SimulationOptions so = simulation_options(m, settings);
+      so.jacobian_source = jacobian_source(p, so.integrator.method);  // derived once, shared
+      out[c.index].input = sweep::case_input(m, *p.compiled, so);
     } catch (const ModelError& e) {
       out[c.index].rejected = fmt::format("the model does not accept these values: {} (at {})",
                                           e.detail(), e.loc().str());
