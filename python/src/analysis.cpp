@@ -86,8 +86,8 @@ py::object namespace_of(const py::dict& fields) {
 // modes() and discretize().
 py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
                            std::optional<py::object> v_in, const std::vector<std::string>& inputs,
-                           const std::vector<std::string>& outputs, std::optional<double> discrete,
-                           double t) {
+                           const std::vector<std::string>& outputs,
+                           std::optional<double> discrete, double t) {
   if (discrete && !(*discrete > 0)) throw py::value_error("discrete: expected a positive dt");
   const cli::Prepared& p = *m.prepared;
   LagrangianForm f = lagrangian_form(p);
