@@ -28,12 +28,14 @@ struct Handover {
 };
 
 /// cvode:jacobian under `auto` hands back to DOP853 when its step h, settled (kSettledSteps
-/// steps after a (re)start), satisfies h·ρ(∂f/∂y) < kReturnBound at kReturnSamples samples in a
-/// row: the explicit method's stability bound (h·ρ ≈ 6.1) is then far above the step accuracy
-/// asks for (docs/theory.md §5.6, "Returning to DOP853").
+/// steps after a (re)start), satisfies h·ρ(∂f/∂y) < kReturnBound at kReturnSamples tested
+/// samples in a row: the explicit method's stability bound (h·ρ ≈ 6.1) is then far above the
+/// step accuracy asks for; after a failed test the next comes up to kReturnSpacing samples later
+/// (docs/theory.md §5.6, "Returning to DOP853").
 constexpr double kReturnBound = 1.0;
 constexpr long kSettledSteps = 10;
 constexpr int kReturnSamples = 3;
+constexpr size_t kReturnSpacing = 32;
 
 /// DOP853 (Dormand–Prince 8(5,3), Hairer's error estimate and step control), samples from its
 /// continuous extension of order 7; options.step > 0 fixes the step (no error control). With
