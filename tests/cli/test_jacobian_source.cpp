@@ -121,5 +121,49 @@ TEST(JacobianSource, SweepCaseSwitchesAsSimulateDoes) {
   EXPECT_EQ(kept.data, alone.data);
 }
 
+// A mass on a spring (ω = 10 rad/s) whose damper engages only in a window around t = 1.5 s:
+// c(t) = 1e5 exp(−((t − 1.5)/0.4)⁸), an overdamped rate c/m of 1e5 s⁻¹ there. `auto` goes
+// implicit as the damper engages and explicit again once it has let go (docs/theory.md §5.6,
+// "Returning to DOP853"), and follows DOP853 at rtol 1e-12 through all three phases.
+TEST(JacobianSource, DamperEngagedInAWindowSwitchesBothWays) {
+  const std::string yaml = R"(
+name: damper engaged in a window
+parameters: {m: 1.0, k: 100.0, c: 1.0e5}
+coordinates:
+  y: {initial: 1.0, rate: 0.0}
+points:
+  anchor: [0, 0, 0]
+  mass: [0, y, 0]
+particles:
+  - {point: mass, mass: m}
+springs:
+  - {between: [anchor, mass], k: k, l0: 0}
+dampers:
+  - {between: [anchor, mass], c: c*exp(-((t - 1.5)/0.4)^8)}
+simulate: {t_end: 4, output_step: 0.02}
+)";
+  Prepared p = prepare_source(ModelSource{"<window>", yaml}, {}, "lagrangian");
+  SimulationOptions so = simulation_options(*p.model, RunSettings{{}, {}, {}, {}, {}, "auto"});
+  so.jacobian_source = jacobian_source(p, "auto");
+  p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, "auto"));
+  const Trajectory automatic = simulate(*p.dynamics, so, p.q, p.v);
+  ASSERT_EQ(automatic.status, Trajectory::Status::Complete) << automatic.message;
+  const std::string& method = automatic.stats.method;
+  const size_t in = method.find("stiff at t = "), out = method.find(", not stiff at t = ");
+  ASSERT_NE(in, std::string::npos) << method;
+  ASSERT_NE(out, std::string::npos) << method;
+  EXPECT_GT(std::stod(method.substr(in + 13)), 0.9) << method;  // c/m = 1e3 s⁻¹ at t = 0.98
+  EXPECT_LT(std::stod(method.substr(out + 19)), 3.5) << method;
+
+  SimulationOptions reference = so;
+  reference.integrator.method = "dop853";
+  reference.integrator.rtol = 1e-12;
+  reference.integrator.atol = 1e-14;
+  const Trajectory exact = simulate(*p.dynamics, reference, p.q, p.v);
+  ASSERT_EQ(exact.status, Trajectory::Status::Complete) << exact.message;
+  ASSERT_EQ(exact.rows(), automatic.rows());
+  EXPECT_LT(largest_difference(automatic, exact, *p.compiled), 1e-6);
+}
+
 }  // namespace
 }  // namespace lagrange::cli
