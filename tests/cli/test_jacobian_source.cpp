@@ -9,11 +9,14 @@
 
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
+#include "hardening/cli_runner.hpp"
 #include "lagrange/stepper.hpp"
 #include "lagrange/sweep.hpp"
 
 namespace lagrange::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 const std::string kElasticTether =
     std::string(LAGRANGE_SOURCE_DIR) + "/examples/elastic_tether.yaml";
@@ -119,6 +122,30 @@ TEST(JacobianSource, SweepCaseSwitchesAsSimulateDoes) {
   ASSERT_EQ(result.status, Trajectory::Status::Complete) << result.reason;
   EXPECT_EQ(kept.stats.method, alone.stats.method);
   EXPECT_EQ(kept.data, alone.data);
+}
+
+// `lagrange sweep --integrator auto` on two workers: each case's trajectory is, byte for byte,
+// the one `simulate --set … --integrator auto` writes alone (the Jacobian derived once for the
+// study, bound to each worker's workspace).
+TEST(JacobianSource, SweepCommandCasesAreTheLoneRuns) {
+  using hardening::run_lagrange;
+  using hardening::slurp;
+  hardening::ScratchDir dir("sweep-auto");
+  const fs::path study = dir.path() / "study";
+  const hardening::RunResult r = run_lagrange(
+      dir.path(), {"sweep", kElasticTether, "-o", study.string(), "--vary", "D=1000,3000",
+                   "--integrator", "auto", "--t-end", "1", "-j", "2", "--keep-trajectories", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* c : {"0", "1"}) {
+    const fs::path alone = dir.path() / (std::string("alone_") + c + ".csv");
+    const hardening::RunResult s = run_lagrange(
+        dir.path(), {"simulate", kElasticTether, "--set", c[0] == '0' ? "D=1000" : "D=3000",
+                     "--integrator", "auto", "--t-end", "1", "-o", alone.string()});
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    if (c[0] == '1')  // the example's damping: auto turns implicit (D = 1000 stays explicit)
+      EXPECT_NE(s.out.find("dop853, stiff at t = "), std::string::npos) << s.out;
+    EXPECT_EQ(slurp(study / (std::string("case_") + c + ".csv")), slurp(alone)) << "case " << c;
+  }
 }
 
 // A mass on a spring (ω = 10 rad/s) whose damper engages only in a window around t = 1.5 s:
