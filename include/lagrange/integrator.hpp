@@ -67,8 +67,8 @@ std::string choose_ode_method(const OdeJacobian& jacobian, double t, const std::
 /// dop853 (the default), arkode (its default table), arkode:<table> for each named ARKODE explicit
 /// table, cvode, cvode:jacobian (CVODE on the problem's exact sparse Jacobian), auto
 /// (choose_ode_method at t0; starting on dop853 with a Jacobian at hand, it continues on
-/// cvode:jacobian from the first sample after DOP853's stiffness test concludes, and
-/// IntegratorStats::method says when), rk4, midpoint, ida.
+/// cvode:jacobian from the first sample after DOP853's stiffness test concludes, and on dop853
+/// again once BDF's step h has h·ρ < 1; IntegratorStats::method says when), rk4, midpoint, ida.
 const std::vector<std::string>& integrator_methods();
 
 /// integrator_methods() joined by ", " (for messages that list the valid names).
@@ -79,7 +79,8 @@ struct IntegratorStats {
   long rhs_evals = 0;
   long failed_steps = 0;
   /// what ran: plain `arkode` names its table, e.g. arkode:dormand-prince; `auto` that switched
-  /// says where, e.g. "dop853, stiff at t = 0.0706: cvode:jacobian from t = 0.07"
+  /// says where, e.g. "dop853, stiff at t = 0.0706: cvode:jacobian from t = 0.07, not stiff at
+  /// t = 2.7: dop853 from t = 2.7"
   std::string method;
 };
 

@@ -49,14 +49,25 @@ constexpr double kDefaultBaumgarte = 20.0;
 /// cvode and ida, which correct only at output samples, and for any method without projection.
 double baumgarte_rate(const Stabilization& stabilization, const std::string& method);
 
+/// Builds the exact Jacobian of the first-order form on the workspace a run evaluates, from its
+/// start (t0, y0) (ode_jacobian in analysis.hpp over a DynamicsJacobian derived once per model).
+/// Throws std::invalid_argument when the model has none, std::runtime_error when it cannot be
+/// evaluated at y0.
+using JacobianSource =
+    std::function<OdeJacobian(Dynamics& dynamics, double t0, const std::vector<double>& y0)>;
+
 struct SimulationOptions {
   double t0 = 0.0;
   double t_end = 10.0;
   double output_step = 0.01;
   IntegratorOptions integrator;
   /// The exact Jacobian of the first-order form (ode_jacobian in analysis.hpp), handed to the
-  /// integrator as OdeProblem::jacobian; cvode:jacobian needs it.
+  /// integrator as OdeProblem::jacobian; cvode:jacobian needs it. It refers to one workspace:
+  /// the one simulate() is given.
   OdeJacobian jacobian;
+  /// Where cvode:jacobian and auto get `jacobian` when it is empty, for the workspace they run
+  /// on (simulate(), the Stepper and a sweep's cases alike: run_jacobian).
+  JacobianSource jacobian_source;
   /// At output samples (IDA: there only) project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds
   /// projection_tol, after each internal step of an ODE method when they exceed
   /// step_drift_tolerance(); replace a free body's R by the nearest rotation when ‖RᵀR − 1‖_F
@@ -98,6 +109,18 @@ struct InitialConsistency {
 InitialConsistency make_initial_state_consistent(Dynamics& dynamics, double t0,
                                                  std::vector<double>& q, std::vector<double>& v,
                                                  double tol = 1e-11);
+
+/// True for the methods that integrate on the exact Jacobian: cvode:jacobian, and auto (which may
+/// choose or switch to it).
+bool uses_jacobian(const std::string& method);
+
+/// The Jacobian a run with `options` integrates on from (t0, y0) on `dynamics`: for the methods
+/// of uses_jacobian(), options.jacobian, else one built by options.jacobian_source; empty for
+/// other methods and for auto when none can be had (auto then runs DOP853 throughout). For
+/// cvode:jacobian without one: std::invalid_argument, or SimulationError at t0 when it cannot be
+/// evaluated there.
+OdeJacobian run_jacobian(Dynamics& dynamics, const SimulationOptions& options, double t0,
+                         const std::vector<double>& y0);
 
 /// Simulate from (q0, v0). Never throws for numerical failures: the trajectory computed so far
 /// is returned with status Failed and the reason (SimulationError message).

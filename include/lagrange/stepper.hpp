@@ -19,7 +19,9 @@ namespace lagrange {
 /// last step lands, as in simulate()); once inputs are set, its steps land on each target so that
 /// a new value takes effect there, and the step size carries over. Other methods run simulate()
 /// from the current state for each call (they agree with one run to the integrator's tolerance).
-/// Drift correction (projection onto C = 0, Ċ = 0, rotations onto SO(3)) is simulate()'s.
+/// Drift correction (projection onto C = 0, Ċ = 0, rotations onto SO(3)) and the checks of each
+/// state (docs/theory.md §8.2) are simulate()'s. cvode:jacobian and auto integrate on the exact
+/// Jacobian that options.jacobian_source builds once for the Stepper's own workspace.
 class Stepper {
  public:
   /// Takes the workspace (its parameters, Baumgarte rate and evaluation as the caller set them)

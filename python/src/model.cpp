@@ -75,8 +75,9 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
                     std::optional<double> rtol, std::optional<double> atol,
                     std::optional<double> step, const std::string& compile) {
   const cli::Prepared& p = prepared(m);
-  const SimulationOptions so = cli::simulation_options(
+  SimulationOptions so = cli::simulation_options(
       *p.model, cli::RunSettings{t_end, output_step, rtol, atol, step, integrator});
+  so.jacobian_source = cli::jacobian_source(p, so.integrator.method, kLagrangianHint);
   // A workspace of its own, so that runs of one model on several threads never share scratch.
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
   dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));

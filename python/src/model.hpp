@@ -25,6 +25,9 @@ struct PyModel {
   std::vector<double> qdot;  ///< forward's scratch (used with the GIL held)
 };
 
+/// What cvode:jacobian's message tells a user of a model in the recursive form to do.
+inline constexpr const char* kLagrangianHint = "load the model with dynamics=\"lagrangian\"";
+
 /// Reads, derives, compiles and checks a model (holding the GIL: GiNaC is not thread-safe).
 PyModel load_model(cli::ModelSource source, ParameterOverrides overrides,
                    const std::string& dynamics,

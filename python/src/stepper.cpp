@@ -99,8 +99,9 @@ py::object make_stepper(const PyModel& m, std::optional<double> t_end,
                         std::optional<double> atol, std::optional<double> step,
                         const std::string& compile) {
   const cli::Prepared& p = *m.prepared;
-  const SimulationOptions so = cli::simulation_options(
+  SimulationOptions so = cli::simulation_options(
       *p.model, cli::RunSettings{t_end, std::nullopt, rtol, atol, step, integrator});
+  so.jacobian_source = cli::jacobian_source(p, so.integrator.method, kLagrangianHint);
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
   dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
   auto s = std::make_unique<PyStepper>();

@@ -41,7 +41,9 @@ py::list run_cases(const PyModel& m, const std::vector<std::map<std::string, dou
     for (const auto& [name, value] : cases[i]) values[name] = value;
     try {
       const Model cm = m.source.read(values);
-      inputs[i] = sweep::case_input(cm, *p.compiled, cli::simulation_options(cm, settings));
+      SimulationOptions so = cli::simulation_options(cm, settings);
+      so.jacobian_source = cli::jacobian_source(p, so.integrator.method, kLagrangianHint);
+      inputs[i] = sweep::case_input(cm, *p.compiled, so);
       runnable.push_back(i);
     } catch (const ModelError& e) {
       rejected[i] =

@@ -186,36 +186,9 @@ int run_simulate(const Options& opt) {
   if (!choose_evaluation(*p.dynamics, opt.compile))
     fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
                p.dynamics->machine_code_error());
-  // cvode:jacobian integrates on the exact Jacobian, derived here; auto chooses by the
-  // stiffness it shows at the initial state and, starting explicit, by DOP853's stiffness test
-  // during the run; dop853 throughout where the Jacobian cannot be had (docs/theory.md §5.6).
-  std::unique_ptr<DynamicsJacobian> jacobian;
-  const std::string method = so.integrator.method;
-  const bool needs_jacobian = method == "cvode:jacobian";
-  if (needs_jacobian && p.equations.recursive)
-    throw UsageError(
-        "--integrator cvode:jacobian needs the Lagrangian formulation: add --dynamics lagrangian");
-  if (needs_jacobian || (method == "auto" && !p.equations.recursive)) {
-    try {
-      jacobian = std::make_unique<DynamicsJacobian>(p.equations, p.compiled);
-      std::vector<double> y0 = p.q;
-      y0.insert(y0.end(), p.v.begin(), p.v.end());
-      so.jacobian = ode_jacobian(*jacobian, *p.dynamics, so.t0, y0);
-      // auto stays auto when it starts explicit: integrate() watches DOP853's stiffness test.
-      if (method == "auto" &&
-          choose_ode_method(so.jacobian, so.t0, y0, so.output_step) == "cvode:jacobian")
-        so.integrator.method = "cvode:jacobian";
-    } catch (const std::invalid_argument& e) {
-      if (needs_jacobian)
-        throw UsageError(fmt::format("--integrator cvode:jacobian: {}", e.what()));
-      so.jacobian = {};  // auto without a Jacobian: the explicit default
-    } catch (const AnalysisError& e) {
-      if (needs_jacobian) throw;
-      so.jacobian = {};  // singular KKT at the start: the explicit default
-    }
-  }
-  if (so.integrator.method == "auto" && !so.jacobian.values) so.integrator.method = "dop853";
-  p.dynamics->set_baumgarte(baumgarte_rate(model.stabilization, so.integrator.method));
+  // cvode:jacobian and auto integrate on the exact Jacobian, derived once per model; simulate()
+  // builds it for its workspace (docs/theory.md §5.6).
+  so.jacobian_source = jacobian_source(p, so.integrator.method);
   const KeepWorkOnInterrupt keep;  // from here Ctrl-C keeps the rows so far
   const auto t2 = Clock::now();
   Trajectory traj = simulate(*p.dynamics, so, p.q, p.v);

@@ -14,6 +14,10 @@
 #include "lagrange/reader.hpp"
 #include "lagrange/simulation.hpp"
 
+namespace lagrange {
+class DynamicsJacobian;
+}
+
 namespace lagrange::cli {
 
 /// A model ready to run: its equations, tapes, a workspace at its parameter values and a
@@ -26,7 +30,19 @@ struct Prepared {
   std::vector<double> q, v;
   InitialConsistency initial;
   double derive_seconds = 0.0, compile_seconds = 0.0;
+  /// The exact Jacobian's tape, derived by the first jacobian_source() that needs it and shared
+  /// by every run of the model after it (a cache: not part of the model's value).
+  mutable std::shared_ptr<const DynamicsJacobian> jacobian;
 };
+
+/// What cvode:jacobian and auto integrate on (SimulationOptions::jacobian_source), for every
+/// run, Stepper and sweep case of `p`: the DynamicsJacobian derived once and kept in `p`, bound
+/// to each run's own workspace. Empty for other methods, and for auto when the model is in the
+/// recursive formulation (auto then runs DOP853); for cvode:jacobian there a UsageError ending in
+/// `lagrangian_hint` (how to derive the Lagrangian form). Not thread-safe (GiNaC): call it before
+/// runs start.
+JacobianSource jacobian_source(const Prepared& p, const std::string& method,
+                               const std::string& lagrangian_hint = "add --dynamics lagrangian");
 
 /// Where a model comes from: the file `path`, or YAML `text` that messages label `path` (the
 /// Python module's loads(), and a pickled model).

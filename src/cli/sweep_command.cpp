@@ -132,7 +132,9 @@ sweep::CaseRead read_case(const Options& opt, const Study& s, size_t index) {
   sweep::CaseRead r;
   try {
     const Model m = read_model_file(opt.model, values);
-    r.input = sweep::case_input(m, *s.prepared.compiled, simulation_options(m, s.settings));
+    SimulationOptions so = simulation_options(m, s.settings);
+    so.jacobian_source = jacobian_source(s.prepared, so.integrator.method);  // derived once
+    r.input = sweep::case_input(m, *s.prepared.compiled, so);
   } catch (const ModelError& e) {
     r.rejected = fmt::format("the model does not accept these values: {} (at {})", e.detail(),
                              e.loc().str());

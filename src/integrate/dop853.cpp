@@ -257,7 +257,7 @@ void Dop853::build_dense() {
 
 IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOptions& options,
                                  const OutputGrid& grid, std::vector<double>& y,
-                                 const Observer& observer, StiffHandover* handover) {
+                                 const Observer& observer, Handover* handover) {
   Dop853 method(problem, options, y, grid.time(grid.intervals()));
   size_t sample = 0;
   // With a handover, a sample observed once the stiffness test has concluded is the last.

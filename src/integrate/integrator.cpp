@@ -48,40 +48,58 @@ void validate_size(size_t size, size_t got, const char* what) {
   }
 }
 
+/// The summary of a run under `auto` that switched: the first kShownSwitches switches, then how
+/// many more and where the last one went.
+std::string switch_summary(const std::vector<std::string>& switches) {
+  constexpr size_t kShownSwitches = 4;
+  std::string text = "dop853";
+  for (size_t i = 0; i < switches.size() && i < kShownSwitches; ++i) text += ", " + switches[i];
+  if (switches.size() > kShownSwitches)
+    text += fmt::format(", … {} switches in all, the last {}", switches.size(), switches.back());
+  return text;
+}
+
 /// `auto` that began explicit: DOP853 until its stiffness test concludes, then cvode:jacobian
-/// from the sample it stopped at (docs/theory.md §5.6, "Noticing stiffness during the run").
+/// from the sample it stopped at until the problem is no longer stiff there, then DOP853 again,
+/// and so on (docs/theory.md §5.6, "Noticing stiffness during the run", "Returning to DOP853").
 IntegratorStats integrate_switching(const OdeProblem& problem, const IntegratorOptions& options,
                                     const integration::OutputGrid& grid, std::vector<double>& y,
                                     const Observer& observer) {
   using integration::operator+;
-  integration::StiffHandover handover;
-  IntegratorStats stats =
-      integration::integrate_dop853(problem, options, grid, y, observer, &handover);
-  stats.method = "dop853";
-  if (!handover.stiff) return stats;
   IntegratorOptions implicit = options;
   implicit.method = "cvode:jacobian";
-  bool first = true;  // the sample the handover starts from is in the trajectory already
-  const Observer rest = [&](double t, double* yy, double* yp) {
-    if (first) {
-      first = false;
-      return ObserverAction::Continue;
-    }
-    return observer ? observer(t, yy, yp) : ObserverAction::Continue;
-  };
-  const integration::OutputGrid tail = grid.from(handover.sample);
-  const std::string method =
-      fmt::format("dop853, stiff at t = {:.6g}: cvode:jacobian from t = {:.6g}", handover.detected,
-                  tail.time(0));
+  std::vector<std::string> switches;
+  IntegratorStats stats;
+  integration::OutputGrid rest = grid;
+  bool stiff = false;  // the method of the piece now running: cvode:jacobian when true
   try {
-    y = handover.y;
-    stats = stats + integration::integrate_cvode(problem, implicit, tail, y, rest);
+    for (bool first = true;; first = false, stiff = !stiff) {
+      // every piece after the first starts at a sample that is in the trajectory already
+      bool seen = first;
+      const Observer piece = [&](double t, double* yy, double* yp) {
+        if (!seen) {
+          seen = true;
+          return ObserverAction::Continue;
+        }
+        return observer ? observer(t, yy, yp) : ObserverAction::Continue;
+      };
+      integration::Handover handover;
+      stats = stats +
+              (stiff ? integration::integrate_cvode(problem, implicit, rest, y, piece, &handover)
+                     : integration::integrate_dop853(problem, options, rest, y, piece, &handover));
+      if (!handover.handed) break;
+      rest = rest.from(handover.sample);
+      y = handover.y;
+      switches.push_back(fmt::format(stiff ? "not stiff at t = {:.6g}: dop853 from t = {:.6g}"
+                                           : "stiff at t = {:.6g}: cvode:jacobian from t = {:.6g}",
+                                     handover.detected, rest.time(0)));
+    }
   } catch (const IntegrationFailure& e) {
     IntegratorStats so_far = stats + e.stats();
-    so_far.method = method;
+    so_far.method = switch_summary(switches);
     throw IntegrationFailure(e, so_far);
   }
-  stats.method = method;
+  stats.method = switch_summary(switches);
   return stats;
 }
 

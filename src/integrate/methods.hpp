@@ -18,13 +18,24 @@ IntegratorStats integrate_arkode(const OdeProblem& problem, const IntegratorOpti
                                  const OutputGrid& grid, std::vector<double>& y,
                                  const Observer& observer);
 
-/// Where a DOP853 run stopped because its stiffness test concluded (Dop853::stiff).
-struct StiffHandover {
-  bool stiff = false;
-  double detected = 0.0;  ///< the time of the step that concluded the test
+/// Where a run under `auto` stopped to hand over to the other method: DOP853 when its stiffness
+/// test concluded (Dop853::stiff), cvode:jacobian when the problem was no longer stiff.
+struct Handover {
+  bool handed = false;
+  double detected = 0.0;  ///< the time the test concluded
   size_t sample = 0;      ///< the grid sample the run stopped at (observed already)
   std::vector<double> y;  ///< the state there, as the observer saw it
 };
+
+/// cvode:jacobian under `auto` hands back to DOP853 when its step h, settled (kSettledSteps
+/// steps after a (re)start), satisfies h·ρ(∂f/∂y) < kReturnBound at kReturnSamples tested
+/// samples in a row: the explicit method's stability bound (h·ρ ≈ 6.1) is then far above the
+/// step accuracy asks for; after a failed test the next comes up to kReturnSpacing samples later
+/// (docs/theory.md §5.6, "Returning to DOP853").
+constexpr double kReturnBound = 1.0;
+constexpr long kSettledSteps = 10;
+constexpr int kReturnSamples = 3;
+constexpr size_t kReturnSpacing = 32;
 
 /// DOP853 (Dormand–Prince 8(5,3), Hairer's error estimate and step control), samples from its
 /// continuous extension of order 7; options.step > 0 fixes the step (no error control). With
@@ -32,14 +43,16 @@ struct StiffHandover {
 /// where in it (docs/theory.md §5.6, "Noticing stiffness during the run").
 IntegratorStats integrate_dop853(const OdeProblem& problem, const IntegratorOptions& options,
                                  const OutputGrid& grid, std::vector<double>& y,
-                                 const Observer& observer, StiffHandover* handover = nullptr);
+                                 const Observer& observer, Handover* handover = nullptr);
 
 /// CVODE BDF (orders 1–5) with Newton iteration; `cvode`: a dense direct linear solver on
 /// difference-quotient Jacobians, `cvode:jacobian`: problem.jacobian, in KLU when the build has
-/// it (else dense); samples from CVODE's interpolant.
+/// it (else dense); samples from CVODE's interpolant. With `handover` (cvode:jacobian only), the
+/// run ends at the first sample where the problem is no longer stiff (kReturnBound), and says
+/// where.
 IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptions& options,
                                 const OutputGrid& grid, std::vector<double>& y,
-                                const Observer& observer);
+                                const Observer& observer, Handover* handover = nullptr);
 
 /// Classical fixed-step RK4, an integer number of equal steps per output interval.
 IntegratorStats integrate_rk4(const OdeProblem& problem, const IntegratorOptions& options,

@@ -60,4 +60,18 @@ void SampleChecks::row(double t, const double* row) {
   t_prev_ = t;
 }
 
+void SampleChecks::append_row(RowWriter& rows, Dynamics& dyn, double t, const double* y,
+                              Trajectory& traj, const std::function<void(const double*)>& also) {
+  const size_t width = traj.columns.size();
+  rows.append(dyn, t, y, y + cm_.nq, traj);
+  try {
+    const double* written = traj.data.data() + traj.data.size() - width;
+    if (also) also(written);
+    row(t, written);
+  } catch (const SimulationError&) {
+    traj.data.resize(traj.data.size() - width);
+    throw;
+  }
+}
+
 }  // namespace lagrange

@@ -3,10 +3,12 @@
 // integrated it (docs/theory.md §8.2): a finite state and finite energies, multipliers and
 // residuals, and for a model that conserves energy, T + U kept.
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "lagrange/compiled_model.hpp"
+#include "simulation/row_writer.hpp"
 
 namespace lagrange {
 
@@ -22,6 +24,12 @@ class SampleChecks {
   /// model, |E − E₀| at most half the largest T + |U| of any sample so far, else the integrator
   /// stepped across a singularity (§8.2).
   void row(double t, const double* row);
+  /// The sample of every run (simulate() and the Stepper): the row of the state y = (q, v) at t
+  /// appended to `traj` by `rows`, then `also` (a run's own conditions on the row, e.g. the
+  /// elements' fail_when) and row() applied to it; a row that fails is removed from `traj`
+  /// before the SimulationError propagates.
+  void append_row(RowWriter& rows, Dynamics& dyn, double t, const double* y, Trajectory& traj,
+                  const std::function<void(const double* row)>& also = nullptr);
 
  private:
   const CompiledModel& cm_;

@@ -222,7 +222,6 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   if (!dae) integrator.after_step = correct_step_drift;
   OdeProblem ode;
   ode.size = n;
-  ode.jacobian = opt.jacobian;
   // Ctrl-C between samples (issue 25 item 9): the next evaluation of the dynamics ends the run
   // with the rows so far, as at a sample.
   const auto poll_interrupt = [&opt] {
@@ -281,10 +280,9 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::fill(yp + n, yp + n + m, 0.0);
       action = ObserverAction::StateChanged;
     }
-    rows.append(dyn, t, yy, yy + nq, traj);
     try {
-      const double* row = traj.data.data() + traj.data.size() - width;
-      if (!guards.empty()) {
+      checks.append_row(rows, dyn, t, yy, traj, [&](const double* row) {
+        if (guards.empty()) return;
         guards.evaluate(row, dyn.parameters().data(), guard_g.data());
         size_t which = guard_watch.first_fired(guard_g.data());
         double when = t;
@@ -300,22 +298,21 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
           throw SimulationError(
               when, fmt::format("{}: {} became true ({})", g.name, g.text, g.loc.str()));
         }
-      }
-      checks.row(t, row);
-      if (!cautions.empty()) {
-        cautions.evaluate(row, dyn.parameters().data(), caution_g.data());
-        for (size_t i = 0; i < cautions.size(); ++i)
-          if (caution_g[i] > 0 && !cautioned[i]) {
-            cautioned[i] = true;
-            const StopSpec& c = cautions.spec(i);
-            traj.warnings.push_back(
-                fmt::format("from t = {:.6g}: {} ({}, {})", t, c.name, c.text, c.loc.str()));
-          }
-      }
+      });
     } catch (const SimulationError&) {
-      traj.data.resize(traj.data.size() - width);
       last.reported = true;
       throw;
+    }
+    if (!cautions.empty()) {  // docs/model-language.md, "Kites": once per condition
+      cautions.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),
+                        caution_g.data());
+      for (size_t i = 0; i < cautions.size(); ++i)
+        if (caution_g[i] > 0 && !cautioned[i]) {
+          cautioned[i] = true;
+          const StopSpec& c = cautions.spec(i);
+          traj.warnings.push_back(
+              fmt::format("from t = {:.6g}: {} ({}, {})", t, c.name, c.text, c.loc.str()));
+        }
     }
     if (!stop.empty()) {  // the conditions read the row just written
       stop.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),
@@ -365,6 +362,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
       std::vector<double> y(n);
       std::copy(q0.begin(), q0.end(), y.begin());
       std::copy(v0.begin(), v0.end(), y.begin() + static_cast<long>(nq));
+      ode.jacobian = run_jacobian(dyn, opt, opt.t0, y);  // on this workspace, from the start
       traj.stats = integrate(ode, integrator, opt.t0, y, opt.t_end, opt.output_step, observer);
     }
   } catch (const Interrupted&) {

@@ -13,6 +13,7 @@
 #include "lagrange/error.hpp"
 #include "simulation/drift_correction.hpp"
 #include "simulation/row_writer.hpp"
+#include "simulation/sample_checks.hpp"
 #include "simulation/start_state.hpp"
 
 namespace lagrange {
@@ -27,6 +28,7 @@ struct Stepper::State {
         n(dyn.model().nq + dyn.model().nv),
         lambda(dyn.model().m),
         rows(dyn.model()),
+        checks(dyn.model(), trajectory_columns(dyn.model())),
         drift(dyn, opt),
         budget(opt.integrator.max_steps) {}
 
@@ -40,6 +42,7 @@ struct Stepper::State {
   double t = 0.0, t_reached = 0.0;
   Trajectory record;
   RowWriter rows;
+  SampleChecks checks;
   DriftCorrection drift;
   OdeProblem ode;
   std::unique_ptr<integration::Dop853> dop;  // null: the method restarts at each call
@@ -54,13 +57,13 @@ struct Stepper::State {
   std::vector<size_t> external_index;  // into input_names
   std::vector<double> held;            // per input: the value set (NaN: not set)
 
-  // The row of a target: checked finite, drift-corrected (the row only, as simulate() does for
-  // its samples) and recorded.
+  // The row of a target as simulate() records its samples: the state checked finite,
+  // drift-corrected (the row only), recorded and checked (docs/theory.md §8.2).
   void observe(double time) {
-    integration::ensure_finite(time, sample.data(), n, "state");
+    checks.state(time, sample.data());
     drift(time, sample.data());
-    rows.append(dyn, time, sample.data(), sample.data() + nq, record);
     record.rotation_drift = drift.largest_rotation_drift();
+    checks.append_row(rows, dyn, time, sample.data(), record);
   }
 
   // docs/theory.md §8.1, Stepping with a controller in the loop: DOP853 across calls,
@@ -146,6 +149,10 @@ Stepper::Stepper(Dynamics dynamics, const SimulationOptions& options, std::vecto
   s.y.insert(s.y.end(), v0.begin(), v0.end());
   s.sample = s.y;
   s.t = s.t_reached = s.origin = options.t0;
+  // cvode:jacobian and auto: the exact Jacobian on this workspace, built once for every call
+  // (a given one refers to the caller's workspace).
+  s.opt.jacobian = {};
+  s.opt.jacobian = run_jacobian(s.dyn, s.opt, options.t0, s.y);
   if (options.integrator.method == "dop853") {
     s.ode.size = s.n;
     State* self = &s;

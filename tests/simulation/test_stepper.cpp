@@ -173,6 +173,33 @@ TEST(Stepper, FailedStepKeepsTheState) {
   EXPECT_NEAR(s.state()[0], 0.3 * std::cos(w * 0.2), 1e-9);
 }
 
+// The radial fall onto −1/r (tests/hardening, CompleteButWrong): DOP853 at a fixed step steps
+// across r = 0 near t = π/(2√2) and the energy of this conservative model jumps. The Stepper checks
+// its samples as simulate() does (docs/theory.md §8.2), so it fails at the same sample for the same
+// reason, keeping the rows before it.
+TEST(Stepper, CollapseFailsAsSimulateDoes) {
+  Loaded sys = testing::load_string(
+      "name: collapse\ncoordinates:\n  r: {initial: 1}\nkinetic: der(r)^2/2\npotential: -1/r\n"
+      "simulate: {t_end: 3, output_step: 0.01}\n");
+  SimulationOptions so = sys.options();
+  so.integrator.step = 0.002;
+  const Trajectory one = sys.run(so);
+  ASSERT_EQ(one.status, Trajectory::Status::Failed);
+  const double collapse = 3.14159265358979 / (2 * std::sqrt(2.0));
+  EXPECT_NEAR(one.failure_time, collapse, 0.01);
+  ASSERT_NE(one.message.find("the energy T + U of this conservative model"), std::string::npos)
+      << one.message;
+  Stepper s = make_stepper(sys, so);
+  try {
+    while (s.time() < so.t_end) s.step(so.output_step);
+    FAIL() << "expected a SimulationError";
+  } catch (const SimulationError& e) {
+    EXPECT_EQ(e.time(), one.failure_time);
+    EXPECT_EQ(std::string(e.what()), one.message);
+  }
+  expect_same_rows(s.record(), one);  // the rows before the failing sample, bit for bit
+}
+
 TEST(Stepper, RejectsInputsThatAreNotExternal) {
   Loaded sys = testing::load_example("planar_arm_pd.yaml");
   Stepper s = make_stepper(sys, sys.options());
