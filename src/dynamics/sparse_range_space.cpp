@@ -106,8 +106,7 @@ void SparseRangeSpace::apply_inverse(double* x) {
   }
 }
 
-bool SparseRangeSpace::solve(const double* m_values, const double* g, const double* rhs,
-                             const double* gamma, double* a, double* lambda) {
+bool SparseRangeSpace::factorize(const double* m_values, const double* g) {
   // M⁻¹ block by block (a block of one velocity is 1/M_jj).
   std::fill(inverse_.begin(), inverse_.end(), 0.0);
   for (size_t e = 0; e < M_.size(); ++e) {
@@ -130,12 +129,16 @@ bool SparseRangeSpace::solve(const double* m_values, const double* g, const doub
     const Block Minv = llt.solve(Block::Identity(k, k));
     Eigen::Map<Eigen::MatrixXd>(inv, k, k) = Minv;  // symmetric: row- or column-major alike
   }
-  for (size_t j = 0; j < n_; ++j) a0_[static_cast<long>(j)] = rhs[j];
-  apply_inverse(a0_.data());
   double* values = S_.values();
   std::fill(values, values + S_.num_values(), 0.0);
   for (const auto& c : contributions_) values[c.value] += g[c.g1] * inverse_[c.inverse] * g[c.g2];
-  if (!S_.factorize()) return false;
+  return S_.factorize();
+}
+
+void SparseRangeSpace::solve_factored(const double* g, const double* rhs, const double* gamma,
+                                      double* a, double* lambda) {
+  for (size_t j = 0; j < n_; ++j) a0_[static_cast<long>(j)] = rhs[j];
+  apply_inverse(a0_.data());
   lam_.setZero();
   for (size_t e = 0; e < G_.size(); ++e)
     lam_[static_cast<long>(G_[e].first)] += g[e] * a0_[static_cast<long>(G_[e].second)];
@@ -146,6 +149,12 @@ bool SparseRangeSpace::solve(const double* m_values, const double* g, const doub
     a[G_[e].second] -= g[e] * lam_[static_cast<long>(G_[e].first)];
   apply_inverse(a);
   for (size_t r = 0; r < m_; ++r) lambda[r] = lam_[static_cast<long>(r)];
+}
+
+bool SparseRangeSpace::solve(const double* m_values, const double* g, const double* rhs,
+                             const double* gamma, double* a, double* lambda) {
+  if (!factorize(m_values, g)) return false;
+  solve_factored(g, rhs, gamma, a, lambda);
   return true;
 }
 

@@ -28,6 +28,12 @@ class SparseRangeSpace {
   /// when a block of M or S is not positive definite (the caller reports the failure).
   bool solve(const double* m_values, const double* g_values, const double* rhs, const double* gamma,
              double* a, double* lambda);
+  /// Factorise M and S only (the first half of solve). False as for solve.
+  bool factorize(const double* m_values, const double* g_values);
+  /// The solve with the factors of the last factorize() or solve() and those G values: one more
+  /// right-hand side (rhs, gamma) of the same KKT matrix (the differentiated KKT system).
+  void solve_factored(const double* g_values, const double* rhs, const double* gamma, double* a,
+                      double* lambda);
 
  private:
   using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlock, kMaxBlock>;
