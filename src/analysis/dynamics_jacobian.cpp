@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "analysis/kkt_layout.hpp"
@@ -211,38 +212,57 @@ StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* 
     }
   }
 
-  Eigen::MatrixXd X(n, cols);  // ∂a/∂(q, v, w)
+  J.a_q.resize(n, nq);
+  J.a_v.resize(n, n);
+  J.a_w.resize(n, nw);
   if (range_space_) {
+    // Column blocks of kBlock right-hand sides, so that they stay in cache.
     dynamics::SparseRangeSpace kkt(c);
     const double* g = out.data() + c.G_out();
     if (!kkt.factorize(out.data(), g)) throw_singular(t);
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m), lambda(m);
-    const Eigen::SparseMatrix<double>& P = I.Phi_x;
-    for (long k = 0; k < cols; ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator e(P, k); e; ++e) rhs[e.row()] = -e.value();
-      kkt.solve_factored(g, rhs.data(), rhs.data() + n, X.col(k).data(), lambda.data());
-      for (Eigen::SparseMatrix<double>::InnerIterator e(P, k); e; ++e) rhs[e.row()] = 0.0;
+    constexpr long kBlock = 64;
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMajor R(n + m, kBlock), A(n, kBlock);
+    bool finite = true;
+    for (long k0 = 0; k0 < cols; k0 += kBlock) {
+      const long kc = std::min(kBlock, cols - k0);
+      R.setZero();
+      for (long k = 0; k < kc; ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator e(I.Phi_x, k0 + k); e; ++e) {
+          R(e.row(), k) = -e.value();
+          finite = finite && std::isfinite(e.value());
+        }
+      kkt.solve_factored(g, static_cast<size_t>(kBlock), R.data(), R.data() + n * kBlock, A.data());
+      for (long k = 0; k < kc; ++k) {
+        const long col = k0 + k;
+        (col < nq       ? J.a_q.col(col)
+         : col < nq + n ? J.a_v.col(col - nq)
+                        : J.a_w.col(col - nq - n)) = A.col(k);
+      }
     }
-    if (!X.allFinite() && P.coeffs().allFinite()) throw_singular(t);
-  } else if (m == 0) {
-    const Eigen::MatrixXd M = I.K;
-    Eigen::LLT<Eigen::MatrixXd> llt(M);
-    const double scale = n ? M.diagonal().cwiseAbs().maxCoeff() : 1.0;
-    if (llt.info() != Eigen::Success ||
-        (n && !(llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > 1e-13 * scale)))
-      throw AnalysisError(fmt::format("the mass matrix is singular at t = {}", t));
-    X = llt.solve(-Eigen::MatrixXd(I.Phi_x));
-  } else if (n + m > kSparseKkt) {
-    X = sparse_kkt_solve(I.K, -Eigen::MatrixXd(I.Phi_x), t).topRows(n);
+    if (finite && !(J.a_q.allFinite() && J.a_v.allFinite() && J.a_w.allFinite())) throw_singular(t);
   } else {
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(I.K));
-    const auto d = lu.matrixLU().diagonal().cwiseAbs();
-    if (!(d.minCoeff() > 1e-13 * d.maxCoeff())) throw_singular(t);
-    X = lu.solve(-Eigen::MatrixXd(I.Phi_x)).topRows(n);
+    Eigen::MatrixXd X(n, cols);  // ∂a/∂(q, v, w)
+    if (m == 0) {
+      const Eigen::MatrixXd M = I.K;
+      Eigen::LLT<Eigen::MatrixXd> llt(M);
+      const double scale = n ? M.diagonal().cwiseAbs().maxCoeff() : 1.0;
+      if (llt.info() != Eigen::Success ||
+          (n && !(llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > 1e-13 * scale)))
+        throw AnalysisError(fmt::format("the mass matrix is singular at t = {}", t));
+      X = llt.solve(-Eigen::MatrixXd(I.Phi_x));
+    } else if (n + m > kSparseKkt) {
+      X = sparse_kkt_solve(I.K, -Eigen::MatrixXd(I.Phi_x), t).topRows(n);
+    } else {
+      Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(I.K));
+      const auto d = lu.matrixLU().diagonal().cwiseAbs();
+      if (!(d.minCoeff() > 1e-13 * d.maxCoeff())) throw_singular(t);
+      X = lu.solve(-Eigen::MatrixXd(I.Phi_x)).topRows(n);
+    }
+    J.a_q = X.leftCols(nq);
+    J.a_v = X.middleCols(nq, n);
+    J.a_w = X.rightCols(nw);
   }
-  J.a_q = X.leftCols(nq);
-  J.a_v = X.middleCols(nq, n);
-  J.a_w = X.rightCols(nw);
   J.y_q = Y.leftCols(nq);
   J.y_v = Y.block(0, nq, ny, n);
   J.y_w = Y.rightCols(nw);

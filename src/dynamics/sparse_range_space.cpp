@@ -151,6 +151,53 @@ void SparseRangeSpace::solve_factored(const double* g, const double* rhs, const 
   for (size_t r = 0; r < m_; ++r) lambda[r] = lam_[static_cast<long>(r)];
 }
 
+void SparseRangeSpace::apply_inverse_rows(double* X, size_t k) const {
+  std::vector<double> y;
+  for (size_t b = 0; b < blocks_.size(); ++b) {
+    const auto& cols = blocks_[b];
+    const size_t s = cols.size();
+    const double* inv = inverse_.data() + offset_[b];
+    if (s == 1) {
+      double* x = X + cols[0] * k;
+      for (size_t c = 0; c < k; ++c) x[c] *= inv[0];
+      continue;
+    }
+    y.assign(s * k, 0.0);
+    for (size_t i = 0; i < s; ++i)
+      for (size_t l = 0; l < s; ++l) {
+        const double w = inv[i * s + l];
+        const double* x = X + cols[l] * k;
+        for (size_t c = 0; c < k; ++c) y[i * k + c] += w * x[c];
+      }
+    for (size_t i = 0; i < s; ++i)
+      std::copy(y.begin() + static_cast<long>(i * k), y.begin() + static_cast<long>((i + 1) * k),
+                X + cols[i] * k);
+  }
+}
+
+void SparseRangeSpace::solve_factored(const double* g, size_t k, const double* rhs,
+                                      const double* gamma, double* a) const {
+  // S Λ = G M⁻¹ R₁ − Γ, A = M⁻¹(R₁ − Gᵀ Λ), as solve_factored above, a row of k at a time.
+  std::vector<double> a0(rhs, rhs + n_ * k), lam(gamma, gamma + m_ * k);
+  apply_inverse_rows(a0.data(), k);
+  for (double& x : lam) x = -x;
+  for (size_t e = 0; e < G_.size(); ++e) {
+    const double w = g[e];
+    const double* x = a0.data() + G_[e].second * k;
+    double* l = lam.data() + G_[e].first * k;
+    for (size_t c = 0; c < k; ++c) l[c] += w * x[c];
+  }
+  S_.solve_rows(lam.data(), k);
+  std::copy(rhs, rhs + n_ * k, a);
+  for (size_t e = 0; e < G_.size(); ++e) {
+    const double w = g[e];
+    const double* l = lam.data() + G_[e].first * k;
+    double* x = a + G_[e].second * k;
+    for (size_t c = 0; c < k; ++c) x[c] -= w * l[c];
+  }
+  apply_inverse_rows(a, k);
+}
+
 bool SparseRangeSpace::solve(const double* m_values, const double* g, const double* rhs,
                              const double* gamma, double* a, double* lambda) {
   if (!factorize(m_values, g)) return false;

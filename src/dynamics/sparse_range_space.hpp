@@ -34,6 +34,10 @@ class SparseRangeSpace {
   /// right-hand side (rhs, gamma) of the same KKT matrix (the differentiated KKT system).
   void solve_factored(const double* g_values, const double* rhs, const double* gamma, double* a,
                       double* lambda);
+  /// The same for k right-hand sides at once, each matrix row-major: rhs (n × k), gamma (m × k);
+  /// the accelerations into a (n × k). Row operations over all k columns (vectorised).
+  void solve_factored(const double* g_values, size_t k, const double* rhs, const double* gamma,
+                      double* a) const;
 
  private:
   using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlock, kMaxBlock>;
@@ -44,8 +48,8 @@ class SparseRangeSpace {
   };
   /// M⁻¹ x for each block, in place.
   void apply_inverse(double* x);
-  /// M⁻¹ x for each block, in place.
-  void apply_inverse(double* x) const;
+  /// M⁻¹ X for each block, in place, X row-major n × k.
+  void apply_inverse_rows(double* X, size_t k) const;
 
   size_t n_, m_;
   std::vector<std::pair<size_t, size_t>> M_, G_;   // (row, column) per value
