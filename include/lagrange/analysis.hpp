@@ -182,6 +182,11 @@ struct TrimOptions {
   std::vector<bool> free_rates;
   double tol = 1e-10;  ///< on max |a| (and max |C| for constrained models)
   int max_iterations = 50;
+  /// When Newton's method fails (not for varied rates): pseudo-transient continuation from the
+  /// start, at most this many steps (0: none), first pseudo-time step pseudo_step
+  /// (docs/theory.md §5.5).
+  int max_pseudo_steps = 400;
+  double pseudo_step = 1e-2;
 };
 
 /// Result of trim(): the equilibrium or steady state and how it was found.
@@ -191,7 +196,8 @@ struct TrimResult {
   /// max |ȧ| = max |∂a/∂q q̇| along the steady motion: 0 when the moving coordinates do not
   /// enter the accelerations (cyclic), else the state is only quasi-steady. 0 at equilibrium.
   double drift = 0.0;
-  int iterations = 0;
+  int iterations = 0;             ///< Newton's, or the pseudo-transient steps when it took them
+  bool pseudo_transient = false;  ///< found by pseudo-transient continuation after Newton failed
 };
 
 /// An equilibrium (v = 0, a = 0) from q0 by Newton's method on the exact Jacobian ∂a/∂x with a
