@@ -110,7 +110,8 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
              np = static_cast<long>(unknowns.positions.size());
   const StateJacobian J = jac.evaluate(dyn, t, q.data(), v.data());
   const TangentChart chart = tangent_chart(cm, q.data(), v.data());
-  const Eigen::MatrixXd Ax = J.a_q * chart.T;
+  const Eigen::SparseMatrix<double> T = chart.T.sparseView();
+  const Eigen::MatrixXd Ax = J.a_q * T;
   Linearised L;
   L.Af.resize(n, nu);
   for (long k = 0; k < np; ++k) L.Af.col(k) = Ax.col(unknowns.positions[static_cast<size_t>(k)]);
@@ -126,7 +127,7 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
   // G's null space too.
   L.Z = Eigen::MatrixXd::Identity(nu, nu);
   if (cm.m > 0) {
-    const Eigen::MatrixXd Cx = J.C_q * chart.T;
+    const Eigen::MatrixXd Cx = J.C_q * T;
     Eigen::MatrixXd Cf = Eigen::MatrixXd::Zero(Cx.rows(), nu);
     for (long k = 0; k < np; ++k) Cf.col(k) = Cx.col(unknowns.positions[static_cast<size_t>(k)]);
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> cq(Cf.transpose());
