@@ -131,7 +131,12 @@ Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_ends = false) 
         fmt::format("trim {:.3g} s, {} {}, max |a| = {:.1e}", clock.now().wall - s0, t.iterations,
                     t.pseudo_transient ? "Ψtc steps" : "iterations", t.residual);
   } catch (const std::exception& e) {
-    r.trim += fmt::format("trim failed: {:.90}", e.what());
+    // Newton's reason, then the continuation's (in parentheses) when it ran.
+    const std::string what = e.what();
+    const size_t ptc = what.find("pseudo-transient");
+    r.trim += fmt::format("trim failed: {:.90}", what);
+    if (ptc != std::string::npos)
+      r.trim += fmt::format("; Ψtc: {}", what.substr(ptc, what.find(')', ptc) + 1 - ptc));
   }
   return r;
 }
