@@ -178,13 +178,23 @@ std::string pseudo_transient(const DynamicsJacobian& jac, Dynamics& dyn, double 
     return Eigen::VectorXd(Z.transpose() * af);
   };
   double dtau = options.pseudo_step;
-  double previous = -1.0;
+  double previous = -1.0, best = INFINITY;
+  int since_best = 0;  // steps since max |a| last halved
   for (int it = 0;; ++it) {
     result.iterations = it;
     result.residual = r.a.size() ? r.a.cwiseAbs().maxCoeff() : 0.0;
     if (result.residual <= options.tol) return "";
     if (it == options.max_pseudo_steps)
       return fmt::format("{} steps, max |acceleration| = {:.3g}", it, result.residual);
+    if (result.residual < 0.5 * best) {
+      best = result.residual;
+      since_best = 0;
+    } else if (++since_best == 50) {
+      return fmt::format(
+          "stalled: max |acceleration| has not halved in 50 steps, {:.3g} after {} (at the "
+          "rounding floor of the accelerations when that is just above the tolerance)",
+          result.residual, it);
+    }
     const Linearised L = linearised_at(jac, dyn, t, result.q, result.v, unknowns, it);
     Eigen::MatrixXd Aff(np, np);
     for (long k = 0; k < np; ++k) Aff.row(k) = L.Af.row(unknowns.positions[static_cast<size_t>(k)]);
