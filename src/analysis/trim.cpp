@@ -179,7 +179,7 @@ std::string pseudo_transient(const DynamicsJacobian& jac, Dynamics& dyn, double 
   };
   double dtau = options.pseudo_step;
   double previous = -1.0, best = INFINITY;
-  int since_best = 0;  // steps since max |a| last halved
+  int since_best = 0;  // steps with a large Δτ since max |a| last halved
   for (int it = 0;; ++it) {
     result.iterations = it;
     result.residual = r.a.size() ? r.a.cwiseAbs().maxCoeff() : 0.0;
@@ -189,7 +189,9 @@ std::string pseudo_transient(const DynamicsJacobian& jac, Dynamics& dyn, double 
     if (result.residual < 0.5 * best) {
       best = result.residual;
       since_best = 0;
-    } else if (++since_best == 50) {
+    } else if (dtau > 1e4 * options.pseudo_step && ++since_best == 50) {
+      // Only once the steps are nearly Newton's: before that ‖a‖ may rise for a while as the
+      // slow modes start to move.
       return fmt::format(
           "stalled: max |acceleration| has not halved in 50 steps, {:.3g} after {} (at the "
           "rounding floor of the accelerations when that is just above the tolerance)",
