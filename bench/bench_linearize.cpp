@@ -78,7 +78,8 @@ std::string uniform_wind_balloon(int segments) {
 }
 
 struct Measured {
-  double build = 0, differentiate = 0, forward = 0, jacobian = 0, fd = 0, linearize = 0;
+  double build = 0, differentiate = 0, forward = 0, jacobian = 0, implicit = 0, fd = 0,
+         linearize = 0;
   double fd_difference = 0;  // max |exact − FD| / max |exact|
   size_t nonzeros = 0;
   std::string trim;  // "0.52 s, 6 iterations" or why it failed
@@ -103,6 +104,7 @@ Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_ends = false) 
       [&] { dyn.forward(0.0, q.data(), v.data(), qdot.data(), a.data(), lambda.data()); });
   StateJacobian J;
   r.jacobian = seconds_per_call([&] { J = jac.evaluate(dyn, 0.0, q.data(), v.data()); });
+  r.implicit = seconds_per_call([&] { (void)jac.implicit(dyn, 0.0, q.data(), v.data()); });
   Eigen::MatrixXd fd;
   r.fd = seconds_per_call([&] { fd = finite_difference_jacobian(dyn, q, v); });
   Eigen::MatrixXd exact(J.a_q.rows(), J.a_q.cols() + J.a_v.cols());
@@ -119,15 +121,22 @@ Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_ends = false) 
   try {
     const auto s0 = clock.now().wall;
     TrimOptions options;
+    options.tol = 1e-9;  // the CLI's default (`trim --tol`)
     if (fixed_ends) {
       options.free.assign(cm.nv, true);
       options.free.front() = options.free.back() = false;
     }
     const TrimResult t = trim(jac, dyn, 0.0, q, options);
-    r.trim += fmt::format("trim {:.3g} s, {} iterations, max |a| = {:.1e}", clock.now().wall - s0,
-                          t.iterations, t.residual);
+    r.trim +=
+        fmt::format("trim {:.3g} s, {} {}, max |a| = {:.1e}", clock.now().wall - s0, t.iterations,
+                    t.pseudo_transient ? "Ψtc steps" : "iterations", t.residual);
   } catch (const std::exception& e) {
-    r.trim += fmt::format("trim failed: {:.90}", e.what());
+    // Newton's reason, then the continuation's (in parentheses) when it ran.
+    const std::string what = e.what();
+    const size_t ptc = what.find("pseudo-transient");
+    r.trim += fmt::format("trim failed: {:.90}", what);
+    if (ptc != std::string::npos)
+      r.trim += fmt::format("; Ψtc: {}", what.substr(ptc, what.find(')', ptc) + 1 - ptc));
   }
   return r;
 }
@@ -183,19 +192,20 @@ int main(int argc, char** argv) {
          return bench::build_with([&] { return read_model_file(panda); }, Formulation::Lagrangian);
        },
        true}};
-  fmt::print("{:<24} {:>5} {:>8} {:>9} {:>10} {:>10} {:>8} {:>11} {:>8} {:>11} {:>9}  {}\n",
-             "model", "nv", "build s", "diff. s", "forward us", "jacobian", "jac/fwd",
-             "FD (2n fwd)", "FD/jac", "linearize s", "|J-FD|", "trim");
+  fmt::print(
+      "{:<24} {:>5} {:>8} {:>9} {:>10} {:>10} {:>8} {:>10} {:>8} {:>11} {:>8} {:>11} {:>9}  {}\n",
+      "model", "nv", "build s", "diff. s", "forward us", "jacobian", "jac/fwd", "implicit",
+      "imp/fwd", "FD (2n fwd)", "FD/jac", "linearize s", "|J-FD|", "trim");
   for (const Case& c : cases) {
     if (argc == 2 && c.label.find(argv[1]) == std::string::npos) continue;  // one model only
     bench::BuiltModel b = c.build();
     const Measured m = measure(b, true, c.fixed_ends);
     fmt::print(
-        "{:<24} {:>5} {:>8.3g} {:>9.3g} {:>10.3g} {:>8.3g}us {:>8.3g} {:>9.3g}us {:>8.3g} "
-        "{:>11.3g} {:>9.1e}  {}\n",
+        "{:<24} {:>5} {:>8.3g} {:>9.3g} {:>10.3g} {:>8.3g}us {:>8.3g} {:>8.3g}us {:>8.3g} "
+        "{:>9.3g}us {:>8.3g} {:>11.3g} {:>9.1e}  {}\n",
         c.label, b.compiled->nv, m.build, m.differentiate, 1e6 * m.forward, 1e6 * m.jacobian,
-        m.jacobian / m.forward, 1e6 * m.fd, m.fd / m.jacobian, m.linearize, m.fd_difference,
-        m.trim);
+        m.jacobian / m.forward, 1e6 * m.implicit, m.implicit / m.forward, 1e6 * m.fd,
+        m.fd / m.jacobian, m.linearize, m.fd_difference, m.trim);
     std::fflush(stdout);
   }
   return 0;

@@ -3,6 +3,7 @@
 // Jacobians, linearisation on the constraint manifold with modes, and trim (equilibria).
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <complex>
 #include <memory>
 #include <stdexcept>
@@ -37,6 +38,20 @@ struct StateJacobian {
   Eigen::MatrixXd y_q, y_v, y_w;   ///< their derivatives
 };
 
+/// The dynamics in implicit form at one state, Φ(q, v, a, λ) = (M a + Gᵀλ − f, G a − γ) = 0,
+/// with its sparse Jacobians (docs/theory.md §5.1, "Implicit form"): ∂(a, λ)/∂x = −K⁻¹ Phi_x.
+/// For implicit integrators and Newton solvers that factorise K themselves.
+struct ImplicitJacobian {
+  Eigen::VectorXd qdot, a, lambda;  ///< nq, nv, m (from Dynamics::forward)
+  Eigen::SparseMatrix<double> K;    ///< ∂Φ/∂(a, λ) = [M Gᵀ; G 0], (nv + m)²
+  Eigen::SparseMatrix<double> Phi_x;  ///< ∂Φ/∂(q, v, w), a and λ held: (nv + m) × (nq + nv + nw)
+  Eigen::SparseMatrix<double> qdot_x;  ///< ∂q̇/∂(q, v): nq × (nq + nv)
+};
+
+namespace analysis_detail {
+class KktLayout;
+}
+
 /// The dynamics tape's outputs (M, h + Q, q̇, G, c, Ċ, C) and named model outputs with their exact
 /// derivatives with respect to q, v and named inputs (model `inputs:` or parameters), compiled
 /// onto one tape that keeps only the structural non-zeros (docs/theory.md §5.1). Immutable.
@@ -67,6 +82,10 @@ class DynamicsJacobian {
   /// Throws AnalysisError when that matrix is singular.
   StateJacobian evaluate(Dynamics& dyn, double t, const double* q, const double* v) const;
 
+  /// The implicit form's sparse Jacobians at (t, q, v): one forward call, one evaluation of the
+  /// tape and one pass over its outputs, no factorisation (docs/theory.md §5.1).
+  ImplicitJacobian implicit(Dynamics& dyn, double t, const double* q, const double* v) const;
+
  private:
   std::shared_ptr<const CompiledModel> cm_;
   std::vector<std::string> input_names_, output_names_;
@@ -75,6 +94,12 @@ class DynamicsJacobian {
   size_t outputs_ = 0;           ///< model outputs among the values (after the dynamics')
   std::vector<std::pair<size_t, size_t>> pattern_;  ///< (value index, column) per derivative
   Tape tape_;
+  std::shared_ptr<const analysis_detail::KktLayout> layout_;
+  bool range_space_ = false;  ///< M block diagonal: the KKT solves in range-space form
+
+  /// Dynamics::forward into J's qdot, a, lambda (sized here), then the tape at its inputs.
+  std::vector<double> values_at(Dynamics& dyn, double t, const double* q, const double* v,
+                                ImplicitJacobian& J) const;
 };
 
 /// The exact Jacobian of y' = f(y), y = (q, v): [∂q̇/∂q ∂q̇/∂v; ∂a/∂q ∂a/∂v] from `jac` (for a
@@ -157,6 +182,11 @@ struct TrimOptions {
   std::vector<bool> free_rates;
   double tol = 1e-10;  ///< on max |a| (and max |C| for constrained models)
   int max_iterations = 50;
+  /// When Newton's method fails (not for varied rates): pseudo-transient continuation from the
+  /// start, at most this many steps (0: none), first pseudo-time step pseudo_step
+  /// (docs/theory.md §5.5).
+  int max_pseudo_steps = 400;
+  double pseudo_step = 1e-2;
 };
 
 /// Result of trim(): the equilibrium or steady state and how it was found.
@@ -166,7 +196,8 @@ struct TrimResult {
   /// max |ȧ| = max |∂a/∂q q̇| along the steady motion: 0 when the moving coordinates do not
   /// enter the accelerations (cyclic), else the state is only quasi-steady. 0 at equilibrium.
   double drift = 0.0;
-  int iterations = 0;
+  int iterations = 0;             ///< Newton's, or the pseudo-transient steps when it took them
+  bool pseudo_transient = false;  ///< found by pseudo-transient continuation after Newton failed
 };
 
 /// An equilibrium (v = 0, a = 0) from q0 by Newton's method on the exact Jacobian ∂a/∂x with a

@@ -196,9 +196,22 @@ class Model:
         tol: float = 1e-10,
         max_iterations: int = 50,
         t: float = 0.0,
+        steady: Sequence[str] = (),
+        v: Optional[ArrayLike] = None,
     ) -> SimpleNamespace:
-        """An equilibrium (v = 0, a = 0) by Newton's method from q (default: the initial
-        state), as `lagrange trim`: q, v, coordinates, iterations, residual."""
+        """An equilibrium (v = 0, a = 0) from q (default: the initial state) by Newton's method,
+        or pseudo-transient continuation when Newton fails, as `lagrange trim`; steady holds
+        those rates at their values in v (default: the initial rates): q, v, coordinates,
+        iterations, residual, drift, pseudo_transient."""
+    def jacobian(
+        self,
+        q: Optional[ArrayLike] = None,
+        v: Optional[ArrayLike] = None,
+        inputs: Sequence[str] = (),
+        t: float = 0.0,
+    ) -> SimpleNamespace:
+        """The exact Jacobians at (q, v): a, qdot, lam, a_q, a_v, a_w, qdot_q, qdot_v, G, C_q,
+        and the implicit form's K and Phi_x (dense), with d(a, lam)/dx = -K^-1 Phi_x."""
     def stepper(
         self,
         t_end: Optional[float] = None,

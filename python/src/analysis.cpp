@@ -9,6 +9,7 @@
 
 #include "arrays.hpp"
 #include "cli/commands.hpp"
+#include "cli/trim_setup.hpp"
 #include "lagrange/analysis.hpp"
 
 namespace py = pybind11;
@@ -86,8 +87,8 @@ py::object namespace_of(const py::dict& fields) {
 // modes() and discretize().
 py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
                            std::optional<py::object> v_in, const std::vector<std::string>& inputs,
-                           const std::vector<std::string>& outputs,
-                           std::optional<double> discrete, double t) {
+                           const std::vector<std::string>& outputs, std::optional<double> discrete,
+                           double t) {
   if (discrete && !(*discrete > 0)) throw py::value_error("discrete: expected a positive dt");
   const cli::Prepared& p = *m.prepared;
   LagrangianForm f = lagrangian_form(p);
@@ -122,37 +123,57 @@ py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
       py::arg("v") = to_array(v)));
 }
 
-// docs/theory.md §5.5 through the library, as `lagrange trim`.
+// docs/theory.md §5.5 through the library, as `lagrange trim` (the same option handling,
+// cli::trim_options; its usage errors become ValueError).
 py::object trim_model(const PyModel& m, std::optional<py::object> q_in,
                       const std::vector<std::string>& free, const std::vector<std::string>& fix,
-                      double tol, int max_iterations, double t) {
-  if (!(tol > 0)) throw py::value_error("tol: expected a positive tolerance");
+                      double tol, int max_iterations, double t,
+                      const std::vector<std::string>& steady, std::optional<py::object> v_in) {
   const cli::Prepared& p = *m.prepared;
   LagrangianForm f = lagrangian_form(p);
   std::vector<double> q, v;
-  operating_point(p, *f.dynamics, t, q_in, std::nullopt, q, v);
+  operating_point(p, *f.dynamics, t, q_in, v_in, q, v);
   const CompiledModel& cm = *f.compiled;
-  const TangentChart chart = tangent_chart(cm, q.data(), v.data());
-  const auto index = [&](const char* what, const std::string& name) {
-    const auto it = std::find(chart.names.begin(), chart.names.end(), name);
-    if (it == chart.names.end())
-      throw py::value_error(std::string(what) + ": no coordinate '" + name + "' in the model");
-    return static_cast<size_t>(it - chart.names.begin());
-  };
-  TrimOptions options;
-  options.free.assign(chart.names.size(), free.empty());
-  for (const auto& name : free) options.free[index("free", name)] = true;
-  for (const auto& name : fix) options.free[index("fix", name)] = false;
-  if (std::none_of(options.free.begin(), options.free.end(), [](bool b) { return b; }))
-    throw py::value_error("free/fix leave no coordinate for trim to vary");
-  options.tol = tol;
+  cli::Options opt;
+  opt.free = free;
+  opt.fix = fix;
+  opt.steady = steady;
+  opt.tol = tol;
+  TrimOptions options = cli::trim_options(cm, q, v, opt);
   options.max_iterations = max_iterations;
   const DynamicsJacobian jac(*f.equations, f.compiled);
-  const TrimResult r = trim(jac, *f.dynamics, t, q, options);
+  const TrimResult r = trim(jac, *f.dynamics, t, q, v, options);
   return namespace_of(py::dict(py::arg("q") = to_array(r.q), py::arg("v") = to_array(r.v),
                                py::arg("coordinates") = cm.coordinate_names,
                                py::arg("iterations") = r.iterations,
-                               py::arg("residual") = r.residual));
+                               py::arg("residual") = r.residual, py::arg("drift") = r.drift,
+                               py::arg("pseudo_transient") = r.pseudo_transient));
+}
+
+// docs/theory.md §5.1 through the library: DynamicsJacobian::evaluate and ::implicit.
+py::object jacobian_model(const PyModel& m, std::optional<py::object> q_in,
+                          std::optional<py::object> v_in, const std::vector<std::string>& inputs,
+                          double t) {
+  const cli::Prepared& p = *m.prepared;
+  LagrangianForm f = lagrangian_form(p);
+  std::unique_ptr<DynamicsJacobian> jac;
+  try {
+    jac = std::make_unique<DynamicsJacobian>(*f.equations, f.compiled, inputs);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("inputs: ") + e.what());
+  }
+  std::vector<double> q, v;
+  operating_point(p, *f.dynamics, t, q_in, v_in, q, v);
+  const StateJacobian J = jac->evaluate(*f.dynamics, t, q.data(), v.data());
+  const ImplicitJacobian I = jac->implicit(*f.dynamics, t, q.data(), v.data());
+  return namespace_of(
+      py::dict(py::arg("a") = J.a, py::arg("qdot") = J.qdot, py::arg("lam") = J.lambda,
+               py::arg("a_q") = J.a_q, py::arg("a_v") = J.a_v, py::arg("a_w") = J.a_w,
+               py::arg("qdot_q") = J.qdot_q, py::arg("qdot_v") = J.qdot_v, py::arg("G") = J.G,
+               py::arg("C_q") = J.C_q, py::arg("inputs") = jac->input_names(),
+               py::arg("K") = Eigen::MatrixXd(I.K), py::arg("Phi_x") = Eigen::MatrixXd(I.Phi_x),
+               py::arg("nonzeros") = jac->nonzeros(), py::arg("q") = to_array(q),
+               py::arg("v") = to_array(v)));
 }
 
 }  // namespace lagrange::python

@@ -20,11 +20,19 @@ pybind11::object linearize_model(const PyModel& m, std::optional<pybind11::objec
                                  const std::vector<std::string>& outputs,
                                  std::optional<double> discrete, double t);
 
-/// An equilibrium from q (default: the initial state) varying the `free` tangent coordinates
-/// (all when empty) minus `fix`: q, v = 0, iterations and residual as a types.SimpleNamespace.
+/// An equilibrium or, with `steady` rates held at their values in v (default: the initial
+/// rates), a steady state from q, varying `free` minus `fix` as `lagrange trim` does: q, v,
+/// iterations, residual, drift and pseudo_transient as a types.SimpleNamespace.
 pybind11::object trim_model(const PyModel& m, std::optional<pybind11::object> q,
                             const std::vector<std::string>& free,
                             const std::vector<std::string>& fix, double tol, int max_iterations,
-                            double t);
+                            double t, const std::vector<std::string>& steady,
+                            std::optional<pybind11::object> v);
+
+/// The exact Jacobians at (q, v) (default: the initial state): ∂a/∂(q, v, inputs), ∂q̇/∂(q, v),
+/// G, ∂C/∂q, and the implicit form's K and ∂Φ/∂(q, v, inputs) (dense numpy).
+pybind11::object jacobian_model(const PyModel& m, std::optional<pybind11::object> q,
+                                std::optional<pybind11::object> v,
+                                const std::vector<std::string>& inputs, double t);
 
 }  // namespace lagrange::python

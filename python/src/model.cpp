@@ -256,9 +256,18 @@ void bind_model(py::module_& m) {
            py::arg("free") = std::vector<std::string>{},
            py::arg("fix") = std::vector<std::string>{}, py::arg("tol") = 1e-10,
            py::arg("max_iterations") = 50, py::arg("t") = 0.0,
-           "An equilibrium (v = 0, a = 0) by Newton's method from q (default: the initial "
-           "state), as `lagrange trim`: a namespace with q, v, coordinates, iterations and "
-           "residual. Raises AnalysisError saying why when Newton stalls.")
+           py::arg("steady") = std::vector<std::string>{}, py::arg("v") = py::none(),
+           "An equilibrium (v = 0, a = 0) from q (default: the initial state) by Newton's "
+           "method, or pseudo-transient continuation when Newton fails, as `lagrange trim`; "
+           "steady=['phi_dot', …] holds those rates at their values in v (default: the initial "
+           "rates), a steady state. A namespace with q, v, coordinates, iterations, residual, "
+           "drift and pseudo_transient. Raises AnalysisError saying why when it stalls.")
+      .def("jacobian", &jacobian_model, py::arg("q") = py::none(), py::arg("v") = py::none(),
+           py::arg("inputs") = std::vector<std::string>{}, py::arg("t") = 0.0,
+           "The exact Jacobians at (q, v) (default: the initial state): a namespace with a, "
+           "qdot, lam, a_q, a_v, a_w (columns: inputs, model inputs or parameters), qdot_q, "
+           "qdot_v, G, C_q, and the implicit form's K = [M Gᵀ; G 0] and Phi_x = ∂Φ/∂(q, v, "
+           "inputs) (dense numpy), with ∂(a, λ)/∂x = −K⁻¹ Phi_x.")
       .def("stepper", &make_stepper, py::arg("t_end") = py::none(),
            py::arg("integrator") = py::none(), py::arg("rtol") = py::none(),
            py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("compile") = "auto",

@@ -6,10 +6,13 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <cmath>
 #include <map>
 
-#include "symbolic/memo_diff.hpp"
+#include "analysis/kkt_layout.hpp"
+#include "dynamics/sparse_range_space.hpp"
 #include "lagrange/analysis.hpp"
+#include "symbolic/memo_diff.hpp"
 
 namespace lagrange {
 
@@ -36,34 +39,24 @@ size_t named_input(const CompiledModel& cm, const std::string& name) {
 // differences through the forward call at 200 segments (docs/benchmarks.md).
 constexpr long kSparseKkt = 120;
 
+[[noreturn]] void throw_singular(double t) {
+  throw AnalysisError(
+      fmt::format("the KKT matrix [M Gᵀ; G 0] is singular at t = {}: redundant constraints "
+                  "or a mass matrix singular on the constraint manifold",
+                  t));
+}
+
 // [M Gᵀ; G 0] X = R by a sparse LU (COLAMD ordering, threshold partial pivoting; the matrix is
 // indefinite). AnalysisError when it is singular or the solution of a finite R is not finite.
-Eigen::MatrixXd sparse_kkt_solve(const Eigen::MatrixXd& M, const Eigen::MatrixXd& G,
-                                 const Eigen::MatrixXd& R, double t) {
-  const long n = M.rows(), m = G.rows();
-  std::vector<Eigen::Triplet<double>> entries;
-  for (long j = 0; j < n; ++j)
-    for (long i = 0; i < n; ++i)
-      if (M(i, j) != 0.0) entries.emplace_back(i, j, M(i, j));
-  for (long j = 0; j < n; ++j)
-    for (long r = 0; r < m; ++r)
-      if (G(r, j) != 0.0) {
-        entries.emplace_back(n + r, j, G(r, j));
-        entries.emplace_back(j, n + r, G(r, j));
-      }
-  Eigen::SparseMatrix<double> K(n + m, n + m);
-  K.setFromTriplets(entries.begin(), entries.end());
+Eigen::MatrixXd sparse_kkt_solve(const Eigen::SparseMatrix<double>& K, const Eigen::MatrixXd& R,
+                                 double t) {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   lu.compute(K);
   Eigen::MatrixXd X;
   if (lu.info() == Eigen::Success) X = lu.solve(R);
   // A right-hand side that is not finite (a derivative of |x| at 0) passes through to the
   // caller, which says the dynamics are not differentiable there.
-  if (lu.info() != Eigen::Success || (!X.allFinite() && R.allFinite()))
-    throw AnalysisError(
-        fmt::format("the KKT matrix [M Gᵀ; G 0] is singular at t = {}: redundant constraints "
-                    "or a mass matrix singular on the constraint manifold",
-                    t));
+  if (lu.info() != Eigen::Success || (!X.allFinite() && R.allFinite())) throw_singular(t);
   return X;
 }
 
@@ -148,32 +141,50 @@ DynamicsJacobian::DynamicsJacobian(const Equations& eq, std::shared_ptr<const Co
     }
   }
   tape_ = Tape::compile(all, in);
+  layout_ = std::make_shared<analysis_detail::KktLayout>(c, pattern_, values_, columns_.size());
+  range_space_ =
+      c.m > 0 && static_cast<long>(c.nv + c.m) > kSparseKkt && dynamics::SparseRangeSpace::suits(c);
+}
+
+std::vector<double> DynamicsJacobian::values_at(Dynamics& dyn, double t, const double* q,
+                                                const double* v, ImplicitJacobian& J) const {
+  const CompiledModel& c = *cm_;
+  J.qdot.resize(static_cast<long>(c.nq));
+  J.a.resize(static_cast<long>(c.nv));
+  J.lambda.resize(static_cast<long>(c.m));
+  dyn.forward(t, q, v, J.qdot.data(), J.a.data(), J.lambda.data());
+  std::vector<double> out(tape_.num_outputs()), work(std::max<size_t>(tape_.work_size(), 1));
+  tape_.eval(dyn.last_inputs().data(), out.data(), work.data());
+  return out;
+}
+
+ImplicitJacobian DynamicsJacobian::implicit(Dynamics& dyn, double t, const double* q,
+                                            const double* v) const {
+  ImplicitJacobian J;
+  const std::vector<double> out = values_at(dyn, t, q, v, J);
+  layout_->assemble(out.data(), J.a.data(), J.lambda.data(), dyn.baumgarte(), J);
+  return J;
 }
 
 // docs/theory.md §5.1: differentiating M a + Gᵀλ = f, G a = γ (γ = −c − 2αĊ − α²C) along a
-// column x gives [M Gᵀ; G 0][a'; λ'] = [f' − M'a − G'ᵀλ; γ' − G'a], one solve for all columns.
+// column x gives [M Gᵀ; G 0][a'; λ'] = [f' − M'a − G'ᵀλ; γ' − G'a] = −∂Φ/∂x, one factorisation
+// for all columns; with a block-diagonal M in range-space form, column by column on the sparse
+// right-hand sides.
 StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* q,
                                          const double* v) const {
   const CompiledModel& c = *cm_;
   const long n = static_cast<long>(c.nv), m = static_cast<long>(c.m);
   const long nq = static_cast<long>(c.nq), nw = static_cast<long>(input_names_.size());
   const long ny = static_cast<long>(outputs_);
+  ImplicitJacobian I;
+  const std::vector<double> out = values_at(dyn, t, q, v, I);
+  layout_->assemble(out.data(), I.a.data(), I.lambda.data(), dyn.baumgarte(), I);
   StateJacobian J;
-  J.qdot.resize(nq);
-  J.a.resize(n);
-  J.lambda.resize(m);
-  dyn.forward(t, q, v, J.qdot.data(), J.a.data(), J.lambda.data());
-  const double alpha = dyn.baumgarte();
-
-  std::vector<double> out(tape_.num_outputs()), work(std::max<size_t>(tape_.work_size(), 1));
-  tape_.eval(dyn.last_inputs().data(), out.data(), work.data());
-
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
-  for (size_t e = 0; e < c.M_pattern.size(); ++e) {
-    const long i = static_cast<long>(c.M_pattern[e].first);
-    const long j = static_cast<long>(c.M_pattern[e].second);
-    M(i, j) = M(j, i) = out[e];
-  }
+  J.qdot = std::move(I.qdot);
+  J.a = std::move(I.a);
+  J.lambda = std::move(I.lambda);
+  J.qdot_q = I.qdot_x.leftCols(nq);
+  J.qdot_v = I.qdot_x.rightCols(n);
   J.G = Eigen::MatrixXd::Zero(m, n);
   for (size_t e = 0; e < c.G_pattern.size(); ++e)
     J.G(static_cast<long>(c.G_pattern[e].first), static_cast<long>(c.G_pattern[e].second)) =
@@ -181,76 +192,77 @@ StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* 
   J.y.resize(ny);
   for (long k = 0; k < ny; ++k) J.y[k] = out[c.Cq_out() + static_cast<size_t>(k)];
 
+  // ∂C/∂q, ∂Ċ/∂q and the outputs' derivatives: the pattern is ordered by value index.
   const long cols = static_cast<long>(columns_.size());
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(n + m, cols), Y = Eigen::MatrixXd::Zero(ny, cols);
+  Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(ny, cols);
   J.C_q = Eigen::MatrixXd::Zero(m, nq);
   J.Cdot_q = Eigen::MatrixXd::Zero(m, nq);
-  J.qdot_q = Eigen::MatrixXd::Zero(nq, nq);
-  J.qdot_v = Eigen::MatrixXd::Zero(nq, n);
-  for (size_t e = 0; e < pattern_.size(); ++e) {
-    const size_t r = pattern_[e].first;
-    const long k = static_cast<long>(pattern_[e].second);
-    const double d = out[values_ + e];
-    if (r < c.rhs_out()) {  // M' a
-      const long i = static_cast<long>(c.M_pattern[r].first);
-      const long j = static_cast<long>(c.M_pattern[r].second);
-      R(i, k) -= d * J.a[j];
-      if (i != j) R(j, k) -= d * J.a[i];
-    } else if (r < c.qdot_out()) {  // f'
-      R(static_cast<long>(r - c.rhs_out()), k) += d;
-    } else if (r < c.G_out()) {  // q̇'
-      const long row = static_cast<long>(r - c.qdot_out());
-      if (k < nq)
-        J.qdot_q(row, k) = d;
-      else if (k < nq + n)
-        J.qdot_v(row, k - nq) = d;
-    } else if (r < c.c_out()) {  // G'ᵀλ and G'a
-      const long row = static_cast<long>(c.G_pattern[r - c.G_out()].first);
-      const long j = static_cast<long>(c.G_pattern[r - c.G_out()].second);
-      R(j, k) -= d * J.lambda[row];
-      R(n + row, k) -= d * J.a[j];
-    } else if (r < c.Cdot_out()) {  // c'
-      R(n + static_cast<long>(r - c.c_out()), k) -= d;
-    } else if (r < c.C_out()) {  // Ċ'
-      const long row = static_cast<long>(r - c.Cdot_out());
-      R(n + row, k) -= 2.0 * alpha * d;
-      if (k < nq) J.Cdot_q(row, k) = d;
-    } else if (r < c.Cq_out()) {  // C'
-      const long row = static_cast<long>(r - c.C_out());
-      R(n + row, k) -= alpha * alpha * d;
-      if (k < nq) J.C_q(row, k) = d;
-    } else {  // the model's outputs
+  const auto first =
+      std::lower_bound(pattern_.begin(), pattern_.end(), std::make_pair(c.Cdot_out(), size_t{0}));
+  for (auto it = first; it != pattern_.end(); ++it) {
+    const auto [r, col] = *it;
+    const long k = static_cast<long>(col);
+    const double d = out[values_ + static_cast<size_t>(it - pattern_.begin())];
+    if (r < c.C_out()) {
+      if (k < nq) J.Cdot_q(static_cast<long>(r - c.Cdot_out()), k) = d;
+    } else if (r < c.Cq_out()) {
+      if (k < nq) J.C_q(static_cast<long>(r - c.C_out()), k) = d;
+    } else {
       Y(static_cast<long>(r - c.Cq_out()), k) = d;
     }
   }
 
-  Eigen::MatrixXd X;
-  if (m == 0) {
-    Eigen::LLT<Eigen::MatrixXd> llt(M);
-    const double scale = n ? M.diagonal().cwiseAbs().maxCoeff() : 1.0;
-    if (llt.info() != Eigen::Success ||
-        (n && !(llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > 1e-13 * scale)))
-      throw AnalysisError(fmt::format("the mass matrix is singular at t = {}", t));
-    X = llt.solve(R);
-  } else if (n + m > kSparseKkt) {
-    X = sparse_kkt_solve(M, J.G, R, t);
+  J.a_q.resize(n, nq);
+  J.a_v.resize(n, n);
+  J.a_w.resize(n, nw);
+  if (range_space_) {
+    // Column blocks of kBlock right-hand sides, so that they stay in cache.
+    dynamics::SparseRangeSpace kkt(c);
+    const double* g = out.data() + c.G_out();
+    if (!kkt.factorize(out.data(), g)) throw_singular(t);
+    constexpr long kBlock = 64;
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMajor R(n + m, kBlock), A(n, kBlock);
+    bool finite = true;
+    for (long k0 = 0; k0 < cols; k0 += kBlock) {
+      const long kc = std::min(kBlock, cols - k0);
+      R.setZero();
+      for (long k = 0; k < kc; ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator e(I.Phi_x, k0 + k); e; ++e) {
+          R(e.row(), k) = -e.value();
+          finite = finite && std::isfinite(e.value());
+        }
+      kkt.solve_factored(g, static_cast<size_t>(kBlock), R.data(), R.data() + n * kBlock, A.data());
+      for (long k = 0; k < kc; ++k) {
+        const long col = k0 + k;
+        (col < nq       ? J.a_q.col(col)
+         : col < nq + n ? J.a_v.col(col - nq)
+                        : J.a_w.col(col - nq - n)) = A.col(k);
+      }
+    }
+    if (finite && !(J.a_q.allFinite() && J.a_v.allFinite() && J.a_w.allFinite())) throw_singular(t);
   } else {
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
-    K.topLeftCorner(n, n) = M;
-    K.topRightCorner(n, m) = J.G.transpose();
-    K.bottomLeftCorner(m, n) = J.G;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
-    const auto d = lu.matrixLU().diagonal().cwiseAbs();
-    if (!(d.minCoeff() > 1e-13 * d.maxCoeff()))
-      throw AnalysisError(
-          fmt::format("the KKT matrix [M Gᵀ; G 0] is singular at t = {}: redundant constraints "
-                      "or a mass matrix singular on the constraint manifold",
-                      t));
-    X = lu.solve(R);
+    Eigen::MatrixXd X(n, cols);  // ∂a/∂(q, v, w)
+    if (m == 0) {
+      const Eigen::MatrixXd M = I.K;
+      Eigen::LLT<Eigen::MatrixXd> llt(M);
+      const double scale = n ? M.diagonal().cwiseAbs().maxCoeff() : 1.0;
+      if (llt.info() != Eigen::Success ||
+          (n && !(llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > 1e-13 * scale)))
+        throw AnalysisError(fmt::format("the mass matrix is singular at t = {}", t));
+      X = llt.solve(-Eigen::MatrixXd(I.Phi_x));
+    } else if (n + m > kSparseKkt) {
+      X = sparse_kkt_solve(I.K, -Eigen::MatrixXd(I.Phi_x), t).topRows(n);
+    } else {
+      Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(I.K));
+      const auto d = lu.matrixLU().diagonal().cwiseAbs();
+      if (!(d.minCoeff() > 1e-13 * d.maxCoeff())) throw_singular(t);
+      X = lu.solve(-Eigen::MatrixXd(I.Phi_x)).topRows(n);
+    }
+    J.a_q = X.leftCols(nq);
+    J.a_v = X.middleCols(nq, n);
+    J.a_w = X.rightCols(nw);
   }
-  J.a_q = X.topLeftCorner(n, nq);
-  J.a_v = X.block(0, nq, n, n);
-  J.a_w = X.topRightCorner(n, nw);
   J.y_q = Y.leftCols(nq);
   J.y_v = Y.block(0, nq, ny, n);
   J.y_w = Y.rightCols(nw);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 
@@ -71,21 +72,18 @@ void require_finite(const Eigen::MatrixXd& X, const std::vector<std::string>& ro
 //   A = [∂ẋ/∂x  1; (∂a/∂q) T  ∂a/∂v],  B = [0; ∂a/∂w];
 // on {C = 0, Ċ = 0} the dependent coordinates d follow from J_M z = 0,
 //   J_M = [C_q T  0; Ċ_q T  G],  z_d = −J_M,d⁻¹ J_M,i z_i  (z = W z_i),
-// and the reduced model is A_r = S A W, B_r = S B (S selects the independent rows).
+// and the reduced model is A_r = S A W, B_r = S B (S selects the independent rows). J_M,d is
+// block lower triangular and A's top rows are [∂ẋ/∂x 1], so A_r is formed from blocks of
+// size (n − m) × m (docs/theory.md §5.3, "Cost").
 LinearModel linearize(const DynamicsJacobian& jac, Dynamics& dyn, double t, const double* q,
                       const double* v, const std::vector<std::string>& outputs) {
   const CompiledModel& cm = jac.model();
   const long n = static_cast<long>(cm.nv), m = static_cast<long>(cm.m);
   const StateJacobian J = jac.evaluate(dyn, t, q, v);
   const TangentChart chart = tangent_chart(cm, q, v);
-
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  A.topLeftCorner(n, n) = chart.rate_x;
-  A.topRightCorner(n, n).setIdentity();
-  A.bottomLeftCorner(n, n) = J.a_q * chart.T;
-  A.bottomRightCorner(n, n) = J.a_v;
-  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(2 * n, J.a_w.cols());
-  B.bottomRows(n) = J.a_w;
+  const Eigen::SparseMatrix<double> T = chart.T.sparseView();
+  const Eigen::SparseMatrix<double> rate = chart.rate_x.sparseView();
+  const Eigen::MatrixXd Ax = J.a_q * T;
 
   LinearModel lin;
   lin.input_names = jac.input_names();
@@ -94,63 +92,83 @@ LinearModel linearize(const DynamicsJacobian& jac, Dynamics& dyn, double t, cons
                               cm.velocity_names.end());
   lin.equilibrium_residual = std::max(J.qdot.size() ? J.qdot.cwiseAbs().maxCoeff() : 0.0,
                                       J.a.size() ? J.a.cwiseAbs().maxCoeff() : 0.0);
+  require_finite(Ax, cm.velocity_names, chart.names, "A");
+  require_finite(J.a_v, cm.velocity_names, cm.velocity_names, "A");
+  require_finite(J.a_w, cm.velocity_names, lin.input_names, "B");
 
-  // Independent coordinates: column-pivoted QR of C_x = C_q T puts m well-conditioned dependent
-  // coordinates first; their velocities are dependent too.
-  std::vector<long> independent;
-  Eigen::MatrixXd W;
-  if (m == 0) {
-    for (long i = 0; i < 2 * n; ++i) independent.push_back(i);
-    W = Eigen::MatrixXd::Identity(2 * n, 2 * n);
-  } else {
-    const Eigen::MatrixXd Cx = J.C_q * chart.T;
+  // Independent coordinates i: column-pivoted QR of C_x = C_q T puts m well-conditioned
+  // dependent coordinates d first; their velocities are dependent too.
+  std::vector<long> d, independent;
+  Eigen::MatrixXd Cx;
+  if (m > 0) {
+    Cx = J.C_q * T;
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Cx);
     if (qr.rank() < m)
       throw AnalysisError(fmt::format(
           "the constraints are redundant at the operating point (rank {} of {})", qr.rank(), m));
     std::vector<bool> dep(static_cast<size_t>(n), false);
     for (long k = 0; k < m; ++k) dep[static_cast<size_t>(qr.colsPermutation().indices()[k])] = true;
-    std::vector<long> d;
     for (long i = 0; i < n; ++i) (dep[static_cast<size_t>(i)] ? d : independent).push_back(i);
-    for (long i : d) lin.dependent.push_back(chart.names[static_cast<size_t>(i)]);
-    const size_t ni = independent.size();
-    for (size_t k = 0; k < ni; ++k) independent.push_back(independent[k] + n);
-    for (size_t k = 0; k < static_cast<size_t>(m); ++k) d.push_back(d[k] + n);
-    Eigen::MatrixXd JM = Eigen::MatrixXd::Zero(2 * m, 2 * n);
-    JM.topLeftCorner(m, n) = Cx;
-    JM.bottomLeftCorner(m, n) = J.Cdot_q * chart.T;
-    JM.bottomRightCorner(m, n) = J.G;
-    const long r = static_cast<long>(independent.size());
-    Eigen::MatrixXd Jd(2 * m, 2 * m), Ji(2 * m, r);
-    for (long k = 0; k < 2 * m; ++k) Jd.col(k) = JM.col(d[static_cast<size_t>(k)]);
-    for (long k = 0; k < r; ++k) Ji.col(k) = JM.col(independent[static_cast<size_t>(k)]);
-    const Eigen::MatrixXd Zd = -Jd.partialPivLu().solve(Ji);
-    W = Eigen::MatrixXd::Zero(2 * n, r);
-    for (long k = 0; k < r; ++k) W(independent[static_cast<size_t>(k)], k) = 1.0;
-    for (long k = 0; k < 2 * m; ++k) W.row(d[static_cast<size_t>(k)]) = Zd.row(k);
+  } else {
+    for (long i = 0; i < n; ++i) independent.push_back(i);
   }
-  const long r = static_cast<long>(independent.size());
-  require_finite(A, lin.full_state_names, lin.full_state_names, "A");
-  require_finite(B, lin.full_state_names, lin.input_names, "B");
+  for (long i : d) lin.dependent.push_back(chart.names[static_cast<size_t>(i)]);
+  const long ni = static_cast<long>(independent.size()), r = 2 * ni;
+
+  // z_d = W_d z_i: positions δx_d = Z1 δx_i (C_x δx = 0), velocities
+  // δv_d = Z2 δx_i + Z3 δv_i (Ċ_x δx + G δv = 0).
+  Eigen::MatrixXd Z1(m, ni), Z2(m, ni), Z3(m, ni);
+  if (m > 0) {
+    const Eigen::MatrixXd Cdx = J.Cdot_q * T;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> Cd(Cx(Eigen::all, d));
+    const Eigen::PartialPivLU<Eigen::MatrixXd> Gd(J.G(Eigen::all, d));
+    Z1 = -Cd.solve(Cx(Eigen::all, independent));
+    Z2 = -Gd.solve(Cdx(Eigen::all, independent) + Cdx(Eigen::all, d) * Z1);
+    Z3 = -Gd.solve(J.G(Eigen::all, independent));
+  }
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(2 * n, r);
+  for (long k = 0; k < ni; ++k) {
+    W(independent[static_cast<size_t>(k)], k) = 1.0;
+    W(n + independent[static_cast<size_t>(k)], ni + k) = 1.0;
+  }
+  for (long k = 0; k < m; ++k) {
+    const long row = d[static_cast<size_t>(k)];
+    W.row(row).head(ni) = Z1.row(k);
+    W.row(n + row).head(ni) = Z2.row(k);
+    W.row(n + row).tail(ni) = Z3.row(k);
+  }
+
+  // A_r = S A W: position rows (∂ẋ/∂x W_x + W_v)_i, velocity rows
+  // [Ax_ii + Ax_id Z1 + a_v,id Z2,  a_v,ii + a_v,id Z3].
   lin.A.resize(r, r);
-  lin.B.resize(r, B.cols());
-  const Eigen::MatrixXd AW = A * W;
-  for (long k = 0; k < r; ++k) {
-    lin.A.row(k) = AW.row(independent[static_cast<size_t>(k)]);
-    lin.B.row(k) = B.row(independent[static_cast<size_t>(k)]);
-    lin.state_names.push_back(
-        lin.full_state_names[static_cast<size_t>(independent[static_cast<size_t>(k)])]);
+  lin.A.setZero();
+  if (rate.nonZeros() > 0) lin.A.topRows(ni) = (rate * W.topRows(n))(independent, Eigen::all);
+  lin.A.block(0, ni, ni, ni) += Eigen::MatrixXd::Identity(ni, ni);
+  const Eigen::MatrixXd av_id = J.a_v(independent, d);
+  lin.A.bottomLeftCorner(ni, ni) = Ax(independent, independent);
+  lin.A.bottomRightCorner(ni, ni) = J.a_v(independent, independent);
+  if (m > 0) {
+    lin.A.bottomLeftCorner(ni, ni) += Ax(independent, d) * Z1 + av_id * Z2;
+    lin.A.bottomRightCorner(ni, ni) += av_id * Z3;
   }
-  lin.basis = W;
+  lin.B = Eigen::MatrixXd::Zero(r, J.a_w.cols());
+  lin.B.bottomRows(ni) = J.a_w(independent, Eigen::all);
+  for (long k = 0; k < ni; ++k)
+    lin.state_names.push_back(
+        chart.names[static_cast<size_t>(independent[static_cast<size_t>(k)])]);
+  for (long k = 0; k < ni; ++k)
+    lin.state_names.push_back(
+        cm.velocity_names[static_cast<size_t>(independent[static_cast<size_t>(k)])]);
+  lin.basis = std::move(W);
   if (outputs.empty()) {
     lin.output_names = lin.state_names;
     lin.C = Eigen::MatrixXd::Identity(r, r);
-    lin.D = Eigen::MatrixXd::Zero(r, B.cols());
+    lin.D = Eigen::MatrixXd::Zero(r, lin.B.cols());
   } else {
     lin.output_names = outputs;
     Eigen::MatrixXd Cfull;
     output_rows(jac, chart, J, outputs, Cfull, lin.D);
-    lin.C = Cfull * W;
+    lin.C = Cfull * lin.basis;
   }
   return lin;
 }

@@ -77,10 +77,13 @@ TrimResult trim_prepared(Prepared& p, const DynamicsJacobian& jac, const TrimOpt
 }
 
 std::string trim_summary(const TrimResult& r, bool steady, double tol) {
-  std::string s =
-      fmt::format("{} found by Newton's method in {} iteration{}, max |acceleration| = {:.3g}",
-                  steady ? "steady state" : "equilibrium", r.iterations,
-                  r.iterations == 1 ? "" : "s", r.residual);
+  std::string s = fmt::format("{} found by {} in {} {}{}, max |acceleration| = {:.3g}",
+                              steady ? "steady state" : "equilibrium",
+                              r.pseudo_transient
+                                  ? "pseudo-transient continuation (Newton's method alone failed)"
+                                  : "Newton's method",
+                              r.iterations, r.pseudo_transient ? "step" : "iteration",
+                              r.iterations == 1 ? "" : "s", r.residual);
   if (!steady) return s;
   return s + fmt::format("; {} along the motion: max |da/dt| = {:.3g}",
                          r.drift <= tol ? "steady" : "only quasi-steady, the accelerations change",

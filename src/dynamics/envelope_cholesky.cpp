@@ -54,4 +54,30 @@ void EnvelopeCholesky::solve(double* b) const {
   }
 }
 
+void EnvelopeCholesky::solve_rows(double* B, size_t k) const {
+  const size_t m = first_.size();
+  for (size_t i = 0; i < m; ++i) {  // L Y = B, a row at a time
+    const double* row = values_.data() + offset_[i] - first_[i];
+    double* bi = B + i * k;
+    for (size_t j = first_[i]; j < i; ++j) {
+      const double l = row[j];
+      const double* bj = B + j * k;
+      for (size_t c = 0; c < k; ++c) bi[c] -= l * bj[c];
+    }
+    const double inv = 1.0 / row[i];
+    for (size_t c = 0; c < k; ++c) bi[c] *= inv;
+  }
+  for (size_t i = m; i-- > 0;) {  // Lᵀ X = Y
+    const double* row = values_.data() + offset_[i] - first_[i];
+    double* bi = B + i * k;
+    const double inv = 1.0 / row[i];
+    for (size_t c = 0; c < k; ++c) bi[c] *= inv;
+    for (size_t j = first_[i]; j < i; ++j) {
+      const double l = row[j];
+      double* bj = B + j * k;
+      for (size_t c = 0; c < k; ++c) bj[c] -= l * bi[c];
+    }
+  }
+}
+
 }  // namespace lagrange::dynamics

@@ -25,6 +25,8 @@ class EnvelopeCholesky {
   bool factorize();
   /// Solve L Lᵀ x = b in place.
   void solve(double* b) const;
+  /// Solve L Lᵀ X = B in place for k right-hand sides, B row-major (size() × k).
+  void solve_rows(double* B, size_t k) const;
 
  private:
   std::vector<size_t> first_, offset_;

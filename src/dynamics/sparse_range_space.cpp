@@ -106,8 +106,7 @@ void SparseRangeSpace::apply_inverse(double* x) {
   }
 }
 
-bool SparseRangeSpace::solve(const double* m_values, const double* g, const double* rhs,
-                             const double* gamma, double* a, double* lambda) {
+bool SparseRangeSpace::factorize(const double* m_values, const double* g) {
   // M⁻¹ block by block (a block of one velocity is 1/M_jj).
   std::fill(inverse_.begin(), inverse_.end(), 0.0);
   for (size_t e = 0; e < M_.size(); ++e) {
@@ -130,12 +129,16 @@ bool SparseRangeSpace::solve(const double* m_values, const double* g, const doub
     const Block Minv = llt.solve(Block::Identity(k, k));
     Eigen::Map<Eigen::MatrixXd>(inv, k, k) = Minv;  // symmetric: row- or column-major alike
   }
-  for (size_t j = 0; j < n_; ++j) a0_[static_cast<long>(j)] = rhs[j];
-  apply_inverse(a0_.data());
   double* values = S_.values();
   std::fill(values, values + S_.num_values(), 0.0);
   for (const auto& c : contributions_) values[c.value] += g[c.g1] * inverse_[c.inverse] * g[c.g2];
-  if (!S_.factorize()) return false;
+  return S_.factorize();
+}
+
+void SparseRangeSpace::solve_factored(const double* g, const double* rhs, const double* gamma,
+                                      double* a, double* lambda) {
+  for (size_t j = 0; j < n_; ++j) a0_[static_cast<long>(j)] = rhs[j];
+  apply_inverse(a0_.data());
   lam_.setZero();
   for (size_t e = 0; e < G_.size(); ++e)
     lam_[static_cast<long>(G_[e].first)] += g[e] * a0_[static_cast<long>(G_[e].second)];
@@ -146,6 +149,59 @@ bool SparseRangeSpace::solve(const double* m_values, const double* g, const doub
     a[G_[e].second] -= g[e] * lam_[static_cast<long>(G_[e].first)];
   apply_inverse(a);
   for (size_t r = 0; r < m_; ++r) lambda[r] = lam_[static_cast<long>(r)];
+}
+
+void SparseRangeSpace::apply_inverse_rows(double* X, size_t k) const {
+  std::vector<double> y;
+  for (size_t b = 0; b < blocks_.size(); ++b) {
+    const auto& cols = blocks_[b];
+    const size_t s = cols.size();
+    const double* inv = inverse_.data() + offset_[b];
+    if (s == 1) {
+      double* x = X + cols[0] * k;
+      for (size_t c = 0; c < k; ++c) x[c] *= inv[0];
+      continue;
+    }
+    y.assign(s * k, 0.0);
+    for (size_t i = 0; i < s; ++i)
+      for (size_t l = 0; l < s; ++l) {
+        const double w = inv[i * s + l];
+        const double* x = X + cols[l] * k;
+        for (size_t c = 0; c < k; ++c) y[i * k + c] += w * x[c];
+      }
+    for (size_t i = 0; i < s; ++i)
+      std::copy(y.begin() + static_cast<long>(i * k), y.begin() + static_cast<long>((i + 1) * k),
+                X + cols[i] * k);
+  }
+}
+
+void SparseRangeSpace::solve_factored(const double* g, size_t k, const double* rhs,
+                                      const double* gamma, double* a) const {
+  // S Λ = G M⁻¹ R₁ − Γ, A = M⁻¹(R₁ − Gᵀ Λ), as solve_factored above, a row of k at a time.
+  std::vector<double> a0(rhs, rhs + n_ * k), lam(gamma, gamma + m_ * k);
+  apply_inverse_rows(a0.data(), k);
+  for (double& x : lam) x = -x;
+  for (size_t e = 0; e < G_.size(); ++e) {
+    const double w = g[e];
+    const double* x = a0.data() + G_[e].second * k;
+    double* l = lam.data() + G_[e].first * k;
+    for (size_t c = 0; c < k; ++c) l[c] += w * x[c];
+  }
+  S_.solve_rows(lam.data(), k);
+  std::copy(rhs, rhs + n_ * k, a);
+  for (size_t e = 0; e < G_.size(); ++e) {
+    const double w = g[e];
+    const double* l = lam.data() + G_[e].first * k;
+    double* x = a + G_[e].second * k;
+    for (size_t c = 0; c < k; ++c) x[c] -= w * l[c];
+  }
+  apply_inverse_rows(a, k);
+}
+
+bool SparseRangeSpace::solve(const double* m_values, const double* g, const double* rhs,
+                             const double* gamma, double* a, double* lambda) {
+  if (!factorize(m_values, g)) return false;
+  solve_factored(g, rhs, gamma, a, lambda);
   return true;
 }
 

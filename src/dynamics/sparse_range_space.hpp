@@ -28,6 +28,16 @@ class SparseRangeSpace {
   /// when a block of M or S is not positive definite (the caller reports the failure).
   bool solve(const double* m_values, const double* g_values, const double* rhs, const double* gamma,
              double* a, double* lambda);
+  /// Factorise M and S only (the first half of solve). False as for solve.
+  bool factorize(const double* m_values, const double* g_values);
+  /// The solve with the factors of the last factorize() or solve() and those G values: one more
+  /// right-hand side (rhs, gamma) of the same KKT matrix (the differentiated KKT system).
+  void solve_factored(const double* g_values, const double* rhs, const double* gamma, double* a,
+                      double* lambda);
+  /// The same for k right-hand sides at once, each matrix row-major: rhs (n × k), gamma (m × k);
+  /// the accelerations into a (n × k). Row operations over all k columns (vectorised).
+  void solve_factored(const double* g_values, size_t k, const double* rhs, const double* gamma,
+                      double* a) const;
 
  private:
   using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlock, kMaxBlock>;
@@ -38,8 +48,8 @@ class SparseRangeSpace {
   };
   /// M⁻¹ x for each block, in place.
   void apply_inverse(double* x);
-  /// M⁻¹ x for each block, in place.
-  void apply_inverse(double* x) const;
+  /// M⁻¹ X for each block, in place, X row-major n × k.
+  void apply_inverse_rows(double* X, size_t k) const;
 
   size_t n_, m_;
   std::vector<std::pair<size_t, size_t>> M_, G_;   // (row, column) per value

@@ -32,6 +32,12 @@ TEST(EnvelopeCholesky, SolvesBandedSystemsLikeDenseLlt) {
       const Eigen::VectorXd expected = A.llt().solve(b);
       chol.solve(b.data());
       EXPECT_LT((b - expected).norm(), 1e-12 * expected.norm()) << m << " " << band;
+      // Five right-hand sides at once, row-major (the differentiated KKT system's form).
+      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+      RowMajor R = RowMajor::Random(long(m), 5);
+      const Eigen::MatrixXd X = A.llt().solve(Eigen::MatrixXd(R));
+      chol.solve_rows(R.data(), 5);
+      EXPECT_LT((Eigen::MatrixXd(R) - X).norm(), 1e-12 * X.norm()) << m << " " << band;
     }
   }
 }

@@ -108,3 +108,54 @@ def test_lqr_on_the_linear_model_balances_the_nonlinear_cart_pole():
     assert np.max(np.abs(balanced)) < 1e-3  # back upright and at rest over the origin
     assert tilt < 0.3
     assert fall > 1.5  # left alone, it falls over
+
+
+# The heavy top in Euler angles (docs/theory.md §5.5): with the precession rate Ω and the spin s
+# held, theta_ddot = 0 at (I1 - I3) Ω² cos θ - I3 s Ω + m g l = 0.
+EULER_TOP = """
+name: top in Euler angles
+parameters: {m: 1.0, g: 9.81, l: 0.1, I1: 0.006, I3: 0.01}
+coordinates:
+  phi: {initial: 0, rate: 4.55}
+  theta: {initial: 0.8, rate: 0}
+  psi: {initial: 0, rate: 20}
+kinetic: I1/2*(der(theta)^2 + der(phi)^2*sin(theta)^2) + I3/2*(der(psi) + der(phi)*cos(theta))^2
+potential: m*g*l*cos(theta)
+"""
+
+
+def test_trim_holds_steady_rates():
+    top = lagrange.loads(EULER_TOP, label="<top>")
+    r = top.trim(steady=["phi_dot", "psi_dot"], tol=1e-12)
+    I1, I3, mgl, W, s = 0.006, 0.01, 9.81 * 0.1, 4.55, 20.0
+    c = (I3 * s * W - mgl) / ((I1 - I3) * W * W)
+    names = r.coordinates
+    assert r.q[names.index("theta")] == pytest.approx(math.acos(c), abs=1e-9)
+    assert r.v[names.index("phi")] == 4.55 and r.v[names.index("psi")] == 20.0
+    assert r.drift == pytest.approx(0.0, abs=1e-12)  # phi and psi are cyclic
+    assert not r.pseudo_transient
+    with pytest.raises(ValueError, match="no rate 'omega'"):
+        top.trim(steady=["omega"])
+
+
+def test_jacobian_matches_differences_and_the_implicit_form():
+    # A Cartesian pendulum in a side force: one constraint, so a = a(q, v) through the KKT system.
+    m = lagrange.loads("parameters: {m: 1.0, l: 1.0, g: 9.81, F: 3.0}\n"
+                       "coordinates: {x: {initial: 0.6, rate: 0.3}, y: {initial: -0.8, rate: 0.2}}\n"
+                       "points: {bob: [x, y, 0]}\nparticles: {bob: m}\ngravity: [0, -g, 0]\n"
+                       "forces: [{point: bob, force: [F, 0, 0]}]\n"
+                       "constraints: {rod: x^2 + y^2 - l^2}\n", label="<cartesian pendulum>")
+    J = m.jacobian(inputs=["F"])
+    q, v = J.q, J.v
+    h = 1e-6
+    for k in range(2):
+        dq = np.zeros(2)
+        dq[k] = h
+        fd = (m.forward(q + dq, v)[0] - m.forward(q - dq, v)[0]) / (2 * h)
+        assert np.allclose(J.a_q[:, k], fd, atol=1e-7)
+        fd = (m.forward(q, v + dq)[0] - m.forward(q, v - dq)[0]) / (2 * h)
+        assert np.allclose(J.a_v[:, k], fd, atol=1e-7)
+    assert J.a_w.shape == (2, 1) and J.inputs == ["F"]
+    # d(a, lam)/d(q, v, F) = -K^-1 Phi_x: the implicit form's sparse Jacobians give the same.
+    X = -np.linalg.solve(J.K, J.Phi_x)
+    assert np.allclose(X[:2], np.hstack([J.a_q, J.a_v, J.a_w]), atol=1e-12)
