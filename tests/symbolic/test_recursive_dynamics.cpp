@@ -147,6 +147,67 @@ TEST(RecursiveDynamics, AgreesWithLagrangianOnTheUrdfArms) {
   }
 }
 
+TEST(RecursiveDynamics, PivotsAreTheLeafFirstEliminationOfTheMassMatrix) {
+  // docs/theory.md §4.9, Pivots: D_i is M_ii − M_iT M_TT⁻¹ M_Ti with T the joints beyond i (the
+  // Schur complement left when they are eliminated first), so all D_i > 0 ⇔ M > 0.
+  for (const char* file : {"robots/ur5.urdf", "elbow_manipulator.yaml"}) {
+    SCOPED_TRACE(file);
+    const Model model = read_model_file(std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + file);
+    const Equations rec = derive(model, Formulation::Recursive);
+    const Equations lag = derive(model, Formulation::Lagrangian);
+    const size_t n = lag.nv;
+    ASSERT_EQ(rec.pivots.size(), n);
+    std::vector<GiNaC::ex> entries;
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = 0; j < n; ++j)
+        entries.push_back(lag.M(static_cast<unsigned>(i), static_cast<unsigned>(j)));
+    const Tape mass = Tape::compile(entries, lag.tape_inputs());
+    const Tape pivots = Tape::compile(rec.pivots, rec.tape_inputs(), rec.definitions);
+    // The joints beyond each coordinate's joint, from the tree (parents before children).
+    std::vector<std::vector<size_t>> beyond(n);
+    for (size_t k = 0; k < model.tree.size(); ++k)
+      for (int a = model.tree[k].parent; a >= 0; a = model.tree[static_cast<size_t>(a)].parent)
+        if (model.tree[static_cast<size_t>(a)].coordinate >= 0 && model.tree[k].coordinate >= 0)
+          beyond[static_cast<size_t>(model.tree[static_cast<size_t>(a)].coordinate)].push_back(
+              static_cast<size_t>(model.tree[k].coordinate));
+    Formulated at(model, Formulation::Lagrangian);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-2, 2);
+    for (int s = 0; s < 4; ++s) {
+      std::vector<double> q(n), v(n);
+      for (size_t i = 0; i < n; ++i) {
+        q[i] = u(rng);
+        v[i] = u(rng);
+      }
+      (void)at.accelerations(0.0, q, v);
+      const std::vector<double>& in = at.dynamics->last_inputs();
+      std::vector<double> Mv(n * n), D(n), work(std::max(mass.work_size(), pivots.work_size()));
+      mass.eval(in.data(), Mv.data(), work.data());
+      pivots.eval(in.data(), D.data(), work.data());
+      const Eigen::MatrixXd M =
+          Eigen::Map<const Eigen::MatrixXd>(Mv.data(), static_cast<long>(n), static_cast<long>(n));
+      for (size_t i = 0; i < n; ++i) {
+        const auto& T = beyond[i];
+        double schur = M(static_cast<long>(i), static_cast<long>(i));
+        if (!T.empty()) {
+          const long m = static_cast<long>(T.size());
+          Eigen::MatrixXd MTT(m, m);
+          Eigen::VectorXd MTi(m);
+          for (long a = 0; a < m; ++a) {
+            MTi[a] = M(static_cast<long>(T[static_cast<size_t>(a)]), static_cast<long>(i));
+            for (long b = 0; b < m; ++b)
+              MTT(a, b) = M(static_cast<long>(T[static_cast<size_t>(a)]),
+                            static_cast<long>(T[static_cast<size_t>(b)]));
+          }
+          schur -= MTi.dot(MTT.ldlt().solve(MTi));
+        }
+        EXPECT_GT(D[i], 0.0) << i;
+        EXPECT_NEAR(D[i], schur, 1e-10 * M.diagonal().cwiseAbs().maxCoeff()) << "pivot " << i;
+      }
+    }
+  }
+}
+
 // Planar point masses m_k on massless links l_k, absolute angles φ: M_ij = S_ij l_i l_j cos(φ_i −
 // φ_j), h_i = −l_i Σ_j S_ij l_j sin(φ_i − φ_j) φ̇_j² − g l_i sin φ_i S_ii, S_ij = Σ_{k ≥ max(i,j)}
 // m_k; solved in long double. With φ_k = q_1 + … + q_k the joint accelerations are differences.
