@@ -5,6 +5,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -62,6 +63,25 @@ void remove_stale_parts(const std::string& path) {
   }
   closedir(dir);
 }
+
+/// SIGINT held back while temporary files exist: the CLI's handler ends a process that is not
+/// keeping its work with _exit(130), which would leave them behind; held, it arrives once they
+/// are published or removed.
+class HoldSigint {
+ public:
+  HoldSigint() {
+    sigset_t hold;
+    sigemptyset(&hold);
+    sigaddset(&hold, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &hold, &previous_);
+  }
+  HoldSigint(const HoldSigint&) = delete;
+  HoldSigint& operator=(const HoldSigint&) = delete;
+  ~HoldSigint() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+
+ private:
+  sigset_t previous_{};
+};
 
 /// A file written under a unique temporary name beside its final `path`; publish() renames it
 /// into place, and a StagedFile destroyed unpublished removes its temporary file.
@@ -149,12 +169,14 @@ void check_writable(const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(path, ec))
     throw std::runtime_error("cannot write '" + path + "': it is a directory");
+  const HoldSigint hold;
   StagedFile probe(path, "");  // removed unpublished: the location takes a new file
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
   create_parent_directories(path);
   remove_stale_parts(path);
+  const HoldSigint hold;
   StagedFile file(path, text);
   DirectoryLock lock(directory_of(path));
   file.publish();
@@ -166,6 +188,7 @@ void write_file_with_sidecar(const std::string& path, const std::string& text,
   const std::string sidecar = path + ".json";
   remove_stale_parts(path);
   remove_stale_parts(sidecar);
+  const HoldSigint hold;
   StagedFile file(path, text), side(sidecar, sidecar_text);
   DirectoryLock lock(directory_of(path));
   // Old sidecar gone before the new file appears: a kill between the steps leaves a file

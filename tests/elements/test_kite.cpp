@@ -109,6 +109,26 @@ kites:
   }
 }
 
+// The AP2 as a point mass with constant C_L, C_D on a 200 m one-segment line, released at 45°
+// elevation, in the given wind (a `wind:` map).
+std::string kite_on_a_line(const std::string& wind) {
+  return R"(
+coordinates:
+  x: {initial: 141.4213562373095}
+  y: {initial: 0}
+  z: {initial: 141.4213562373095}
+points:
+  kite: [x, y, z]
+gravity: [0, 0, -9.81]
+wind: )" +
+         wind + R"(
+tethers:
+  main: {between: [[0, 0, 0], kite], segments: 1, length: 200, mass_per_length: 0.0046}
+kites:
+  wing: {point: kite, preset: ap2, CL: 0.8, CD: 0.6}
+)";
+}
+
 // Point-mass kite on a straight one-segment tether in a uniform wind W, zero roll, constant C_L
 // and C_D: at rest the apparent wind is −w, so lift ½ρSW²C_L points up, drag ½ρSW²C_D downwind,
 // and with the weight M g (kite plus the tether's half at its node, μℓ/2) the tether carries
@@ -119,21 +139,7 @@ TEST(PointMassKite, SettlesAtTheStaticBalanceOfLiftDragWeightAndTether) {
   const double M = 36.8 + mu * len / 2;
   const double tension = std::hypot(drag, lift - M * g);
   const double x = len * drag / tension, z = len * (lift - M * g) / tension;
-  auto sys = testing::load_string(R"(
-parameters: {L: 200, W: 20}
-coordinates:
-  x: {initial: 141.4213562373095}
-  y: {initial: 0}
-  z: {initial: 141.4213562373095}
-points:
-  kite: [x, y, z]
-gravity: [0, 0, -9.81]
-wind: {speed: W}
-tethers:
-  main: {between: [[0, 0, 0], kite], segments: 1, length: L, mass_per_length: 0.0046}
-kites:
-  wing: {point: kite, preset: ap2, CL: 0.8, CD: 0.6}
-)");
+  auto sys = testing::load_string(kite_on_a_line("{speed: 20}"));
   const Trajectory tr = run_for(sys, 300, 10);
   ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
   const size_t last = tr.rows() - 1;
@@ -153,20 +159,7 @@ kites:
 TEST(PointMassKite, WarnsOnceWhenItFliesBelowTheGroundOfItsWind) {
   for (const std::string wind :
        {"{speed: 3}", "{speed: 3, profile: logarithmic, roughness: 0.5}"}) {
-    auto sys = testing::load_string(R"(
-coordinates:
-  x: {initial: 141.4213562373095}
-  y: {initial: 0}
-  z: {initial: 141.4213562373095}
-points:
-  kite: [x, y, z]
-gravity: [0, 0, -9.81]
-wind: )" + wind + R"(
-tethers:
-  main: {between: [[0, 0, 0], kite], segments: 1, length: 200, mass_per_length: 0.0046}
-kites:
-  wing: {point: kite, preset: ap2, CL: 0.8, CD: 0.6}
-)");
+    auto sys = testing::load_string(kite_on_a_line(wind));
     const Trajectory tr = run_for(sys, 15, 0.05);
     ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
     const double ground = wind.find("roughness") != std::string::npos ? 0.5 : 0.0;
