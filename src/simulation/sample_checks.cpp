@@ -10,7 +10,11 @@
 namespace lagrange {
 
 SampleChecks::SampleChecks(const CompiledModel& cm, const std::vector<std::string>& columns)
-    : cm_(cm), columns_(columns) {
+    : cm_(cm),
+      columns_(columns),
+      cautions_(cm.warn_when, cm, columns),
+      caution_g_(cautions_.size()),
+      cautioned_(cautions_.size(), false) {
   kinetic_ = 1 + cm.nq + cm.nv;  // t, q, v, then kinetic, potential, energy, outputs
   outputs_end_ = kinetic_ + 3 + cm.output_names.size();
 }
@@ -72,6 +76,20 @@ void SampleChecks::append_row(RowWriter& rows, Dynamics& dyn, double t, const do
     traj.data.resize(traj.data.size() - width);
     throw;
   }
+  warn(traj.data.data() + traj.data.size() - width, dyn.parameters().data(), t, traj);
+}
+
+// Model::warn_when (a kite below the ground of its wind): once per condition and run.
+void SampleChecks::warn(const double* row, const double* parameters, double t, Trajectory& traj) {
+  if (cautions_.empty()) return;
+  cautions_.evaluate(row, parameters, caution_g_.data());
+  for (size_t i = 0; i < cautions_.size(); ++i)
+    if (caution_g_[i] > 0 && !cautioned_[i]) {
+      cautioned_[i] = true;
+      const StopSpec& c = cautions_.spec(i);
+      traj.warnings.push_back(
+          fmt::format("from t = {:.6g}: {} ({}, {})", t, c.name, c.text, c.loc.str()));
+    }
 }
 
 }  // namespace lagrange

@@ -238,9 +238,6 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   // The model's stop conditions end the run; its elements' domain conditions (cm.fail_when)
   // fail it, both located between samples.
   const StopConditions stop(cm, traj.columns), guards(cm.fail_when, cm, traj.columns);
-  const StopConditions cautions(cm.warn_when, cm, traj.columns);
-  std::vector<double> caution_g(cautions.size());
-  std::vector<bool> cautioned(cautions.size(), false);
   StopWatch watch(stop.size(), n), guard_watch(guards.size(), n);
   std::vector<double> stop_row, stop_g(stop.size()), guard_g(guards.size());
   const auto values_of = [&](const StopConditions& conditions) -> StopWatch::Evaluate {
@@ -302,17 +299,6 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     } catch (const SimulationError&) {
       last.reported = true;
       throw;
-    }
-    if (!cautions.empty()) {  // docs/model-language.md, "Kites": once per condition
-      cautions.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),
-                        caution_g.data());
-      for (size_t i = 0; i < cautions.size(); ++i)
-        if (caution_g[i] > 0 && !cautioned[i]) {
-          cautioned[i] = true;
-          const StopSpec& c = cautions.spec(i);
-          traj.warnings.push_back(
-              fmt::format("from t = {:.6g}: {} ({}, {})", t, c.name, c.text, c.loc.str()));
-        }
     }
     if (!stop.empty()) {  // the conditions read the row just written
       stop.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),

@@ -120,6 +120,13 @@ struct Stepper::State {
     record.data.insert(record.data.end(), last, piece.data.end());
     record.stats = integration::operator+(record.stats, piece.stats);
     record.rotation_drift = std::max(record.rotation_drift, piece.rotation_drift);
+    for (const std::string& warning : piece.warnings) {  // once per condition across the calls
+      const std::string condition = warning.substr(warning.find(": ") + 2);
+      const bool known = std::any_of(
+          record.warnings.begin(), record.warnings.end(),
+          [&](const std::string& w) { return w.substr(w.find(": ") + 2) == condition; });
+      if (!known) record.warnings.push_back(warning);
+    }
   }
 };
 

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "../support/harness.hpp"
 #include "lagrange/error.hpp"
@@ -212,6 +214,31 @@ TEST(Stepper, RejectsInputsThatAreNotExternal) {
         << e.what();
   }
   EXPECT_THROW(s.step(0.0), std::invalid_argument);
+}
+
+// A model's warnings (a kite falling below the ground of its light wind) come from the Stepper
+// as from one simulate() run: once, at the same sample, with the explicit default and with a
+// method that restarts at each call.
+TEST(Stepper, WarnsOnceAsSimulateDoes) {
+  Loaded sys = testing::load_example("pointmass_kite.yaml");
+  std::vector<double> values = sys.compiled->parameter_defaults;
+  const auto& names = sys.compiled->parameter_names;
+  values[static_cast<size_t>(std::find(names.begin(), names.end(), "W") - names.begin())] = 3;
+  for (const char* method : {"dop853", "rk4"}) {
+    SimulationOptions so = sys.options();
+    so.integrator.method = method;
+    so.t_end = 12.0;
+    so.output_step = 0.1;
+    sys.dynamics->set_parameters(values);
+    const Trajectory one = sys.run(so);
+    ASSERT_EQ(one.status, Trajectory::Status::Complete) << one.message;
+    ASSERT_EQ(one.warnings.size(), 1u) << method;
+    Dynamics dyn(sys.compiled, values);
+    dyn.set_baumgarte(sys.dynamics->baumgarte());
+    Stepper s(std::move(dyn), so, sys.compiled->q0, sys.compiled->v0);
+    for (size_t k = 1; k < one.rows(); ++k) s.step(so.output_step);
+    EXPECT_EQ(s.record().warnings, one.warnings) << method;
+  }
 }
 
 }  // namespace
