@@ -6,9 +6,11 @@
 
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "hardening/cli_runner.hpp"
 #include "support/harness.hpp"
 #include "support/winch_with_payload.hpp"
 
@@ -16,6 +18,7 @@ namespace lagrange::testing {
 namespace {
 
 namespace wp = winch_payload;
+namespace fs = std::filesystem;
 
 // Below the drum hangs the straight line with its payload: (μℓ + m_p)(g − ℓ̈) pulls on the drum.
 double hanging_pull(double ell, double acceleration) {
@@ -53,6 +56,41 @@ TEST(Loads, DrumLoadUnderAPrescribedReelOutCarriesTheReelsForce) {
     const double expected = hanging_pull(ell, 0.6);
     ASSERT_NEAR(tr.at(r, "drum.load"), expected, 1e-8 * expected) << "t = " << t;
   }
+}
+
+// Issue 20, item 4, as a user meets it: `simulate` writes the drum's load beside the first
+// segment's tension, and the load is the closed form's (μℓ + m_p)(g − ℓ̈) at every sample.
+TEST(Loads, SimulateWritesTheDrumLoadColumn) {
+  hardening::ScratchDir dir("loads-" + std::to_string(::getpid()));
+  hardening::spit(dir.path() / "winch.yaml", wp::model(6));
+  const fs::path csv = dir.path() / "winch.csv";
+  const hardening::RunResult r =
+      hardening::run_lagrange(dir.path(), {"simulate", (dir.path() / "winch.yaml").string(), "-q",
+                                           "--rtol", "1e-11", "-o", csv.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(hardening::slurp(csv));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  for (std::istringstream cells(line); std::getline(cells, line, ',');) header.push_back(line);
+  auto column = [&](const std::string& name) {
+    const auto at = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(at, header.end()) << name;
+    return static_cast<size_t>(at - header.begin());
+  };
+  const size_t ell = column("drum.reeled_out"), load = column("drum.load");
+  EXPECT_LT(column("line.tension_ground"), header.size());
+  size_t rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> cells;
+    for (std::istringstream row(line); std::getline(row, line, ',');)
+      cells.push_back(std::stod(line));
+    ASSERT_EQ(cells.size(), header.size());
+    const double expected = hanging_pull(cells[ell], wp::acceleration(cells[ell]));
+    ASSERT_NEAR(cells[load], expected, 1e-7 * expected) << "row " << rows;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 401u);  // t = 0 … 4 every 0.01 s
 }
 
 // A line of length 2 from a fixed anchor to a payload, swinging from `angle` (0: hanging at rest).
