@@ -59,18 +59,18 @@ std::string parameters_in(const Model& model, const std::vector<double>& values,
   for (const auto& [symbol, value] : defs) defined[symbol] = value;
   std::vector<bool> used(model.parameters.size(), false);
   GiNaC::exset seen;
-  std::vector<GiNaC::ex> todo{e};
-  while (!todo.empty()) {
-    const GiNaC::ex x = todo.back();
-    todo.pop_back();
+  std::vector<GiNaC::ex> pending{e};
+  while (!pending.empty()) {
+    const GiNaC::ex x = pending.back();
+    pending.pop_back();
     if (!seen.insert(x).second) continue;
     if (GiNaC::is_a<GiNaC::symbol>(x)) {
-      if (const auto it = defined.find(x); it != defined.end()) todo.push_back(it->second);
+      if (const auto it = defined.find(x); it != defined.end()) pending.push_back(it->second);
       for (size_t j = 0; j < model.parameters.size(); ++j)
         if (x.is_equal(model.parameters[j].sym)) used[j] = true;
       continue;
     }
-    for (size_t k = 0; k < x.nops(); ++k) todo.push_back(x.op(k));
+    for (size_t k = 0; k < x.nops(); ++k) pending.push_back(x.op(k));
   }
   std::string text;
   for (size_t j = 0; j < used.size(); ++j)

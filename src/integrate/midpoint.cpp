@@ -52,7 +52,7 @@ IntegratorStats integrate_midpoint(const OdeProblem& problem, const IntegratorOp
       if (change <= 4e-16 * scale || (change >= previous && change <= 1e-12 * scale)) break;
       if (iteration == kMaxIterations || !(change < 1e300)) {
         // A sweep scales the change by about ρ = (h/2)·(the system's largest rate), more where
-        // an element switches (a tether segment going taut): ρ ≈ 0.3 converges in some 30
+        // a force switches on (a one-sided spring going taut): ρ ≈ 0.3 converges in some 30
         // sweeps.
         const double ratio = std::max(worst, change / previous);
         const std::string rate =

@@ -79,7 +79,7 @@ void SampleChecks::append_row(RowWriter& rows, Dynamics& dyn, double t, const do
   warn(traj.data.data() + traj.data.size() - width, dyn.parameters().data(), t, traj);
 }
 
-// Model::warn_when (a kite below the ground of its wind): once per condition and run.
+// CompiledModel::warn_when, the conditions the model itself declares: once per condition and run.
 void SampleChecks::warn(const double* row, const double* parameters, double t, Trajectory& traj) {
   if (cautions_.empty()) return;
   cautions_.evaluate(row, parameters, caution_g_.data());
