@@ -48,12 +48,15 @@ std::string snake(int n) {
   return urdf + "</robot>\n";
 }
 
-/// `lagrange check args…` under the harness's time and address-space bounds.
+/// `lagrange check args…` under the harness's time and address-space bounds (under
+/// AddressSanitizer, which cannot run in a capped address space, its peak memory is checked).
 RunResult bounded_check(const ScratchDir& dir, std::vector<std::string> args) {
   args.insert(args.begin(), "check");
   Child child(dir.path(), args);
   child.limit_memory(kAddressSpace);
-  return child.wait(kTimeLimit);
+  RunResult r = child.wait(kTimeLimit);
+  EXPECT_LT(r.max_rss_kb, static_cast<long>(kAddressSpace / 1024)) << "peak memory";
+  return r;
 }
 
 TEST(LargeCheck, ATwoHundredLinkChainIsCheckedOnTheRecursivePath) {
