@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <sstream>
+#include <vector>
 
 #include "symbolic/expansion_bound.hpp"
 #include "symbolic/printed_size.hpp"
@@ -21,7 +22,10 @@ GiNaC::ex tidy(const GiNaC::ex& e) {
   if (best_size > 600 || !symbolic::expands_within(e, kTidyTerms)) return e;
   GiNaC::ex best = e;
   const GiNaC::ex simplified = simplify(e);
-  for (const GiNaC::ex& c : {e.expand(), simplified, simplified.expand()}) {
+  std::vector<GiNaC::ex> candidates{e.expand(), simplified};
+  // The simplified form is bounded on its own terms: its expansion is asked about too.
+  if (symbolic::expands_within(simplified, kTidyTerms)) candidates.push_back(simplified.expand());
+  for (const GiNaC::ex& c : candidates) {
     const size_t size = printed_size(c);
     if (size < best_size) {
       best = c;
