@@ -1,6 +1,6 @@
 // The workers of a study on one machine: threads that each own a Dynamics over the shared,
 // immutable compiled model and take the next case when they finish one, reading it first when
-// the caller reads cases on the workers.
+// the caller reads cases on the workers (the caller's read guards what is not thread-safe).
 
 #include <atomic>
 #include <exception>
@@ -19,7 +19,6 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
   std::mutex report;
   std::exception_ptr error;  // the first exception of a worker (a summary that cannot be written)
   std::atomic<bool> failed{false};
-  std::mutex reading;  // one model read at a time: GiNaC is not thread-safe
   const auto stopped = [&] { return failed || (options.interrupt && options.interrupt->load()); };
   const auto work = [&] {
     try {
@@ -31,7 +30,6 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
         const size_t index = pending[slot];
         CaseRead read;
         if (options.read) {
-          const std::lock_guard<std::mutex> lock(reading);
           read = options.read(index);
         } else {
           read.input = inputs[index];
