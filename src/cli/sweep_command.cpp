@@ -4,6 +4,7 @@
 // other ranks (cli/sweep_mpi.hpp).
 
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <chrono>
@@ -327,6 +328,16 @@ class Progress {
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
+// A case allocates and frees the same blocks as the one before it (trajectory, integrator
+// state). glibc would hand the large ones back to the kernel after every case (munmap, heap
+// trimming) and fault them in again for the next: page faults and, with two workers, TLB
+// shootdowns between their cores, 20-25 % of the kite's cpu (docs/sweeps.md, "Speed"). A study
+// keeps them: its memory stays at what one case per worker needs.
+void keep_freed_memory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+}
+
 // The cases still to run: those not in the summary.
 std::vector<size_t> pending_cases(const Study& s, const sweep::SummaryFile& summary) {
   std::vector<size_t> pending;
@@ -430,6 +441,7 @@ int run_sweep_mpi(const Options& opt) {
 
 int run_sweep(const Options& opt) {
   const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
+  keep_freed_memory();
 #ifdef LAGRANGE_HAVE_MPI
   if (started_by_mpirun()) return run_sweep_mpi(opt);
 #else
