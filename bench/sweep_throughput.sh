@@ -37,6 +37,15 @@ bench() {
             l, w, n / w, c, 1e3 * c / n, load}'
 }
 
+# The median over RUNS of the pool's own time, the "run X s" of the study's summary line (the
+# cases alone: without start-up, derivation and the reading of the model).
+run_seconds() {
+  for _ in $(seq "$runs"); do
+    rm -rf "$work/study"
+    "$@" | sed -n 's/.* run \([0-9.]*\) s .*/\1/p'
+  done | sort -n | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'
+}
+
 study() {
   local model=$1 name=$2 low=$3 high=$4 cases=$5 metric=$6
   local args=("$root/examples/$model" --vary "$name=$low:$high:$cases" --t-end 10
@@ -50,6 +59,12 @@ study() {
   awk -v w1="$wall1" -v c1="$cpu1" -v w2="$last_wall" -v c2="$last_cpu" \
     'BEGIN {printf "  efficiency at 2 workers: wall %.0f %% (-j 1 wall / (2 x -j 2 wall)), cpu %.0f %%\n",
             100 * w1 / (2 * w2), 100 * c1 / c2}'
+  local run1 run2
+  run1=$(run_seconds "$lagrange" sweep "${args[@]}" -j 1)
+  run2=$(run_seconds "$lagrange" sweep "${args[@]}" -j 2)
+  awk -v r1="$run1" -v r2="$run2" -v load="$(uptime | sed 's/.*load average: //')" \
+    'BEGIN {printf "  the cases alone (the summary line'"'"'s run time): -j 1 %.3f s, -j 2 %.3f s, efficiency %.0f %%  (load %s)\n",
+            r1, r2, 100 * r1 / (2 * r2), load}'
 
   if command -v mpirun > /dev/null; then
     bench "mpirun -n 2 lagrange sweep" "$cases" mpirun -n 2 --oversubscribe --allow-run-as-root \
