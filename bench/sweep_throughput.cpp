@@ -125,6 +125,7 @@ void study(const std::string& file, const std::string& parameter, double low, do
 }  // namespace
 
 int main(int argc, char** argv) {
+  sweep::keep_freed_memory();  // as `lagrange sweep` does
   const size_t pendulum = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 1000;
   const size_t kite = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 100;
   study("double_pendulum.yaml", "l2", 0.5, 1.5, pendulum, 10.0);

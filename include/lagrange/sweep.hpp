@@ -200,6 +200,10 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
               const std::vector<Metric>& metrics, const PoolOptions& options);
 
+/// Makes this process keep the memory that cases free for the next ones (glibc: no unmapping,
+/// no trimming; docs/sweeps.md, "Speed"), for a process that runs a study.
+void keep_freed_memory();
+
 /// The study's summary table, one CSV row per case, appended as each case finishes: a row is
 /// one write() of a whole line, and a line without its end (the process died while writing) is
 /// cut off on resume; finish() rewrites the table in case order through an atomic rename.

@@ -4,7 +4,6 @@
 // other ranks (cli/sweep_mpi.hpp).
 
 #include <fmt/format.h>
-#include <malloc.h>
 
 #include <algorithm>
 #include <chrono>
@@ -183,8 +182,8 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 
 // Reads the model file once with the first case's values, following the varied parameters
 // (docs/theory.md §9.4): when every use the reader makes of their values can be repeated, the
-// cases' inputs come from that read (Study::replay). The last case, read from the file as
-// well, must come out the same bit for bit; else (a use the trace missed) every case is read.
+// cases' inputs come from that read (Study::replay). The last case it gives, read from the file
+// as well, must come out the same bit for bit; else (a use the trace missed) every case is read.
 void replay_cases(const Options& opt, Study& s) {
   ReadTrace trace;
   for (const auto& [name, value] : s.plan.cases.front().values) trace.watched.push_back(name);
@@ -202,11 +201,10 @@ void replay_cases(const Options& opt, Study& s) {
     return;
   }
   s.replay.emplace(*traced, trace, std::move(*base));
-  size_t last = s.plan.cases.size() - 1;
+  size_t last = s.plan.cases.size();  // the last case (after the first) it gives
   std::optional<sweep::CaseRead> replayed;
-  for (; last > 0 && !replayed; --last) replayed = replayed_case(s, last);
+  while (!replayed && --last > 0) replayed = replayed_case(s, last);
   if (!replayed) return;
-  ++last;
   const sweep::CaseRead read = read_case(opt, s, last);
   const sweep::CaseInput &a = *replayed->input, *b = read.input ? &*read.input : nullptr;
   if (b && same_bits(a.parameters, b->parameters) && same_bits(a.q0, b->q0) &&
@@ -328,16 +326,6 @@ class Progress {
   Clock::time_point start_ = Clock::now(), last_ = start_;
 };
 
-// A case allocates and frees the same blocks as the one before it (trajectory, integrator
-// state). glibc would hand the large ones back to the kernel after every case (munmap, heap
-// trimming) and fault them in again for the next: page faults and, with two workers, TLB
-// shootdowns between their cores, 20-25 % of the kite's cpu (docs/sweeps.md, "Speed"). A study
-// keeps them: its memory stays at what one case per worker needs.
-void keep_freed_memory() {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-}
-
 // The cases still to run: those not in the summary.
 std::vector<size_t> pending_cases(const Study& s, const sweep::SummaryFile& summary) {
   std::vector<size_t> pending;
@@ -441,7 +429,7 @@ int run_sweep_mpi(const Options& opt) {
 
 int run_sweep(const Options& opt) {
   const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
-  keep_freed_memory();
+  sweep::keep_freed_memory();
 #ifdef LAGRANGE_HAVE_MPI
   if (started_by_mpirun()) return run_sweep_mpi(opt);
 #else
