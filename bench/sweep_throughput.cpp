@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "lagrange/compiled_model.hpp"
@@ -38,10 +40,7 @@ void study(const std::string& file, const std::string& parameter, double low, do
   const auto compiled = compile(derive(base, form));
   const double derive_seconds = since(t0);
   const auto axis = sweep::parse_axis(fmt::format("{}={}:{}:{}", parameter, low, high, cases));
-  const auto t1 = Clock::now();
-  std::vector<sweep::CaseInput> inputs;
-  for (const auto& c : sweep::make_cases({axis}, {}, 0, 1)) {
-    const Model m = read_model_file(path, {{c.values[0].first, c.values[0].second}});
+  const auto options_of = [&](const Model& m) {
     SimulationOptions so;
     so.t_end = t_end;
     so.output_step = m.simulate.output_step;
@@ -50,9 +49,33 @@ void study(const std::string& file, const std::string& parameter, double low, do
     so.integrator.atol = m.simulate.atol;
     so.integrator.step = m.simulate.step;
     so.project = m.stabilization.project;
-    inputs.push_back(sweep::case_input(m, *compiled, so));
+    return so;
+  };
+  const std::vector<sweep::Case> grid = sweep::make_cases({axis}, {}, 0, 1);
+  const auto t1 = Clock::now();
+  std::vector<sweep::CaseInput> inputs;
+  for (const auto& c : grid) {
+    const Model m = read_model_file(path, {{c.values[0].first, c.values[0].second}});
+    inputs.push_back(sweep::case_input(m, *compiled, options_of(m)));
   }
   const double read_seconds = since(t1);
+  // The same inputs from one traced read (as `lagrange sweep` makes them, docs/theory.md §9.4).
+  const auto t3 = Clock::now();
+  ReadTrace trace;
+  trace.watched = {parameter};
+  const Model traced = read_model_file(path, {grid[0].values[0]}, trace);
+  if (!trace.opaque.empty()) throw std::runtime_error(file + ": not replayable: " + trace.opaque);
+  const sweep::ReplayedInputs replay(traced, trace,
+                                     sweep::case_input(traced, *compiled, options_of(traced)));
+  const double trace_seconds = since(t3);
+  const auto t4 = Clock::now();
+  for (size_t i = 0; i < grid.size(); ++i) {
+    const std::optional<sweep::CaseInput> in = replay(grid[i].values);
+    if (!in || in->q0 != inputs[i].q0 || in->v0 != inputs[i].v0 ||
+        in->parameters != inputs[i].parameters)
+      throw std::runtime_error(file + ": the replayed inputs differ from the read ones");
+  }
+  const double replay_seconds = since(t4);
   std::vector<sweep::Metric> metrics{sweep::parse_metric("max(energy)")};
   sweep::bind_metrics(metrics, trajectory_columns(*compiled), compiled->parameter_names);
   std::vector<size_t> pending(inputs.size());
@@ -63,9 +86,11 @@ void study(const std::string& file, const std::string& parameter, double low, do
   double rate1 = 0;
   fmt::print(
       "{} ({} cases of {} s, {} from {} to {}): derive + compile once {:.3f} s, read the "
-      "cases' values {:.3f} s ({:.2f} ms/case)\n",
+      "cases' values {:.3f} s ({:.2f} ms/case), or one traced read {:.3f} s and the cases' "
+      "inputs from it {:.4f} ms/case\n",
       file, cases, t_end, parameter, low, high, derive_seconds, read_seconds,
-      1e3 * read_seconds / static_cast<double>(cases));
+      1e3 * read_seconds / static_cast<double>(cases), trace_seconds,
+      1e3 * replay_seconds / static_cast<double>(cases));
   for (const size_t workers : {1, 2}) {
     std::filesystem::remove(summary_path);
     sweep::SummaryFile summary(summary_path, {"case", parameter, "status", "max_energy", "wall_s"},
@@ -100,6 +125,7 @@ void study(const std::string& file, const std::string& parameter, double low, do
 }  // namespace
 
 int main(int argc, char** argv) {
+  sweep::keep_freed_memory();  // as `lagrange sweep` does
   const size_t pendulum = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 1000;
   const size_t kite = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 100;
   study("double_pendulum.yaml", "l2", 0.5, 1.5, pendulum, 10.0);

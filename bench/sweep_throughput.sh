@@ -3,7 +3,8 @@
 # of the figure-eight kite, 10 s each, as a user runs them: `lagrange sweep` with 1 and 2
 # workers, under `mpirun -n 2`, and through Dask with two local worker processes. Every figure
 # is farm-bench's median of RUNS whole-process runs (start-up, derivation and reading included),
-# the machine load (uptime) printed beside it; Dask's sweep call is also timed alone.
+# the machine load (uptime) printed beside it, and the parallel efficiency of 2 workers (wall
+# and cpu of -j 1 against -j 2); Dask's sweep call is also timed alone.
 #
 #   bench/sweep_throughput.sh [BUILD_DIR=build] [RUNS=3]
 #
@@ -30,9 +31,19 @@ bench() {
   load=$(uptime | sed 's/.*load average: //')
   read -r wall cpu < <(farm-bench -n "$runs" --warmup 1 --timeout 900 -- \
     sh -c "rm -rf '$work/study' && exec \"\$@\" > /dev/null 2>&1" sh "$@" | medians)
+  last_wall=$wall last_cpu=$cpu
   awk -v l="$label" -v w="$wall" -v c="$cpu" -v n="$cases" -v load="$load" \
     'BEGIN {printf "  %-28s wall %7.3f s %7.1f cases/s  cpu %7.3f s %6.2f ms/case  (load %s)\n",
             l, w, n / w, c, 1e3 * c / n, load}'
+}
+
+# The median over RUNS of the pool's own time, the "run X s" of the study's summary line (the
+# cases alone: without start-up, derivation and the reading of the model).
+run_seconds() {
+  for _ in $(seq "$runs"); do
+    rm -rf "$work/study"
+    "$@" | sed -n 's/.* run \([0-9.]*\) s .*/\1/p'
+  done | sort -n | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'
 }
 
 study() {
@@ -43,12 +54,24 @@ study() {
   rm -rf "$work/study"
   "$lagrange" sweep "${args[@]}" -j 1 | sed -n 's/^  \(derive\|tapes\)/  once: \1/p'
   bench "lagrange sweep -j 1" "$cases" "$lagrange" sweep "${args[@]}" -q -j 1
+  local wall1=$last_wall cpu1=$last_cpu
   bench "lagrange sweep -j 2" "$cases" "$lagrange" sweep "${args[@]}" -q -j 2
+  awk -v w1="$wall1" -v c1="$cpu1" -v w2="$last_wall" -v c2="$last_cpu" \
+    'BEGIN {printf "  efficiency at 2 workers: wall %.0f %% (-j 1 wall / (2 x -j 2 wall)), cpu %.0f %%\n",
+            100 * w1 / (2 * w2), 100 * c1 / c2}'
+  local run1 run2
+  run1=$(run_seconds "$lagrange" sweep "${args[@]}" -j 1)
+  run2=$(run_seconds "$lagrange" sweep "${args[@]}" -j 2)
+  awk -v r1="$run1" -v r2="$run2" -v load="$(uptime | sed 's/.*load average: //')" \
+    'BEGIN {printf "  the cases alone (the summary line'"'"'s run time): -j 1 %.3f s, -j 2 %.3f s, efficiency %.0f %%  (load %s)\n",
+            r1, r2, 100 * r1 / (2 * r2), load}'
+
   if command -v mpirun > /dev/null; then
     bench "mpirun -n 2 lagrange sweep" "$cases" mpirun -n 2 --oversubscribe --allow-run-as-root \
       "$lagrange" sweep "${args[@]}" -q
   fi
-  if /usr/bin/python3 -c "import distributed" 2> /dev/null; then
+  if /usr/bin/python3 -c "import distributed" 2> /dev/null &&
+    compgen -G "$build/python/_lagrange*.so" > /dev/null; then
     bench "dask, 2 worker processes" "$cases" env PYTHONPATH="$build/python" /usr/bin/python3 \
       "$root/bench/sweep_dask.py" "$root/examples/$model" "$name" "$low" "$high" "$cases" 10 \
       "$metric"

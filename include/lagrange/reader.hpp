@@ -1,9 +1,11 @@
 #pragma once
 // The YAML model reader (docs/model-language.md): file → Model, with file:line:column errors.
 
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "lagrange/model.hpp"
 
@@ -18,13 +20,42 @@ class ParameterOverrideError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// What a read learns about some parameters (a study's varied ones, `watched`): every use the
+/// reader made of their values, so that the model's numbers for other values of them can be had
+/// without reading the file again (docs/theory.md §9.4).
+struct ReadTrace {
+  std::vector<std::string> watched;  ///< in: the parameters whose values are followed
+  /// A test the reader made on a value of them (a sign, a range, a warning): `value` (an
+  /// expression of the parameters) gave `outcome`.
+  struct Check {
+    GiNaC::ex value;
+    std::function<bool(double)> test;
+    bool outcome = false;
+  };
+  /// A coordinate's initial value (or rate, `rate`) written as an expression of them.
+  struct Initial {
+    size_t coordinate = 0;
+    bool rate = false;
+    GiNaC::ex value;
+  };
+  std::vector<Check> checks;
+  std::vector<Initial> initials;
+  /// Empty, or the first use of their values the model's numbers cannot be recomputed from (a
+  /// tether's shape, a segment count, a body's inertia): then only a new read gives them.
+  std::string opaque;
+};
+
 /// Read a model file. Throws ModelError naming file, line, column and what was expected.
 /// `overrides` replace parameter values before anything else is evaluated, so that initial
 /// values, checks and settings written as expressions of parameters see them.
 Model read_model_file(const std::string& path, const ParameterOverrides& overrides = {});
 
+/// The same, recording in `trace` how the model depends on the values of `trace.watched`.
+Model read_model_file(const std::string& path, const ParameterOverrides& overrides,
+                      ReadTrace& trace);
+
 /// Read a model from YAML text; `file_label` is used in error messages.
 Model read_model_string(const std::string& yaml_text, const std::string& file_label,
-                        const ParameterOverrides& overrides = {});
+                        const ParameterOverrides& overrides = {}, ReadTrace* trace = nullptr);
 
 }  // namespace lagrange

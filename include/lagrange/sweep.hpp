@@ -15,6 +15,7 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/model.hpp"
+#include "lagrange/reader.hpp"
 #include "lagrange/simulation.hpp"
 #include "lagrange/tape.hpp"
 
@@ -119,6 +120,37 @@ struct CaseInput {
 CaseInput case_input(const Model& case_model, const CompiledModel& base,
                      const SimulationOptions& options);
 
+/// Cases' inputs without reading the model file again (docs/theory.md §9.4): the parameters'
+/// values put in, the checks the traced read made repeated and the initial values written as
+/// expressions of them recomputed, each on a tape, as the reader computes them, bit for bit.
+class ReplayedInputs {
+ public:
+  /// From `traced`, the model read with `trace` (which found nothing it cannot repeat: its
+  /// `opaque` is empty), and `base`, that model's case_input.
+  ReplayedInputs(const Model& traced, const ReadTrace& trace, CaseInput base);
+  /// The inputs for the watched parameters at `values` (by name, each watched), or nothing when
+  /// one of the read's checks comes out otherwise or a value is not a finite number: only a
+  /// read of the file says then what the model makes of them. Safe to call from many threads.
+  std::optional<CaseInput> operator()(
+      const std::vector<std::pair<std::string, double>>& values) const;
+
+ private:
+  struct Check {
+    std::shared_ptr<const Tape> tape;
+    std::function<bool(double)> test;
+    bool outcome = false;
+  };
+  struct Initial {
+    std::shared_ptr<const Tape> tape;
+    size_t coordinate = 0;
+    bool rate = false;
+  };
+  CaseInput base_;
+  std::vector<std::pair<std::string, size_t>> watched_;  ///< name, index in base_.parameters
+  std::vector<Check> checks_;
+  std::vector<Initial> initials_;
+};
+
 /// A case's inputs read from the model file with its values, or why it rejects them.
 struct CaseRead {
   std::optional<CaseInput> input;
@@ -157,8 +189,8 @@ struct PoolOptions {
   std::function<void(const CaseResult&)> done;
   std::function<void(size_t index, const Trajectory&)> keep;
   /// When set, each case is read by this on the worker that runs it (`inputs` is then not
-  /// used), one call at a time (the model reader's GiNaC is not thread-safe) while the other
-  /// workers run their cases; a rejected case is reported as failed with the reason.
+  /// used), called by several workers at once: it serialises what is not thread-safe itself
+  /// (the model reader's GiNaC); a rejected case is reported as failed with the reason.
   std::function<CaseRead(size_t index)> read;
   /// What evaluates each worker's tapes: SharedMachineCode compiles (or loads from the cache)
   /// one library that serves every case whose values fold alike (docs/theory.md §8).
@@ -167,6 +199,10 @@ struct PoolOptions {
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
               const std::vector<Metric>& metrics, const PoolOptions& options);
+
+/// Makes this process keep the memory that cases free for the next ones (glibc: no unmapping,
+/// no trimming; docs/sweeps.md, "Speed"), for a process that runs a study.
+void keep_freed_memory();
 
 /// The study's summary table, one CSV row per case, appended as each case finishes: a row is
 /// one write() of a whole line, and a line without its end (the process died while writing) is

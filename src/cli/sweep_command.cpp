@@ -9,8 +9,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -84,8 +86,9 @@ std::vector<std::string> row_fields(const sweep::Case& c, const sweep::CaseResul
 }
 
 // Everything checked before a case runs: the plan, the model derived and compiled once, the
-// settings every case shares and the summary's columns. The cases' own model files are read by
-// the workers (read_case).
+// settings every case shares and the summary's columns. The cases' inputs come from one traced
+// read of the model file when it can give them (replay_cases), else the workers read the file
+// for each case (read_case).
 struct Study {
   StudyPlan plan;
   Prepared prepared;
@@ -93,7 +96,11 @@ struct Study {
   RunSettings settings;
   std::vector<std::string> header;
   Evaluation evaluation = Evaluation::Interpreter;  ///< the workers'
+  std::optional<sweep::ReplayedInputs> replay;
+  std::string not_replayed;  ///< why every case's model file is read (when replay is empty)
 };
+
+void replay_cases(const Options& opt, Study& s);
 
 Study set_up(const Options& opt) {
   Study s;
@@ -120,21 +127,32 @@ Study set_up(const Options& opt) {
   for (const char* c : {"status", "reason", "failure_time"}) s.header.emplace_back(c);
   for (const auto& m : s.plan.metrics) s.header.push_back(sweep::csv_field(m.name));
   s.header.emplace_back("wall_s");
+  replay_cases(opt, s);
   return s;
+}
+
+// The model file's values with case `index`'s put in.
+ParameterOverrides case_values(const Study& s, size_t index) {
+  ParameterOverrides values = s.fixed;
+  for (const auto& [name, value] : s.plan.cases.at(index).values) values[name] = value;
+  return values;
+}
+
+// The inputs of a case read from `m`, the model file read with its values.
+sweep::CaseInput inputs_of(const Study& s, const Model& m) {
+  SimulationOptions so = simulation_options(m, s.settings);
+  so.jacobian_source = jacobian_source(s.prepared, so.integrator.method);  // derived once
+  return sweep::case_input(m, *s.prepared.compiled, so);
 }
 
 // Case `index`'s inputs from the model file read with its values (parameters, initial state
 // and settings may be expressions of them), or why the model rejects them: a value it refuses,
-// or one that changes its structure, which the one compiled model cannot follow.
+// or one that changes its structure, which the one compiled model cannot follow. Not
+// thread-safe (GiNaC).
 sweep::CaseRead read_case(const Options& opt, const Study& s, size_t index) {
-  ParameterOverrides values = s.fixed;
-  for (const auto& [name, value] : s.plan.cases.at(index).values) values[name] = value;
   sweep::CaseRead r;
   try {
-    const Model m = read_model_file(opt.model, values);
-    SimulationOptions so = simulation_options(m, s.settings);
-    so.jacobian_source = jacobian_source(s.prepared, so.integrator.method);  // derived once
-    r.input = sweep::case_input(m, *s.prepared.compiled, so);
+    r.input = inputs_of(s, read_model_file(opt.model, case_values(s, index)));
   } catch (const ModelError& e) {
     r.rejected = fmt::format("the model does not accept these values: {} (at {})", e.detail(),
                              e.loc().str());
@@ -144,6 +162,60 @@ sweep::CaseRead read_case(const Options& opt, const Study& s, size_t index) {
     r.rejected = e.what();
   }
   return r;
+}
+
+// Case `index`'s inputs without a read (Study::replay), or nothing when the file must say.
+// Thread-safe.
+std::optional<sweep::CaseRead> replayed_case(const Study& s, size_t index) {
+  if (!s.replay) return std::nullopt;
+  std::optional<sweep::CaseInput> input = (*s.replay)(s.plan.cases.at(index).values);
+  if (!input) return std::nullopt;
+  sweep::CaseRead r;
+  r.input = std::move(input);
+  return r;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+// Reads the model file once with the first case's values, following the varied parameters
+// (docs/theory.md §9.4): when every use the reader makes of their values can be repeated, the
+// cases' inputs come from that read (Study::replay). The last case it gives, read from the file
+// as well, must come out the same bit for bit; else (a use the trace missed) every case is read.
+void replay_cases(const Options& opt, Study& s) {
+  ReadTrace trace;
+  for (const auto& [name, value] : s.plan.cases.front().values) trace.watched.push_back(name);
+  std::optional<sweep::CaseInput> base;
+  std::optional<Model> traced;
+  try {
+    traced.emplace(read_model_file(opt.model, case_values(s, 0), trace));
+    base = inputs_of(s, *traced);
+  } catch (const std::exception&) {
+    s.not_replayed = "the first case's values are rejected";
+    return;
+  }
+  if (!trace.opaque.empty()) {
+    s.not_replayed = trace.opaque + " depends on the varied parameters";
+    return;
+  }
+  s.replay.emplace(*traced, trace, std::move(*base));
+  size_t last = s.plan.cases.size();  // the last case (after the first) it gives
+  std::optional<sweep::CaseRead> replayed;
+  while (!replayed && --last > 0) replayed = replayed_case(s, last);
+  if (!replayed) return;
+  const sweep::CaseRead read = read_case(opt, s, last);
+  const sweep::CaseInput &a = *replayed->input, *b = read.input ? &*read.input : nullptr;
+  if (b && same_bits(a.parameters, b->parameters) && same_bits(a.q0, b->q0) &&
+      same_bits(a.v0, b->v0) && same_bits({a.baumgarte}, {b->baumgarte}))
+    return;
+  s.replay.reset();
+  s.not_replayed = "the inputs from one read differ from the last case's own read";
+  fmt::print(stderr,
+             "warning: the inputs of case {} computed from one read of {} differ from its own "
+             "read; every case's model file is read instead (please report this)\n",
+             last, opt.model);
 }
 
 // --compile auto or on: machine code with the tapes' constants in memory, built (or loaded)
@@ -175,7 +247,8 @@ class CaseRunner {
       dyn_.set_evaluation(s_.evaluation);  // from the cache rank 0 filled before the first case
       evaluation_set_ = true;
     }
-    sweep::CaseRead read = read_case(opt_, s_, index);
+    sweep::CaseRead read = replayed_case(s_, index).value_or(sweep::CaseRead{});
+    if (!read.input) read = read_case(opt_, s_, index);
     if (read.input) read.input->options.interrupt = opt_.interrupt;
     const bool keep = opt_.keep_trajectories && read.input;
     sweep::CaseResult r = sweep::run_case(dyn_, read, s_.plan.metrics, keep ? &traj_ : nullptr);
@@ -261,11 +334,29 @@ std::vector<size_t> pending_cases(const Study& s, const sweep::SummaryFile& summ
   return pending;
 }
 
+// How many cases' model files the workers read, and in what time.
+struct Reading {
+  size_t files = 0;
+  double seconds = 0.0;
+};
+
+// Where the cases' inputs came from, for the summary line: ", …" or "".
+std::string reading_note(const Study& s, const Reading& r) {
+  if (s.replay)
+    return r.files == 0 ? ", the cases' inputs from one read of the model file"
+                        : fmt::format(
+                              ", the cases' inputs from one read of the model file, {} "
+                              "read again ({:.3f} s)",
+                              r.files, r.seconds);
+  return fmt::format(", {:.3f} s of it reading the cases' model files ({})", r.seconds,
+                     s.not_replayed);
+}
+
 // The end of a study on rank 0 or the one machine: 130 when interrupted, else the table sorted.
-// `reading` is the time the workers spent reading the cases' model files, when measured.
+// `reading`: the workers' reads of the cases' model files, when counted.
 int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
              const Progress& progress, size_t already, const std::string& workers,
-             std::optional<double> reading) {
+             std::optional<Reading> reading) {
   const fs::path path = fs::path(opt.study) / "summary.csv";
   const size_t total = s.plan.cases.size();
   progress.clear();
@@ -284,11 +375,10 @@ int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
     fmt::print("  tapes: {}\n", s.evaluation == Evaluation::Interpreter
                                     ? std::string("interpreter")
                                     : s.prepared.dynamics->evaluation_note());
-    fmt::print(
-        "  derive {:.3f} s and compile {:.3f} s once, run {:.3f} s ({:.1f} cases/s{})\n",
-        s.prepared.derive_seconds, s.prepared.compile_seconds, progress.seconds(),
-        static_cast<double>(ran) / std::max(progress.seconds(), 1e-9),
-        reading ? fmt::format(", {:.3f} s of it reading the cases' model files", *reading) : "");
+    fmt::print("  derive {:.3f} s and compile {:.3f} s once, run {:.3f} s ({:.1f} cases/s{})\n",
+               s.prepared.derive_seconds, s.prepared.compile_seconds, progress.seconds(),
+               static_cast<double>(ran) / std::max(progress.seconds(), 1e-9),
+               reading ? reading_note(s, *reading) : "");
     fmt::print("  wrote {}\n", path.string());
   }
   return 0;
@@ -339,6 +429,7 @@ int run_sweep_mpi(const Options& opt) {
 
 int run_sweep(const Options& opt) {
   const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
+  sweep::keep_freed_memory();
 #ifdef LAGRANGE_HAVE_MPI
   if (started_by_mpirun()) return run_sweep_mpi(opt);
 #else
@@ -353,15 +444,19 @@ int run_sweep(const Options& opt) {
   choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);
-  double reading = 0.0;  // added to one read at a time (PoolOptions::read)
+  Reading reading;       // counted under the lock
+  std::mutex read_lock;  // one model read at a time: GiNaC is not thread-safe
   sweep::PoolOptions pool;
   pool.workers = opt.jobs > 0 ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
   pool.interrupt = opt.interrupt;
   pool.evaluation = s.evaluation;
   pool.read = [&](size_t index) {
+    if (std::optional<sweep::CaseRead> r = replayed_case(s, index)) return std::move(*r);
+    const std::lock_guard<std::mutex> lock(read_lock);
     const auto start = Clock::now();
     sweep::CaseRead r = read_case(opt, s, index);
-    reading += seconds_since(start);
+    reading.seconds += seconds_since(start);
+    ++reading.files;
     return r;
   };
   pool.done = [&](const sweep::CaseResult& r) {

@@ -199,7 +199,7 @@ void declare_chain(ModelReader& r, LinkChain& chain) {
       b.rotation = f.R;
       b.angular_velocity = f.w;
       b.loc = link.inertia_loc;
-      check_body_inertia(r.model(), b, f.spin_axis);
+      r.check_inertia(b, f.spin_axis);
       b.loc = link.loc;
       r.add_body(b);
     }

@@ -124,7 +124,8 @@ void read_wind(model::ModelReader& reader, const YAML::Node& node, ElementContex
     reader.check_sign(w.exponent, node["exponent"], false, "power-law exponent");
     // (h/h_ref)^a with a ≥ 100 vanishes below h_ref and overflows above it: no wind shear is
     // that steep (open sea ≈ 0.1, cities ≈ 0.4).
-    if (const auto a = reader.evaluate(w.exponent); a && *a > 1)
+    if (const auto a = reader.evaluate_for_test(w.exponent, [](double x) { return x > 1; });
+        a && *a > 1)
       reader.fail(node["exponent"],
                   fmt::format("expected a power-law exponent between 0 and 1 (0.1 over open "
                               "water to 0.4 over cities), got {:g}",

@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -54,7 +55,9 @@ enum Allowed : unsigned {
 /// parameters, coordinates, inputs, points, then everything that may use them.
 class ModelReader {
  public:
-  ModelReader(const SourceText& src, const ParameterOverrides& overrides);
+  /// `trace`, when given, records how the model depends on the watched parameters' values.
+  ModelReader(const SourceText& src, const ParameterOverrides& overrides,
+              ReadTrace* trace = nullptr);
   Model read(const YAML::Node& root);
 
   // The methods below are also the interface of the element readers (src/elements/), which
@@ -100,6 +103,29 @@ class ModelReader {
   double number(const YAML::Node& node, unsigned allowed, const std::string& what) const;
   /// The value of `e` at the file's parameter values, if it is a real number.
   std::optional<double> evaluate(const GiNaC::ex& e) const;
+
+  // read_trace.cpp — how the model depends on the values of a trace's watched parameters
+  // (docs/theory.md §9.4). Untraced reads skip all of it.
+  /// `e` depends on a watched value: a watched parameter, a coordinate whose initial value or
+  /// rate is an expression of one, an input whose expression uses one.
+  bool traced(const GiNaC::ex& e) const;
+  /// Records in the trace that `e`'s value went where it cannot be recomputed (`what`), when it
+  /// depends on a watched value.
+  void untraceable(const GiNaC::ex& e, const std::string& what) const;
+  /// evaluate(e) for a test whose answer is all the reader uses of the value (`test(value)`
+  /// true: the reader fails or warns): a traced read keeps the test to repeat it.
+  std::optional<double> evaluate_for_test(const GiNaC::ex& e,
+                                          const std::function<bool(double)>& test) const;
+  /// A coordinate's initial value (`rate` false) or rate written at `node`, as number() reads
+  /// it; a traced read keeps its expression when it depends on a watched parameter.
+  /// `c` is the coordinate being read (the next of the model's).
+  double coordinate_number(const YAML::Node& node, const std::string& what, const Coordinate& c,
+                           bool rate);
+  /// Starts following the trace's watched parameters (once the parameters are read).
+  void watch_parameters();
+  /// check_body_inertia (lagrange/rigid_body.hpp) on `body`, whose mass and inertia a trace
+  /// cannot follow.
+  void check_inertia(const Body& body, std::optional<size_t> spin_axis) const;
   /// Fails at `node` if `e` evaluates to a number that is negative (or zero when `strict`).
   void check_sign(const GiNaC::ex& e, const YAML::Node& node, bool strict,
                   const std::string& what) const;
@@ -149,6 +175,9 @@ class ModelReader {
   std::vector<SampledState> sample_states() const;
   /// RᵀR = 1 and det R = +1 at the sampled states, or a located error saying what was found.
   void check_posed_rotation(const Body& body, const YAML::Node& node) const;
+  /// Records in a trace that `body`'s rotation, when it depends on a watched value, is judged at
+  /// sampled states (which a trace cannot follow).
+  void untraced_rotation(const Body& body) const;
   /// The body axis the angular velocity always lies along (z for rot_z(q)), if any.
   std::optional<size_t> single_spin_axis(const Body& body) const;
   void read_torques(const YAML::Node& node);
@@ -198,6 +227,17 @@ class ModelReader {
  private:
   const SourceText& src_;
   const ParameterOverrides& overrides_;
+  ReadTrace* trace_ = nullptr;
+  /// The symbols whose values a trace follows (watched parameters, then coordinates' q or v).
+  std::vector<GiNaC::symbol> traced_symbols_;
+  /// evaluate(e) without recording anything in a trace.
+  std::optional<double> evaluate_unrecorded(const GiNaC::ex& e) const;
+  /// A real, finite value of `e` at the parameters' values as evaluate() gives it and a tape
+  /// over the parameters recomputes it, or nothing.
+  std::optional<double> replayable_value(const GiNaC::ex& e) const;
+  /// The number of `e`, written at `node`, or a located error (not real, not finite).
+  double checked_number(const std::optional<double>& v, const YAML::Node& node,
+                        const std::string& what) const;
   Model m_;
   std::map<std::string, NameEntry> names_;
   std::vector<bool> point_ready_;

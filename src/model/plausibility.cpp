@@ -69,40 +69,50 @@ class TrigScan {
 
 void ModelReader::warn_implausible(const GiNaC::ex& e, const YAML::Node& node, Quantity q,
                                    const std::string& what) const {
-  const std::optional<double> v = evaluate(e);
-  if (!v || !std::isfinite(*v)) return;
+  const auto implausible = [q](double v) {
+    switch (q) {
+      case Quantity::AirDensity:
+        // 0 switches the aerodynamics off; air is 1.225 kg/m³ at sea level, 0.41 at 10 km.
+        return v > 2.0 || (v > 0 && v < 0.01);
+      case Quantity::Angle:
+        return std::abs(v) > kTurn + 1e-9;
+      case Quantity::Gravity:
+        return std::abs(v) > 50;
+    }
+    return false;
+  };
+  const std::optional<double> v = evaluate_for_test(e, implausible);
+  if (!v || !std::isfinite(*v) || !implausible(*v)) return;
+  untraceable(e, what + ", which the reader warns about");  // the warning names the value
   const SourceLoc at = src_.at(node);
   switch (q) {
     case Quantity::AirDensity:
-      // 0 switches the aerodynamics off; air is 1.225 kg/m³ at sea level, 0.41 at 10 km.
-      if (*v > 2.0 || (*v > 0 && *v < 0.01))
-        print_warning(
-            at,
-            fmt::format("{} is {:g} kg/m³, far outside air's 0.01 … 2 kg/m³ (1.225 "
-                        "at sea level): lagrange reads SI units{}",
-                        what, *v,
-                        *v > 100 ? fmt::format(" ({:g} g/m³ = {:g} kg/m³)", *v, *v / 1000) : ""));
+      print_warning(
+          at, fmt::format("{} is {:g} kg/m³, far outside air's 0.01 … 2 kg/m³ (1.225 "
+                          "at sea level): lagrange reads SI units{}",
+                          what, *v,
+                          *v > 100 ? fmt::format(" ({:g} g/m³ = {:g} kg/m³)", *v, *v / 1000) : ""));
       break;
     case Quantity::Angle:
-      if (std::abs(*v) > kTurn + 1e-9)
-        print_warning(at, fmt::format("{} is {:g} rad ({:.3g} turns): angles are in radians "
-                                      "({:g}° = {:.6g} rad)",
-                                      what, *v, *v / kTurn, *v, *v * kPi / 180));
+      print_warning(at, fmt::format("{} is {:g} rad ({:.3g} turns): angles are in radians "
+                                    "({:g}° = {:.6g} rad)",
+                                    what, *v, *v / kTurn, *v, *v * kPi / 180));
       break;
     case Quantity::Gravity:
-      if (std::abs(*v) > 50)
-        print_warning(at, fmt::format("{} is {:g} m/s² ({:.3g} g): lagrange reads SI units "
-                                      "(9.81 m/s² on Earth){}",
-                                      what, *v, *v / 9.80665,
-                                      std::abs(*v) > 500 ? " — cm/s² or ft/s²?" : ""));
+      print_warning(
+          at, fmt::format("{} is {:g} m/s² ({:.3g} g): lagrange reads SI units "
+                          "(9.81 m/s² on Earth){}",
+                          what, *v, *v / 9.80665, std::abs(*v) > 500 ? " — cm/s² or ft/s²?" : ""));
       break;
   }
 }
 
 void ModelReader::warn_angle_parameters() const {
+  const auto beyond_turn = [](double v) { return std::abs(v) > kTurn + 1e-9; };
+  // Those beyond a turn, and those a trace follows (another value may be).
   std::vector<const Parameter*> candidates;
   for (const Parameter& p : m_.parameters)
-    if (std::abs(p.value) > kTurn + 1e-9) candidates.push_back(&p);
+    if (beyond_turn(p.value) || traced(p.sym)) candidates.push_back(&p);
   if (candidates.empty()) return;
   TrigScan scan;
   auto visit3 = [&](const Vec3& v) {
@@ -123,6 +133,12 @@ void ModelReader::warn_angle_parameters() const {
   if (m_.gravity) visit3(*m_.gravity);
   for (const Parameter* p : candidates) {
     if (scan.outside(p->sym) || !scan.angle(p->sym)) continue;
+    if (traced(p->sym)) {
+      if (!beyond_turn(evaluate_for_test(p->sym, beyond_turn).value_or(0.0))) continue;
+      untraceable(p->sym, "parameter '" + p->name + "', which the reader warns about");
+    } else if (!beyond_turn(p->value)) {
+      continue;
+    }
     print_warning(p->loc,
                   fmt::format("parameter '{}' = {:g} enters only as an angle (inside sin, "
                               "cos or tan) and is {:.3g} turns: angles are in radians "

@@ -78,9 +78,18 @@ std::vector<ModelReader::SampledState> ModelReader::sample_states() const {
   return states;
 }
 
+// The checks below evaluate a rotation at states drawn around the initial one: a trace cannot
+// follow what they find.
+void ModelReader::untraced_rotation(const Body& body) const {
+  for (const Vec3& row : body.rotation)
+    for (const GiNaC::ex& e : row)
+      untraceable(e, "the rotation of body '" + body.name + "', checked at sampled states");
+}
+
 // A posed body's `rotation:` must be a rotation wherever the coordinates go (docs/theory.md §4.4:
 // ω = unskew(RᵀṘ) assumes RᵀR = 1). Checked numerically at the sampled states.
 void ModelReader::check_posed_rotation(const Body& body, const YAML::Node& node) const {
+  untraced_rotation(body);
   std::vector<std::string> used;  // the names R depends on, for the message
   auto depends = [&](const GiNaC::ex& s) {
     for (const Vec3& row : body.rotation)
@@ -112,6 +121,7 @@ void ModelReader::check_posed_rotation(const Body& body, const YAML::Node& node)
 // ω = unskew(RᵀṘ) (docs/theory.md §4.4) at the sampled states: the body axis it always lies
 // along, if there is one (a planar link posed by rot_z(q) turns about z only).
 std::optional<size_t> ModelReader::single_spin_axis(const Body& body) const {
+  untraced_rotation(body);
   Mat3 Rdot;
   try {
     for (size_t i = 0; i < 3; ++i)

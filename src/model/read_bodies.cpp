@@ -74,7 +74,7 @@ Body ModelReader::read_body(const std::string& name, const YAML::Node& key,
       check_posed_rotation(body, spec["rotation"]);
     }
   }
-  check_body_inertia(m_, body, body.free ? std::nullopt : single_spin_axis(body));
+  check_inertia(body, body.free ? std::nullopt : single_spin_axis(body));
   if (spec["points"]) read_body_points(body, spec["points"]);
   return body;
 }

@@ -51,8 +51,10 @@ void ModelReader::read_coordinates(const YAML::Node& node) {
                  false,
                  src_.at(kv.first)};
     if (!spec["initial"]) fail(kv.first, fmt::format("expected 'initial' in {}, got none", what));
-    c.initial = number(spec["initial"], kParams, fmt::format("initial value of {}", what));
-    if (spec["rate"]) c.rate = number(spec["rate"], kParams, fmt::format("rate of {}", what));
+    c.initial =
+        coordinate_number(spec["initial"], fmt::format("initial value of {}", what), c, false);
+    if (spec["rate"])
+      c.rate = coordinate_number(spec["rate"], fmt::format("rate of {}", what), c, true);
     if (spec["fixed"]) c.fixed = boolean(spec["fixed"], fmt::format("'fixed' of {}", what));
     m_.coordinates.push_back(c);
   }

@@ -64,6 +64,7 @@ void ModelReader::add_body(const Body& body) {
 }
 
 std::optional<double> ModelReader::initial_value(const GiNaC::ex& e) const {
+  untraceable(e, "a value at the initial state (a tether's shape, a winch's length, …)");
   GiNaC::exmap values;
   for (const Parameter& p : m_.parameters) values[p.sym] = GiNaC::numeric(p.value);
   values[m_.t] = 0;

@@ -109,6 +109,11 @@ Mat3 ModelReader::matrix_expr(const YAML::Node& node, unsigned allowed,
 }
 
 std::optional<double> ModelReader::evaluate(const GiNaC::ex& e) const {
+  untraceable(e, "a number the reader computes with");
+  return evaluate_unrecorded(e);
+}
+
+std::optional<double> ModelReader::evaluate_unrecorded(const GiNaC::ex& e) const {
   try {
     GiNaC::exmap values;
     for (const Parameter& p : m_.parameters) values[p.sym] = GiNaC::numeric(p.value);
@@ -122,10 +127,20 @@ std::optional<double> ModelReader::evaluate(const GiNaC::ex& e) const {
   }
 }
 
+std::optional<double> ModelReader::replayable_value(const GiNaC::ex& e) const {
+  if (!evaluate_unrecorded(e)) return std::nullopt;
+  const std::optional<double> v = in_canonical_order(e, m_.parameters);
+  if (!v || !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
 double ModelReader::number(const YAML::Node& node, unsigned allowed,
                            const std::string& what) const {
-  GiNaC::ex e = scalar_expr(node, allowed, what);
-  std::optional<double> v = evaluate(e);
+  return checked_number(evaluate(scalar_expr(node, allowed, what)), node, what);
+}
+
+double ModelReader::checked_number(const std::optional<double>& v, const YAML::Node& node,
+                                   const std::string& what) const {
   if (!v)
     fail(node, fmt::format("expected a real number for {}, got '{}'", what, clip(node.Scalar())));
   if (!std::isfinite(*v))
@@ -135,7 +150,8 @@ double ModelReader::number(const YAML::Node& node, unsigned allowed,
 
 void ModelReader::check_sign(const GiNaC::ex& e, const YAML::Node& node, bool strict,
                              const std::string& what) const {
-  std::optional<double> v = evaluate(e);
+  const std::optional<double> v = evaluate_for_test(
+      e, [strict](double x) { return !(std::isfinite(x) && x > 0) && (strict || x != 0); });
   if (!v) return;
   if (std::isfinite(*v) && *v > 0) return;
   if (!strict && *v == 0) return;

@@ -47,8 +47,9 @@ std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
 
 }  // namespace
 
-ModelReader::ModelReader(const SourceText& src, const ParameterOverrides& overrides)
-    : src_(src), overrides_(overrides) {}
+ModelReader::ModelReader(const SourceText& src, const ParameterOverrides& overrides,
+                         ReadTrace* trace)
+    : src_(src), overrides_(overrides), trace_(trace) {}
 
 Model ModelReader::read(const YAML::Node& root) {
   if (!root.IsMap())
@@ -63,6 +64,7 @@ Model ModelReader::read(const YAML::Node& root) {
 
   if (auto n = section(root, "parameters")) read_parameters(*n);
   check_overrides();
+  watch_parameters();
   if (auto n = section(root, "coordinates")) read_coordinates(*n);
   if (auto n = section(root, "inputs")) read_inputs(*n);
   if (auto n = section(root, "bodies")) read_bodies(*n);
@@ -105,7 +107,7 @@ Model ModelReader::read(const YAML::Node& root) {
 }  // namespace model
 
 Model read_model_string(const std::string& yaml_text, const std::string& file_label,
-                        const ParameterOverrides& overrides) {
+                        const ParameterOverrides& overrides, ReadTrace* trace) {
   std::string text = yaml_text.rfind("\xEF\xBB\xBF", 0) == 0 ? yaml_text.substr(3) : yaml_text;
   model::SourceText src(std::move(text), file_label);
   model::check_yaml_text(src);
@@ -122,13 +124,15 @@ Model read_model_string(const std::string& yaml_text, const std::string& file_la
     throw ModelError(at, fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
   }
   try {
-    return model::ModelReader(src, overrides).read(root);
+    return model::ModelReader(src, overrides, trace).read(root);
   } catch (const YAML::Exception& e) {
     throw ModelError(src.at(e.mark), fmt::format("expected a well-formed model, got: {}", e.msg));
   }
 }
 
-Model read_model_file(const std::string& path, const ParameterOverrides& overrides) {
+namespace {
+
+Model read_file(const std::string& path, const ParameterOverrides& overrides, ReadTrace* trace) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ModelError(SourceLoc{path}, "expected a model file, got a directory");
@@ -146,7 +150,7 @@ Model read_model_file(const std::string& path, const ParameterOverrides& overrid
     return read_model_string(
         fmt::format("name: '{}'\nurdf: '{}'\ngravity: [0, 0, -9.81]\n",
                     quoted(file.stem().string()), quoted(file.filename().string())),
-        path, overrides);
+        path, overrides, trace);
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -164,7 +168,18 @@ Model read_model_file(const std::string& path, const ParameterOverrides& overrid
                                    model::kMaxModelBytes >> 20));
   }
   if (in.bad()) throw ModelError(SourceLoc{path}, "cannot read the model file");
-  return read_model_string(text, path, overrides);
+  return read_model_string(text, path, overrides, trace);
+}
+
+}  // namespace
+
+Model read_model_file(const std::string& path, const ParameterOverrides& overrides) {
+  return read_file(path, overrides, nullptr);
+}
+
+Model read_model_file(const std::string& path, const ParameterOverrides& overrides,
+                      ReadTrace& trace) {
+  return read_file(path, overrides, &trace);
 }
 
 }  // namespace lagrange

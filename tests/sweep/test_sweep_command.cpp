@@ -111,6 +111,36 @@ TEST(SweepCommand, CasesAreBitIdenticalToSimulateSet) {
             without_wall_time(dir.path() / "j2" / "summary.csv"));
 }
 
+// The kite varying its wind, a chain varying its damping (their inputs from one traced read of
+// the model file) and the chain varying its length (its shape: a read per case): a case is, bit
+// for bit, `simulate --set` of its values alone.
+TEST(SweepCommand, KiteAndTetherCasesAreBitIdenticalToSimulateSet) {
+  struct Study {
+    const char* model;
+    std::string name, a, b;  ///< the parameter and its two values
+    const char* inputs;      ///< where the summary line says the inputs came from
+  };
+  ScratchDir dir("sweep-kite-tether");
+  for (const Study& st : {Study{"figure_eight.yaml", "W", "6", "9.5", "from one read"},
+                          Study{"hanging_chain.yaml", "c", "1", "3.5", "from one read"},
+                          Study{"hanging_chain.yaml", "L", "10", "10.5", "reading the cases'"}}) {
+    const std::string model = std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + st.model;
+    const fs::path study = dir.path() / ("study_" + st.name);
+    const RunResult r = run_lagrange(
+        dir.path(), {"sweep", model, "--vary", st.name + "=" + st.a + "," + st.b, "--t-end", "0.5",
+                     "-o", study.string(), "-j", "2", "--keep-trajectories"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(st.inputs), std::string::npos) << r.out;
+    // Case 1: the one whose inputs are not those of the traced read's values (case 0's).
+    const fs::path alone = dir.path() / ("alone_" + st.name + ".csv");
+    const RunResult s = run_lagrange(dir.path(), {"simulate", model, "--set", st.name + "=" + st.b,
+                                                  "--t-end", "0.5", "-o", alone.string(), "-q"});
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    EXPECT_EQ(slurp(study / "case_1.csv"), slurp(alone)) << st.model << " " << st.name;
+    EXPECT_TRUE(fs::exists(study / "case_0.csv"));
+  }
+}
+
 // A massless second bob makes M singular: those cases fail with the reason, the rest finish.
 TEST(SweepCommand, FailingCasesAreRecordedAndTheRestFinish) {
   ScratchDir dir("sweep-failures");
