@@ -197,7 +197,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
                     nq, nv, q0.size(), v0.size()));
   std::vector<double> lambda(m);
   RowWriter rows(cm);
-  const bool dae = opt.integrator.method == "ida";
+  const bool dae = opt.integrator.method == "ida" || opt.integrator.method == "ida:jacobian";
   LastEvaluation last;
   last.q.resize(nq);
   last.v.resize(nv);
@@ -342,6 +342,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         last.reported = false;
         last.record(t, yy, yy + nq, ypp + nq);
       };
+      problem.jacobian = run_dae_jacobian(dyn, opt, opt.t0, y);  // on this workspace
       traj.stats =
           integrate_dae(problem, integrator, opt.t0, y, yp, opt.t_end, opt.output_step, observer);
     } else {
