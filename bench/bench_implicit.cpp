@@ -84,6 +84,12 @@ void work_precision(const std::string& label, const std::string& yaml, double t_
   const auto j0 = clock.now();
   const DynamicsJacobian jac(b.equations, b.compiled);
   const double derive = clock.now().cpu - j0.cpu;
+  std::vector<double> y0 = b.compiled->q0;
+  y0.insert(y0.end(), b.compiled->v0.begin(), b.compiled->v0.end());
+  const size_t n = y0.size(), size = n + b.compiled->m;
+  std::printf("\n%s: Newton matrix non-zeros: ida:jacobian %zu of %zu², cvode:jacobian %zu of %zu²",
+              label.c_str(), dae_jacobian(jac, *b.dynamics, 0.0, y0).nonzeros(), size,
+              ode_jacobian(jac, *b.dynamics, 0.0, y0).nonzeros(), n);
   const Run ref = fly(b, jac, "dop853", 1e-12, t_end, output_step);
   if (ref.tr.status != Trajectory::Status::Complete) {
     std::fprintf(stderr, "%s reference: %s\n", label.c_str(), ref.tr.message.c_str());
