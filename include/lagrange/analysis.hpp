@@ -85,6 +85,11 @@ class DynamicsJacobian {
   /// The implicit form's sparse Jacobians at (t, q, v): one forward call, one evaluation of the
   /// tape and one pass over its outputs, no factorisation (docs/theory.md §5.1).
   ImplicitJacobian implicit(Dynamics& dyn, double t, const double* q, const double* v) const;
+  /// The same at given accelerations a (nv) and multipliers λ (m) instead of the forward call's:
+  /// the Jacobians of the residual Φ(q, v, a, λ) anywhere (dae_jacobian). One evaluation of the
+  /// dynamics tape (for its inputs), one of this tape, no KKT solve.
+  ImplicitJacobian implicit(Dynamics& dyn, double t, const double* q, const double* v,
+                            const double* a, const double* lambda) const;
 
  private:
   std::shared_ptr<const CompiledModel> cm_;
@@ -107,6 +112,14 @@ class DynamicsJacobian {
 /// (OdeProblem::jacobian), on the pattern of the entries non-zero at y0 or at two states nearby
 /// (docs/theory.md §5.6). Refers to `jac` and `dyn`, which must outlive it.
 OdeJacobian ode_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
+                         const std::vector<double>& y0);
+
+/// The exact Newton matrix ∂F/∂y + c_j ∂F/∂y' of the index-1 DAE that `ida` integrates,
+/// y = (q, v, λ), F = Dynamics::dae_residual, from `jac`'s implicit form at the state's own
+/// v' and λ, sparse (docs/theory.md §5.6, "The DAE's Newton matrix"), for ida:jacobian
+/// (DaeProblem::jacobian); its pattern is fixed by `jac`, taken at (t0, y0) (y0: q and v at
+/// least). Refers to `jac` and `dyn`, which must outlive it.
+DaeJacobian dae_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
                          const std::vector<double>& y0);
 
 /// Tangent coordinates of the positions (docs/theory.md §5.2): nv of them, one per velocity:

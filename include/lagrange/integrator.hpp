@@ -20,6 +20,17 @@ struct OdeJacobian {
   size_t nonzeros() const { return rows.size(); }
 };
 
+/// An exact Newton matrix ∂F/∂y + c_j ∂F/∂y' of a DAE F(t, y, y') = 0 with a fixed sparsity
+/// pattern in compressed columns (as OdeJacobian's).
+struct DaeJacobian {
+  std::vector<long> column_starts;  ///< size + 1 entries, the first 0
+  std::vector<long> rows;           ///< row of each non-zero, ascending within a column
+  /// Writes ∂F/∂y + cj ∂F/∂y' at (t, y, y') in the pattern's order (rows.size() values).
+  std::function<void(double t, double cj, const double* y, const double* yp, double* values)>
+      values;
+  size_t nonzeros() const { return rows.size(); }
+};
+
 /// y' = f(t, y). `rhs` may throw lagrange::SimulationError; it is propagated unchanged.
 struct OdeProblem {
   size_t size = 0;
@@ -34,6 +45,9 @@ struct DaeProblem {
   size_t size = 0;
   std::function<void(double t, const double* y, const double* yp, double* residual)> residual;
   std::vector<bool> differential;
+  /// Optional; required by `ida:jacobian` (Newton matrices from it instead of difference
+  /// quotients of the residual).
+  DaeJacobian jacobian;
 };
 
 /// Called after every accepted internal step with the state y at t; may change y in place (e.g. a
@@ -68,7 +82,8 @@ std::string choose_ode_method(const OdeJacobian& jacobian, double t, const std::
 /// table, cvode, cvode:jacobian (CVODE on the problem's exact sparse Jacobian), auto
 /// (choose_ode_method at t0; starting on dop853 with a Jacobian at hand, it continues on
 /// cvode:jacobian from the first sample after DOP853's stiffness test concludes, and on dop853
-/// again once BDF's step h has h·ρ < 1; IntegratorStats::method says when), rk4, midpoint, ida.
+/// again once BDF's step h has h·ρ < 1; IntegratorStats::method says when), rk4, midpoint, ida,
+/// ida:jacobian (IDA on the DAE's exact sparse Newton matrix, DaeProblem::jacobian).
 const std::vector<std::string>& integrator_methods();
 
 /// integrator_methods() joined by ", " (for messages that list the valid names).
@@ -100,8 +115,9 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& op
                           std::vector<double> y0, double t_end, double dt,
                           const Observer& observer);
 
-/// Integrate a DAE with IDA; y0/yp0 must be consistent (or nearly: IDACalcIC corrects y' of
-/// the algebraic part). Same grid and observer contract as `integrate`.
+/// Integrate a DAE with IDA (`ida`, or `ida:jacobian` on problem.jacobian); y0/yp0 must be
+/// consistent (or nearly: IDACalcIC corrects y' of the algebraic part). Same grid and observer
+/// contract as `integrate`.
 IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
                               double t0, std::vector<double> y0, std::vector<double> yp0,
                               double t_end, double dt, const Observer& observer);

@@ -49,12 +49,16 @@ constexpr double kDefaultBaumgarte = 20.0;
 /// cvode and ida, which correct only at output samples, and for any method without projection.
 double baumgarte_rate(const Stabilization& stabilization, const std::string& method);
 
-/// Builds the exact Jacobian of the first-order form on the workspace a run evaluates, from its
-/// start (t0, y0) (ode_jacobian in analysis.hpp over a DynamicsJacobian derived once per model).
-/// Throws std::invalid_argument when the model has none, std::runtime_error when it cannot be
-/// evaluated at y0.
-using JacobianSource =
-    std::function<OdeJacobian(Dynamics& dynamics, double t0, const std::vector<double>& y0)>;
+/// Builds the exact Jacobians a run integrates on, for the workspace it evaluates, from its start
+/// (t0, y0) (over a DynamicsJacobian derived once per model). Each throws std::invalid_argument
+/// when the model has none, std::runtime_error when it cannot be evaluated at y0.
+struct JacobianSource {
+  /// Of the first-order form (ode_jacobian in analysis.hpp): cvode:jacobian, auto.
+  std::function<OdeJacobian(Dynamics& dynamics, double t0, const std::vector<double>& y0)> ode;
+  /// The Newton matrix of the DAE (dae_jacobian in analysis.hpp): ida:jacobian.
+  std::function<DaeJacobian(Dynamics& dynamics, double t0, const std::vector<double>& y0)> dae;
+  explicit operator bool() const { return ode || dae; }
+};
 
 struct SimulationOptions {
   double t0 = 0.0;
@@ -65,8 +69,9 @@ struct SimulationOptions {
   /// integrator as OdeProblem::jacobian; cvode:jacobian needs it. It refers to one workspace:
   /// the one simulate() is given.
   OdeJacobian jacobian;
-  /// Where cvode:jacobian and auto get `jacobian` when it is empty, for the workspace they run
-  /// on (simulate(), the Stepper and a sweep's cases alike: run_jacobian).
+  /// Where cvode:jacobian and auto get `jacobian` when it is empty, and ida:jacobian its Newton
+  /// matrix, for the workspace they run on (simulate(), the Stepper and a sweep's cases alike:
+  /// run_jacobian, run_dae_jacobian).
   JacobianSource jacobian_source;
   /// At output samples (IDA: there only) project onto C = 0, Ċ = 0 when max |C| or |Ċ| exceeds
   /// projection_tol, after each internal step of an ODE method when they exceed
@@ -110,17 +115,23 @@ InitialConsistency make_initial_state_consistent(Dynamics& dynamics, double t0,
                                                  std::vector<double>& q, std::vector<double>& v,
                                                  double tol = 1e-11);
 
-/// True for the methods that integrate on the exact Jacobian: cvode:jacobian, and auto (which may
-/// choose or switch to it).
+/// True for the methods that integrate on the exact Jacobian: cvode:jacobian, ida:jacobian, and
+/// auto (which may choose or switch to cvode:jacobian).
 bool uses_jacobian(const std::string& method);
 
-/// The Jacobian a run with `options` integrates on from (t0, y0) on `dynamics`: for the methods
-/// of uses_jacobian(), options.jacobian, else one built by options.jacobian_source; empty for
+/// The Jacobian a run with `options` integrates on from (t0, y0) on `dynamics`: for cvode:jacobian
+/// and auto, options.jacobian, else one built by options.jacobian_source.ode; empty for
 /// other methods and for auto when none can be had (auto then runs DOP853 throughout). For
 /// cvode:jacobian without one: std::invalid_argument, or SimulationError at t0 when it cannot be
 /// evaluated there.
 OdeJacobian run_jacobian(Dynamics& dynamics, const SimulationOptions& options, double t0,
                          const std::vector<double>& y0);
+
+/// The Newton matrix an ida:jacobian run integrates on from (t0, y0), y0 = (q, v, λ), built by
+/// options.jacobian_source.dae; empty for other methods. Without a source:
+/// std::invalid_argument; SimulationError at t0 when it cannot be evaluated there.
+DaeJacobian run_dae_jacobian(Dynamics& dynamics, const SimulationOptions& options, double t0,
+                             const std::vector<double>& y0);
 
 /// Simulate from (q0, v0). Never throws for numerical failures: the trajectory computed so far
 /// is returned with status Failed and the reason (SimulationError message).

@@ -166,6 +166,23 @@ ImplicitJacobian DynamicsJacobian::implicit(Dynamics& dyn, double t, const doubl
   return J;
 }
 
+ImplicitJacobian DynamicsJacobian::implicit(Dynamics& dyn, double t, const double* q,
+                                            const double* v, const double* a,
+                                            const double* lambda) const {
+  const CompiledModel& c = *cm_;
+  const long nq = static_cast<long>(c.nq), n = static_cast<long>(c.nv), m = static_cast<long>(c.m);
+  std::vector<double> C(c.m), Cdot(c.m);
+  dyn.constraints(t, q, v, C.data(), Cdot.data());  // the dynamics tape's inputs at (t, q, v)
+  std::vector<double> out(tape_.num_outputs()), work(std::max<size_t>(tape_.work_size(), 1));
+  tape_.eval(dyn.last_inputs().data(), out.data(), work.data());
+  ImplicitJacobian J;
+  J.qdot = Eigen::Map<const Eigen::VectorXd>(out.data() + c.qdot_out(), nq);
+  J.a = Eigen::Map<const Eigen::VectorXd>(a, n);
+  J.lambda = Eigen::Map<const Eigen::VectorXd>(lambda, m);
+  layout_->assemble(out.data(), a, lambda, dyn.baumgarte(), J);
+  return J;
+}
+
 // docs/theory.md §5.1: differentiating M a + Gᵀλ = f, G a = γ (γ = −c − 2αĊ − α²C) along a
 // column x gives [M Gᵀ; G 0][a'; λ'] = [f' − M'a − G'ᵀλ; γ' − G'a] = −∂Φ/∂x, one factorisation
 // for all columns; with a block-diagonal M in range-space form, column by column on the sparse

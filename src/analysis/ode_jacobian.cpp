@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "analysis/off_kink.hpp"
 #include "lagrange/analysis.hpp"
 
 namespace lagrange {
@@ -48,10 +49,8 @@ StateJacobian evaluate(const DynamicsJacobian& jac, Dynamics& dyn, double t, con
   const size_t nq = jac.model().nq, n = nq + jac.model().nv;
   StateJacobian J = jac.evaluate(dyn, t, y, y + nq);
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int attempt = 0; attempt < 3 && !finite(J); ++attempt) {
-    std::vector<double> moved(y, y + n);
-    for (double& x : moved) x += 1e-9 * (std::abs(x) + 1.0) * unit(random);
+    const std::vector<double> moved = analysis_detail::off_kink(y, n, random);
     J = jac.evaluate(dyn, t, moved.data(), moved.data() + nq);
   }
   return J;

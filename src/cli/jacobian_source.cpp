@@ -15,27 +15,35 @@ JacobianSource jacobian_source(const Prepared& p, const std::string& method,
   if (p.equations.recursive) {
     if (method == "auto") return {};
     throw UsageError(fmt::format(
-        "integrator cvode:jacobian needs the Lagrangian formulation (the recursive one has no "
-        "exact Jacobian): {}",
-        lagrangian_hint));
+        "integrator {} needs the Lagrangian formulation (the recursive one has no exact "
+        "Jacobian): {}",
+        method, lagrangian_hint));
   }
   if (!p.jacobian) {
     try {
       p.jacobian = std::make_shared<const DynamicsJacobian>(p.equations, p.compiled);
     } catch (const std::invalid_argument& e) {
-      if (method != "auto")
-        throw UsageError(fmt::format("integrator cvode:jacobian: {}", e.what()));
+      if (method != "auto") throw UsageError(fmt::format("integrator {}: {}", method, e.what()));
       return {};
     }
   }
   // The Jacobian each run builds keeps the tape alive for as long as the run holds it.
-  return [jac = p.jacobian](Dynamics& dynamics, double t0, const std::vector<double>& y0) {
+  JacobianSource source;
+  source.ode = [jac = p.jacobian](Dynamics& dynamics, double t0, const std::vector<double>& y0) {
     OdeJacobian out = ode_jacobian(*jac, dynamics, t0, y0);
     out.values = [jac, values = std::move(out.values)](double t, const double* y, double* v) {
       values(t, y, v);
     };
     return out;
   };
+  source.dae = [jac = p.jacobian](Dynamics& dynamics, double t0, const std::vector<double>& y0) {
+    DaeJacobian out = dae_jacobian(*jac, dynamics, t0, y0);
+    out.values = [jac, values = std::move(out.values)](double t, double cj, const double* y,
+                                                       const double* yp,
+                                                       double* v) { values(t, cj, y, yp, v); };
+    return out;
+  };
+  return source;
 }
 
 }  // namespace lagrange::cli

@@ -57,8 +57,8 @@ int main(int argc, char** argv) {
                   "comma-separated)")
       ->delimiter(',');
   sim->add_option("--integrator", opt.integrator,
-                  "dop853 (default), arkode (its table per tolerance), arkode:<table>, cvode, rk4, "
-                  "midpoint, ida")
+                  "dop853 (default), arkode (its table per tolerance), arkode:<table>, cvode, "
+                  "cvode:jacobian, auto, rk4, midpoint, ida, ida:jacobian")
       ->check(CLI::IsMember(lagrange::integrator_methods()));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");

@@ -284,27 +284,31 @@ void Dynamics::solve_full_kkt(double t) {
   lambda_ = kkt_rhs_.tail(m);
 }
 
+// docs/theory.md §4.3: M v' and G v', Gᵀλ from the tape's structural non-zeros (a tether's M and
+// G are sparse: no dense products).
 void Dynamics::dae_residual(double t, const double* q, const double* v, const double* qp,
                             const double* vp, const double* lambda, double* r) {
   const CompiledModel& cm = *model_;
-  const long nq = static_cast<long>(cm.nq), n = static_cast<long>(cm.nv),
-             m = static_cast<long>(cm.m);
+  const size_t nq = cm.nq, n = cm.nv, m = cm.m;
   eval_dynamics(t, q, v);
-  assemble_M();
-  assemble_G();
-  const Eigen::Map<const Eigen::VectorXd> vpv(vp, n), lam(lambda, m);
-  Eigen::Map<Eigen::VectorXd> rv(r + nq, n), rl(r + nq + n, m);
-  for (long i = 0; i < nq; ++i) r[i] = qp[i] - out_[cm.qdot_out() + static_cast<size_t>(i)];
-  rv.noalias() = M_ * vpv;
-  if (m > 0) rv.noalias() += G_.transpose() * lam;
-  for (long i = 0; i < n; ++i) rv[i] -= out_[cm.rhs_out() + static_cast<size_t>(i)];
-  if (m > 0) {
-    rl.noalias() = G_ * vpv;
-    for (long k = 0; k < m; ++k) {
-      const size_t kk = static_cast<size_t>(k);
-      rl[k] += out_[cm.c_out() + kk] + 2.0 * alpha_ * out_[cm.Cdot_out() + kk] +
-               alpha_ * alpha_ * out_[cm.C_out() + kk];
-    }
+  const double* out = out_.data();
+  double* rv = r + nq;
+  double* rl = r + nq + n;
+  for (size_t i = 0; i < nq; ++i) r[i] = qp[i] - out[cm.qdot_out() + i];
+  for (size_t i = 0; i < n; ++i) rv[i] = -out[cm.rhs_out() + i];
+  for (size_t e = 0; e < cm.M_pattern.size(); ++e) {  // upper triangle of the symmetric M
+    const auto [i, j] = cm.M_pattern[e];
+    rv[i] += out[e] * vp[j];
+    if (i != j) rv[j] += out[e] * vp[i];
+  }
+  for (size_t k = 0; k < m; ++k)
+    rl[k] = out[cm.c_out() + k] + 2.0 * alpha_ * out[cm.Cdot_out() + k] +
+            alpha_ * alpha_ * out[cm.C_out() + k];
+  const double* g = out + cm.G_out();
+  for (size_t e = 0; e < cm.G_pattern.size(); ++e) {
+    const auto [k, j] = cm.G_pattern[e];
+    rv[j] += g[e] * lambda[k];
+    rl[k] += g[e] * vp[j];
   }
 }
 

@@ -32,6 +32,11 @@ struct DaeCallback {
   CallbackGuard guard;
   /// IDAResFn: r = F(t, y, y'); returns -1 after storing an exception.
   static int residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* self);
+  /// IDALsJacFn: J = ∂F/∂y + c_j ∂F/∂y' from problem.jacobian into a sparse (compressed-column)
+  /// or dense SUNMatrix; returns -1 after storing an exception.
+  static int jacobian(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vector r,
+                      SUNMatrix J, void* self, N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
+  std::vector<double> values;  ///< scratch for problem.jacobian's non-zeros
 };
 
 }  // namespace lagrange::integration

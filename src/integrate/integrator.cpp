@@ -117,10 +117,12 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& gi
   }
   const std::string& method = options.method;
   const std::vector<std::string>& known = integrator_methods();
-  if (method == "ida" || std::find(known.begin(), known.end(), method) == known.end()) {
-    throw std::invalid_argument(fmt::format(
-        "integrator: unknown ODE method '{}', expected one of {}{}", method,
-        integrator_method_list(), method == "ida" ? " (ida is for DAEs: use integrate_dae)" : ""));
+  const bool dae = method == "ida" || method == "ida:jacobian";
+  if (dae || std::find(known.begin(), known.end(), method) == known.end()) {
+    throw std::invalid_argument(
+        fmt::format("integrator: unknown ODE method '{}', expected one of {}{}", method,
+                    integrator_method_list(),
+                    dae ? fmt::format(" ({} is for DAEs: use integrate_dae)", method) : ""));
   }
   integration::validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
@@ -153,12 +155,16 @@ IntegratorStats integrate(const OdeProblem& problem, const IntegratorOptions& gi
 IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions& options,
                               double t0, std::vector<double> y0, std::vector<double> yp0,
                               double t_end, double dt, const Observer& observer) {
-  if (options.method != "ida") {
-    throw std::invalid_argument(
-        fmt::format("integrator: unknown DAE method '{}', expected ida", options.method));
+  if (options.method != "ida" && options.method != "ida:jacobian") {
+    throw std::invalid_argument(fmt::format(
+        "integrator: unknown DAE method '{}', expected ida or ida:jacobian", options.method));
   }
   if (options.after_step)
-    throw std::invalid_argument("integrator: ida takes no step hook (it restarts at samples)");
+    throw std::invalid_argument(
+        fmt::format("integrator: {} takes no step hook (it restarts at samples)", options.method));
+  if (options.method == "ida:jacobian" && !problem.jacobian.values)
+    throw std::invalid_argument(
+        "integrator: ida:jacobian needs the problem's exact Newton matrix (DaeProblem::jacobian)");
   integration::validate_options(options);
   validate_size(problem.size, y0.size(), "y0");
   validate_size(problem.size, yp0.size(), "yp0");
@@ -166,7 +172,7 @@ IntegratorStats integrate_dae(const DaeProblem& problem, const IntegratorOptions
   if (!problem.residual) throw std::invalid_argument("integrator: the DAE has no residual");
   const integration::OutputGrid grid(t0, t_end, dt);
   IntegratorStats stats = integration::integrate_ida(problem, options, grid, y0, yp0, observer);
-  stats.method = "ida";
+  stats.method = options.method;
   return stats;
 }
 

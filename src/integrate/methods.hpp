@@ -65,7 +65,8 @@ IntegratorStats integrate_midpoint(const OdeProblem& problem, const IntegratorOp
                                    const OutputGrid& grid, std::vector<double>& y,
                                    const Observer& observer);
 
-/// IDA (variable-order BDF for F(t, y, y') = 0) with a dense linear solver and IDACalcIC.
+/// IDA (variable-order BDF for F(t, y, y') = 0) with IDACalcIC: `ida` on dense difference-quotient
+/// Newton matrices, `ida:jacobian` on problem.jacobian, in KLU when the build has it (else dense).
 IntegratorStats integrate_ida(const DaeProblem& problem, const IntegratorOptions& options,
                               const OutputGrid& grid, std::vector<double>& y,
                               std::vector<double>& yp, const Observer& observer);

@@ -26,7 +26,8 @@ const std::vector<std::string>& integrator_methods() {
                                               "auto",
                                               "rk4",
                                               "midpoint",
-                                              "ida"};
+                                              "ida",
+                                              "ida:jacobian"};
   return names;
 }
 

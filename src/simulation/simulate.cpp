@@ -197,7 +197,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
                     nq, nv, q0.size(), v0.size()));
   std::vector<double> lambda(m);
   RowWriter rows(cm);
-  const bool dae = opt.integrator.method == "ida";
+  const bool dae = opt.integrator.method == "ida" || opt.integrator.method == "ida:jacobian";
   LastEvaluation last;
   last.q.resize(nq);
   last.v.resize(nv);
@@ -217,7 +217,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     return moved;
   };
   // ODE methods correct their own state after every internal step (the step hook); IDA restarts
-  // at samples instead (StateChanged below).
+  // at samples instead, when the drift there exceeds the step tolerance (StateChanged below).
   IntegratorOptions integrator = opt.integrator;
   if (!dae) integrator.after_step = correct_step_drift;
   OdeProblem ode;
@@ -272,10 +272,17 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     last.reported = true;  // the sample's checks name their own values
     checks.state(t, yy);
     last.reported = false;
-    if (correct_drift(t, yy) && dae) {  // keep (λ, y') consistent with the projected state
+    // IDA's sample is its interpolant, which it does not read back: like an ODE method's dense
+    // output it is corrected for the row only, unless the drift exceeds what the error control
+    // resolves (docs/theory.md §4.3): then IDA restarts from the projected state, with (λ, y')
+    // consistent with it.
+    if (dae && correct_step_drift(t, yy)) {
+      correct_drift(t, yy);
       dyn.forward(t, yy, yy + nq, yp, yp + nq, yy + n);
       std::fill(yp + n, yp + n + m, 0.0);
       action = ObserverAction::StateChanged;
+    } else {
+      correct_drift(t, yy);
     }
     try {
       checks.append_row(rows, dyn, t, yy, traj, [&](const double* row) {
@@ -342,6 +349,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
         last.reported = false;
         last.record(t, yy, yy + nq, ypp + nq);
       };
+      problem.jacobian = run_dae_jacobian(dyn, opt, opt.t0, y);  // on this workspace
       traj.stats =
           integrate_dae(problem, integrator, opt.t0, y, yp, opt.t_end, opt.output_step, observer);
     } else {

@@ -55,7 +55,7 @@ TEST(JacobianSource, DerivedOnceForEveryRunOfTheModel) {
   y.insert(y.end(), p.v.begin(), p.v.end());
   y[0] += 0.3;  // off the unstretched start, where every segment pulls
   y[2] -= 0.5;
-  const OdeJacobian a = first(*p.dynamics, 0.0, y), b = first(other, 0.0, y);
+  const OdeJacobian a = first.ode(*p.dynamics, 0.0, y), b = first.ode(other, 0.0, y);
   ASSERT_EQ(a.rows, b.rows);
   std::vector<double> va(a.nonzeros()), vb(b.nonzeros());
   a.values(0.0, y.data(), va.data());
@@ -68,12 +68,15 @@ TEST(JacobianSource, RecursiveFormHasNoneToGive) {
                        "--initial", "recursive");
   ASSERT_TRUE(p.equations.recursive);
   EXPECT_FALSE(jacobian_source(p, "auto"));  // auto runs DOP853
-  try {
-    jacobian_source(p, "cvode:jacobian");
-    FAIL() << "expected a UsageError";
-  } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("add --dynamics lagrangian"), std::string::npos)
-        << e.what();
+  for (const char* method : {"cvode:jacobian", "ida:jacobian"}) {
+    try {
+      jacobian_source(p, method);
+      FAIL() << "expected a UsageError for " << method;
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find(method), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("add --dynamics lagrangian"), std::string::npos)
+          << e.what();
+    }
   }
 }
 

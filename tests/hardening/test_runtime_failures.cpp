@@ -149,7 +149,7 @@ TEST(CompleteButWrong, EveryIntegratorStopsAtTheCollapse) {
   // every method now fails within one output step of the collapse at π/(2√2).
   const double collapse = 3.14159265358979 / (2 * std::sqrt(2.0));
   for (const char* method :
-       {"dop853", "arkode", "cvode", "cvode:jacobian", "ida", "rk4", "midpoint"}) {
+       {"dop853", "arkode", "cvode", "cvode:jacobian", "ida", "ida:jacobian", "rk4", "midpoint"}) {
     SCOPED_TRACE(method);
     ScratchDir dir(std::string("collapse-") + method);
     const Failure f = run_failing(dir,

@@ -145,7 +145,7 @@ TEST(IntegratorMethods, EveryListedOdeMethodIntegrates) {
   const Oscillator osc;
   size_t ode = 0;
   for (const std::string& method : integrator_methods()) {
-    if (method == "ida") continue;
+    if (method == "ida" || method == "ida:jacobian") continue;  // DAE methods
     ++ode;
     double x_end = 0.0;
     integrate(osc.problem(), options_for(method.c_str(), 1e-9, 1e-11), 0.0, {1.0, 0.0}, 1.0, 0.25,
