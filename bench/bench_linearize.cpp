@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
        [&] {
          return bench::build_with([&] { return read_model_file(panda); }, Formulation::Lagrangian);
        },
-       true}};
+       false}};
   fmt::print(
       "{:<24} {:>5} {:>8} {:>9} {:>10} {:>10} {:>8} {:>10} {:>8} {:>11} {:>8} {:>11} {:>9}  {}\n",
       "model", "nv", "build s", "diff. s", "forward us", "jacobian", "jac/fwd", "implicit",
