@@ -199,8 +199,8 @@ class Model:
         steady: Sequence[str] = (),
         v: Optional[ArrayLike] = None,
     ) -> SimpleNamespace:
-        """An equilibrium (v = 0, a = 0) from q (default: the initial state) by Newton's method,
-        or pseudo-transient continuation when Newton fails, as `lagrange trim`; steady holds
+        """An equilibrium (v = 0, a = 0) from q (default: the initial state) by Levenberg–Marquardt,
+        or pseudo-transient continuation when that fails, as `lagrange trim`; steady holds
         those rates at their values in v (default: the initial rates): q, v, coordinates,
         iterations, residual, drift, pseudo_transient."""
     def jacobian(

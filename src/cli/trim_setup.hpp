@@ -27,8 +27,8 @@ TrimOptions trim_options(const CompiledModel& cm, const std::vector<double>& q,
 /// state in p.q, p.v (and free inputs' values in p.dynamics).
 TrimResult trim_prepared(Prepared& p, const DynamicsJacobian& jac, const TrimOptions& options);
 
-/// "equilibrium found by Newton's method in 3 iterations, max |acceleration| = 1e-12" and, for a
-/// steady state, whether it stays steady (max |da/dt| ≤ tol): what `trim` and
+/// "equilibrium found by Levenberg–Marquardt in 3 iterations, max |acceleration| = 1e-12
+/// (tolerance 1e-9)" and, for a steady state, whether it stays steady (max |da/dt| ≤ tol): what `trim` and
 /// `linearize --at-trim` print first.
 std::string trim_summary(const TrimResult& r, bool steady, double tol);
 
