@@ -28,8 +28,8 @@ TrimOptions trim_options(const CompiledModel& cm, const std::vector<double>& q,
 TrimResult trim_prepared(Prepared& p, const DynamicsJacobian& jac, const TrimOptions& options);
 
 /// "equilibrium found by Levenberg–Marquardt in 3 iterations, max |acceleration| = 1e-12
-/// (tolerance 1e-9)" and, for a steady state, whether it stays steady (max |da/dt| ≤ tol): what `trim` and
-/// `linearize --at-trim` print first.
+/// (tolerance 1e-9)" and, for a steady state, whether it stays steady (max |da/dt| ≤ tol): what
+/// `trim` and `linearize --at-trim` print first.
 std::string trim_summary(const TrimResult& r, bool steady, double tol);
 
 }  // namespace lagrange::cli
