@@ -155,8 +155,8 @@ Unknowns unknowns_of(const DynamicsJacobian& jac, const TrimOptions& options,
 // (Af, n × nu) and Z, an orthonormal basis of the directions along the constraint manifold.
 struct Linearised {
   Eigen::MatrixXd Af, Z;
-  /// docs/theory.md §5.5, "Tolerance": below this max |a| is rounding, 16 ε max_i
-  /// (‖∂a_i/∂q_j q_j‖₂ + ‖∂a_i/∂v_j v_j‖₂) (over j).
+  /// docs/theory.md §5.5, "Tolerance": below this max |a| is rounding, 4 ε max_i
+  /// (‖(∂a_i/∂q_j q_j)_j‖₂ + ‖(∂a_i/∂v_j v_j)_j‖₂).
   double floor = 0.0;
 };
 
@@ -171,8 +171,8 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
   const Eigen::SparseMatrix<double> T = chart.T.sparseView();
   const Eigen::MatrixXd Ax = J.a_q * T;
   Linearised L;
-  L.floor = rounding_floor_rms(J.a_q, Eigen::Map<const Eigen::VectorXd>(q.data(), J.a_q.cols())) +
-            rounding_floor_rms(J.a_v, Eigen::Map<const Eigen::VectorXd>(v.data(), J.a_v.cols()));
+  L.floor = 4 * (rounding_level(J.a_q, Eigen::Map<const Eigen::VectorXd>(q.data(), J.a_q.cols())) +
+                 rounding_level(J.a_v, Eigen::Map<const Eigen::VectorXd>(v.data(), J.a_v.cols())));
   L.Af.resize(n, nu);
   for (long k = 0; k < np; ++k) L.Af.col(k) = Ax.col(unknowns.positions[static_cast<size_t>(k)]);
   const long nr = np + static_cast<long>(unknowns.rates.size());

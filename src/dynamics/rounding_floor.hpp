@@ -15,12 +15,13 @@ inline double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& x)
   return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
 }
 
-/// 16 ε max_r (Σ_j (J_rj x_j)²)^½: the same with the roundings of the x_j independent, adding
-/// in quadrature — for a dense J (a rigid tether's accelerations depend on every node) the sum
-/// of |J_rj| |x_j| over hundreds of columns overstates them by up to √columns.
-inline double rounding_floor_rms(const Eigen::MatrixXd& J, const Eigen::VectorXd& x) {
+/// ε max_r (Σ_j (J_rj x_j)²)^½: the rounding of x alone, with the roundings of the x_j
+/// independent and so adding in quadrature — for a dense J (a rigid tether's accelerations
+/// depend on every node) the sum of |J_rj| |x_j| over hundreds of columns overstates them. The
+/// caller scales it by how many roundings the evaluation adds.
+inline double rounding_level(const Eigen::MatrixXd& J, const Eigen::VectorXd& x) {
   const Eigen::VectorXd terms = (J * x.cwiseAbs().asDiagonal()).rowwise().norm();
-  return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
+  return std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
 }
 
 }  // namespace lagrange

@@ -201,7 +201,7 @@ generalized_forces: {th1: tau1, th2: tau2}
 
 // docs/theory.md §5.5, "Tolerance": a spring anchored 10⁸ m from the origin. x is known to
 // ε|x| ≈ 1.5e-8 m, so a = -(k/m)(x - X) cannot be computed below about that times k/m; the
-// tolerance rises from 1e-10 to the rounding floor 16 ε (k/m)|x| and trim converges there.
+// tolerance rises from 1e-10 to the rounding floor 4 ε (k/m)|x| and trim converges there.
 TEST(Trim, ToleranceRisesToTheRoundingFloorOfTheAccelerations) {
   auto s = analyse_string(R"(
 name: far spring
@@ -212,7 +212,7 @@ kinetic: m/2*der(x)^2
 potential: k/2*(x - X)^2
 )");
   const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q);
-  const double floor = 16 * std::numeric_limits<double>::epsilon() * 4.0 * 1e8;  // ≈ 1.4e-6
+  const double floor = 4 * std::numeric_limits<double>::epsilon() * 4.0 * 1e8;  // ≈ 3.6e-7
   EXPECT_NEAR(r.tolerance, floor, 1e-9 * floor);
   EXPECT_LE(r.residual, r.tolerance);
   EXPECT_NEAR(r.q[0], 1e8, 1e-6);
