@@ -317,13 +317,14 @@ std::string flat_direction(const DynamicsJacobian& jac, const std::vector<double
   return fmt::format("the accelerations do not change along '{}'", name);
 }
 
-// docs/theory.md §5.5, "Levenberg–Marquardt": minimise f = ½‖a‖² over the unknowns along the
-// manifold (δ = Z ξ, Jr = (∂a/∂u) Z). Each iteration first tries the Gauss–Newton step
-// Jr ξ = −a (column-pivoted QR, least squares) and takes it when ‖a‖ falls by the Armijo
-// fraction 1e-4; otherwise damped steps (Jrᵀ Jr + μ 1) ξ = −Jrᵀ a, μ updated by the gain ratio
-// ρ = (f − f_new)/(½ ξᵀ(μ ξ − Jrᵀ a)) (Nielsen 1999): accepted when ρ > 1e-4, then μ ← μ
-// max(1/3, 1 − (2ρ − 1)³); refused, μ ← μ ν, ν ← 2ν. Every accepted step decreases f. Returns
-// why it stopped, or "" on convergence; `L` is the linearisation at the last iterate.
+// docs/theory.md §5.5, "Levenberg–Marquardt": minimise f = ½‖W a‖², W = diag(M)^½ at the start,
+// over the unknowns along the manifold (δ = Z ξ, J = W (∂a/∂u) Z). Each iteration first tries
+// the Gauss–Newton step J ξ = −W a (column-pivoted QR, least squares) when J has full rank and
+// takes it when ‖W a‖ falls by the Armijo fraction 1e-4; otherwise damped steps
+// (Jᵀ J + μ D) ξ = −Jᵀ W a, μ updated by the gain ratio ρ = (f − f_new)/(½ ξᵀ(μ D ξ − Jᵀ W a))
+// (Nielsen 1999): accepted when ρ > 1e-4, then μ ← μ max(1/10, 1 − (2ρ − 1)³); refused,
+// μ ← μ ν, ν ← 2ν. Every accepted step decreases f. Returns why it stopped, or "" on
+// convergence (with result.tolerance and, where J is singular there, result.not_isolated).
 std::string levenberg_marquardt(const DynamicsJacobian& jac, Dynamics& dyn, double t,
                                 const Unknowns& unknowns, const std::vector<bool>& held,
                                 const TrimOptions& options, const char* what, TrimResult& result,
@@ -362,25 +363,26 @@ std::string levenberg_marquardt(const DynamicsJacobian& jac, Dynamics& dyn, doub
     const Eigen::MatrixXd Jw = w.asDiagonal() * Jr;
     const Eigen::VectorXd rw = w.cwiseProduct(r.a);
     const Eigen::VectorXd g = Jw.transpose() * rw;
-    // The step's metric: mass-weighted positions (ξᵀ Zᵀ W² Z ξ, W = diag(M)^½), rates as they
-    // are, an input scaled like the stiffest of those (Marquardt's diag(Jᵀ J) when only inputs
-    // vary).
-    const long np = static_cast<long>(unknowns.positions.size()),
+    // The step's metric D = Zᵀ diag(d) Z over the unknowns: positions mass-weighted (d = W²),
+    // rates as they are, an input like the stiffest of those (Marquardt's diag(Jᵀ J) when only
+    // inputs vary).
+    const long nk = static_cast<long>(unknowns.size()),
+               np = static_cast<long>(unknowns.positions.size()),
                nr = np + static_cast<long>(unknowns.rates.size());
-    Eigen::VectorXd pw = Eigen::VectorXd::Ones(L.Z.rows());
-    for (long k = 0; k < np; ++k) pw[k] = w[unknowns.positions[static_cast<size_t>(k)]];
-    Eigen::MatrixXd Dm = L.Z.transpose() * pw.cwiseAbs2().asDiagonal() * L.Z;
-    const Eigen::VectorXd column2 = Jw.colwise().squaredNorm().transpose();
+    Eigen::VectorXd d = Eigen::VectorXd::Ones(nk);
+    for (long k = 0; k < np; ++k) d[k] = std::pow(w[unknowns.positions[static_cast<size_t>(k)]], 2);
+    const Eigen::VectorXd column2 = (w.asDiagonal() * L.Af).colwise().squaredNorm().transpose();
     double stiffest = 0.0;
-    for (long k = 0; k < nr; ++k) stiffest = std::max(stiffest, column2[k] / Dm(k, k));
-    for (long k = nr; k < Dm.rows(); ++k)
-      Dm(k, k) = column2[k] > 0.0 ? column2[k] / (stiffest > 0.0 ? stiffest : 1.0) : 1.0;
+    for (long k = 0; k < nr; ++k) stiffest = std::max(stiffest, column2[k] / d[k]);
+    for (long k = nr; k < nk; ++k)
+      if (column2[k] > 0.0) d[k] = column2[k] / (stiffest > 0.0 ? stiffest : 1.0);
+    const Eigen::MatrixXd Dm = L.Z.transpose() * d.asDiagonal() * L.Z;
     const double f = 0.5 * rw.squaredNorm();
     bool accepted = false;
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Jr);
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Jw);
     qr.setThreshold(1e-10);
-    if (qr.rank() == Jr.cols()) {
-      const Eigen::VectorXd xi = qr.solve(Eigen::VectorXd(-r.a));
+    if (qr.rank() == Jw.cols()) {
+      const Eigen::VectorXd xi = qr.solve(Eigen::VectorXd(-rw));
       TrimResult trial = result;
       Residual next;
       if (xi.allFinite() && try_step(dyn, t, unknowns, L.Z * xi, held, trial, next) &&
