@@ -4,7 +4,8 @@
 // way), `linearize` at the initial state and `trim` from it.
 //   bench_linearize                the 50- and 200-segment tethered balloon (bench_tether's, and
 //                                  in a uniform wind), the rigid AP2 on 50 segments, the Panda
-//                                  (examples/robots/panda.urdf): a table
+//                                  (examples/robots/panda.urdf; and with its joint torques free
+//                                  at a held pose): a table
 //   bench_linearize TEXT           only the models whose label contains TEXT
 //   bench_linearize pendulum N     the N-link pendulum (bench/n_link_pendulum.hpp, PerLink) at
 //                                  its initial state: one JSON line with A and the times, read
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -77,6 +79,19 @@ std::string uniform_wind_balloon(int segments) {
   return text;
 }
 
+// The Panda with a torque parameter t1 … t7 on each joint, at a pose away from upright.
+std::string panda_with_torques(const std::string& urdf) {
+  std::string text = "name: panda held\nurdf: {file: " + urdf +
+                     ", initial: {panda_joint2: 0.5, panda_joint4: -1.2, panda_joint6: 1.0}}\n"
+                     "gravity: [0, 0, -9.81]\nparameters: {";
+  std::string forces = "generalized_forces: {";
+  for (int j = 1; j <= 7; ++j) {
+    text += fmt::format("{}t{}: 0", j > 1 ? ", " : "", j);
+    forces += fmt::format("{}panda_joint{}: t{}", j > 1 ? ", " : "", j, j);
+  }
+  return text + "}\n" + forces + "}\n";
+}
+
 struct Measured {
   double build = 0, differentiate = 0, forward = 0, jacobian = 0, implicit = 0, fd = 0,
          linearize = 0;
@@ -86,9 +101,10 @@ struct Measured {
   LinearModel lin;
 };
 
-// `fixed_ends`: trim holds the first and last coordinates (the Panda's base and flange joints,
-// about vertical or distal axes along which gravity does nothing: no isolated equilibrium else).
-Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_ends = false) {
+// `torques`: also trim the model with every coordinate held and the parameters of that name
+// free (the Panda's gravity compensation, docs/theory.md §5.5 "Free inputs").
+Measured measure(bench::BuiltModel& b, bool with_trim,
+                 const std::vector<std::string>& torques = {}) {
   Measured r;
   const bench::Stopwatch clock;
   r.build = b.times.build();
@@ -119,17 +135,20 @@ Measured measure(bench::BuiltModel& b, bool with_trim, bool fixed_ends = false) 
   }
   if (!with_trim) return r;
   try {
-    const auto s0 = clock.now().wall;
     TrimOptions options;
-    options.tol = 1e-9;  // the CLI's default (`trim --tol`)
-    if (fixed_ends) {
-      options.free.assign(cm.nv, true);
-      options.free.front() = options.free.back() = false;
+    options.tol = 1e-9;                      // the CLI's default (`trim --tol`)
+    std::unique_ptr<DynamicsJacobian> held;  // differentiated by the torques too, not timed
+    if (!torques.empty()) {
+      held = std::make_unique<DynamicsJacobian>(b.equations, b.compiled, torques);
+      options.free.assign(cm.nv, false);
+      options.free_inputs.assign(torques.size(), true);
     }
-    const TrimResult t = trim(jac, dyn, 0.0, q, options);
-    r.trim +=
-        fmt::format("trim {:.3g} s, {} {}, max |a| = {:.1e}", clock.now().wall - s0, t.iterations,
-                    t.pseudo_transient ? "Ψtc steps" : "iterations", t.residual);
+    const auto s0 = clock.now().wall;
+    const TrimResult t = trim(held ? *held : jac, dyn, 0.0, q, options);
+    r.trim += fmt::format("trim {:.3g} s, {} {}, max |a| = {:.1e} (tolerance {:.1e}){}",
+                          clock.now().wall - s0, t.iterations,
+                          t.pseudo_transient ? "Ψtc steps" : "LM iterations", t.residual,
+                          t.tolerance, t.not_isolated.empty() ? "" : ", not isolated");
   } catch (const std::exception& e) {
     // Newton's reason, then the continuation's (in parentheses) when it ran.
     const std::string what = e.what();
@@ -173,7 +192,7 @@ int main(int argc, char** argv) {
   struct Case {
     std::string label;
     std::function<bench::BuiltModel()> build;
-    bool fixed_ends = false;
+    std::vector<std::string> torques;
   };
   const std::string panda = std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots/panda.urdf";
   const std::vector<Case> cases{
@@ -190,8 +209,10 @@ int main(int argc, char** argv) {
       {"Panda (URDF)",
        [&] {
          return bench::build_with([&] { return read_model_file(panda); }, Formulation::Lagrangian);
-       },
-       true}};
+       }},
+      {"Panda, torques free",
+       [&] { return bench::build_model(panda_with_torques(panda), "<panda torques>"); },
+       {"t1", "t2", "t3", "t4", "t5", "t6", "t7"}}};
   fmt::print(
       "{:<24} {:>5} {:>8} {:>9} {:>10} {:>10} {:>8} {:>10} {:>8} {:>11} {:>8} {:>11} {:>9}  {}\n",
       "model", "nv", "build s", "diff. s", "forward us", "jacobian", "jac/fwd", "implicit",
@@ -199,7 +220,7 @@ int main(int argc, char** argv) {
   for (const Case& c : cases) {
     if (argc == 2 && c.label.find(argv[1]) == std::string::npos) continue;  // one model only
     bench::BuiltModel b = c.build();
-    const Measured m = measure(b, true, c.fixed_ends);
+    const Measured m = measure(b, true, c.torques);
     fmt::print(
         "{:<24} {:>5} {:>8.3g} {:>9.3g} {:>10.3g} {:>8.3g}us {:>8.3g} {:>8.3g}us {:>8.3g} "
         "{:>9.3g}us {:>8.3g} {:>11.3g} {:>9.1e}  {}\n",

@@ -193,9 +193,16 @@ struct TrimOptions {
   std::vector<bool> steady;
   /// Per velocity (nv): a held rate that Newton varies instead (its v0 value is the start).
   std::vector<bool> free_rates;
-  double tol = 1e-10;  ///< on max |a| (and max |C| for constrained models)
-  int max_iterations = 50;
-  /// When Newton's method fails (not for varied rates): pseudo-transient continuation from the
+  /// Per DynamicsJacobian input (model inputs or parameters, in input_names() order): varied
+  /// by trim too, e.g. joint torques that hold a robot still (docs/theory.md §5.5, "Free
+  /// inputs"). Empty: none. On success `dyn` keeps the values found (inputs held, parameters
+  /// set); on failure the start values are restored.
+  std::vector<bool> free_inputs;
+  /// On max |a|, raised to the rounding floor of the accelerations where that is larger
+  /// (docs/theory.md §5.5, "Tolerance"); also on max |Ċ| of held rates.
+  double tol = 1e-10;
+  int max_iterations = 100;  ///< Levenberg–Marquardt iterations
+  /// When Levenberg–Marquardt fails (not for varied rates): pseudo-transient continuation from the
   /// start, at most this many steps (0: none), first pseudo-time step pseudo_step
   /// (docs/theory.md §5.5).
   int max_pseudo_steps = 400;
@@ -204,18 +211,25 @@ struct TrimOptions {
 
 /// Result of trim(): the equilibrium or steady state and how it was found.
 struct TrimResult {
-  std::vector<double> q, v;  ///< v: the held rates, 0 elsewhere
-  double residual = 0.0;     ///< max |a| at (q, v)
+  std::vector<double> q, v;    ///< v: the held rates, 0 elsewhere
+  std::vector<double> inputs;  ///< the free inputs' values (TrimOptions::free_inputs order)
+  double residual = 0.0;       ///< max |a| at (q, v)
+  double tolerance = 0.0;      ///< what max |a| was held to: max(tol, the rounding floor)
+  /// Empty, or why the equilibrium is one of a family (the Jacobian singular there, naming a
+  /// coordinate the accelerations do not depend on).
+  std::string not_isolated;
   /// max |ȧ| = max |∂a/∂q q̇| along the steady motion: 0 when the moving coordinates do not
   /// enter the accelerations (cyclic), else the state is only quasi-steady. 0 at equilibrium.
   double drift = 0.0;
-  int iterations = 0;             ///< Newton's, or the pseudo-transient steps when it took them
-  bool pseudo_transient = false;  ///< found by pseudo-transient continuation after Newton failed
+  int iterations = 0;  ///< Levenberg–Marquardt's, or the pseudo-transient steps when it took them
+  /// Found by pseudo-transient continuation after Levenberg–Marquardt failed.
+  bool pseudo_transient = false;
 };
 
-/// An equilibrium (v = 0, a = 0) from q0 by Newton's method on the exact Jacobian ∂a/∂x with a
-/// backtracking line search on ‖a‖₂, constrained models kept on C = 0 by projection after each
-/// step (docs/theory.md §5.5). Throws AnalysisError saying why and where it stopped.
+/// An equilibrium (v = 0, a = 0) from q0 by Levenberg–Marquardt on ½‖a‖² with the exact
+/// Jacobian ∂a/∂x (Newton's step whenever it decreases ‖a‖), constrained models kept on C = 0
+/// by projection after each step (docs/theory.md §5.5). Throws AnalysisError saying why and
+/// where it stopped.
 TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
                 const TrimOptions& options = {});
 

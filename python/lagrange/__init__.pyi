@@ -194,15 +194,16 @@ class Model:
         free: Sequence[str] = (),
         fix: Sequence[str] = (),
         tol: float = 1e-10,
-        max_iterations: int = 50,
+        max_iterations: int = 100,
         t: float = 0.0,
         steady: Sequence[str] = (),
         v: Optional[ArrayLike] = None,
     ) -> SimpleNamespace:
-        """An equilibrium (v = 0, a = 0) from q (default: the initial state) by Newton's method,
-        or pseudo-transient continuation when Newton fails, as `lagrange trim`; steady holds
-        those rates at their values in v (default: the initial rates): q, v, coordinates,
-        iterations, residual, drift, pseudo_transient."""
+        """An equilibrium (v = 0, a = 0) from q (default: the initial state) by Levenberg–Marquardt,
+        or pseudo-transient continuation when that fails, as `lagrange trim`; steady holds
+        those rates at their values in v (default: the initial rates); free may name parameters
+        or model inputs too (their values found: inputs): q, v, coordinates, iterations,
+        residual, tolerance, not_isolated, inputs, drift, pseudo_transient."""
     def jacobian(
         self,
         q: Optional[ArrayLike] = None,

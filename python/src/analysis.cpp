@@ -139,15 +139,20 @@ py::object trim_model(const PyModel& m, std::optional<py::object> q_in,
   opt.fix = fix;
   opt.steady = steady;
   opt.tol = tol;
-  TrimOptions options = cli::trim_options(cm, q, v, opt);
+  const std::vector<std::string> inputs = cli::trim_inputs(cm, opt);
+  TrimOptions options = cli::trim_options(cm, q, v, opt, inputs);
   options.max_iterations = max_iterations;
-  const DynamicsJacobian jac(*f.equations, f.compiled);
+  const DynamicsJacobian jac(*f.equations, f.compiled, inputs);
   const TrimResult r = trim(jac, *f.dynamics, t, q, v, options);
-  return namespace_of(py::dict(py::arg("q") = to_array(r.q), py::arg("v") = to_array(r.v),
-                               py::arg("coordinates") = cm.coordinate_names,
-                               py::arg("iterations") = r.iterations,
-                               py::arg("residual") = r.residual, py::arg("drift") = r.drift,
-                               py::arg("pseudo_transient") = r.pseudo_transient));
+  py::dict found;  // the free parameters' or inputs' values
+  for (size_t k = 0, j = 0; j < inputs.size(); ++j)
+    if (options.free_inputs[j]) found[py::str(inputs[j])] = r.inputs[k++];
+  return namespace_of(
+      py::dict(py::arg("q") = to_array(r.q), py::arg("v") = to_array(r.v),
+               py::arg("coordinates") = cm.coordinate_names, py::arg("iterations") = r.iterations,
+               py::arg("residual") = r.residual, py::arg("tolerance") = r.tolerance,
+               py::arg("not_isolated") = r.not_isolated, py::arg("inputs") = found,
+               py::arg("drift") = r.drift, py::arg("pseudo_transient") = r.pseudo_transient));
 }
 
 // docs/theory.md §5.1 through the library: DynamicsJacobian::evaluate and ::implicit.

@@ -255,13 +255,15 @@ void bind_model(py::module_& m) {
       .def("trim", &trim_model, py::arg("q") = py::none(),
            py::arg("free") = std::vector<std::string>{},
            py::arg("fix") = std::vector<std::string>{}, py::arg("tol") = 1e-10,
-           py::arg("max_iterations") = 50, py::arg("t") = 0.0,
+           py::arg("max_iterations") = 100, py::arg("t") = 0.0,
            py::arg("steady") = std::vector<std::string>{}, py::arg("v") = py::none(),
-           "An equilibrium (v = 0, a = 0) from q (default: the initial state) by Newton's "
-           "method, or pseudo-transient continuation when Newton fails, as `lagrange trim`; "
-           "steady=['phi_dot', …] holds those rates at their values in v (default: the initial "
-           "rates), a steady state. A namespace with q, v, coordinates, iterations, residual, "
-           "drift and pseudo_transient. Raises AnalysisError saying why when it stalls.")
+           "An equilibrium (v = 0, a = 0) from q (default: the initial state) by "
+           "Levenberg–Marquardt, or pseudo-transient continuation when that fails, as `lagrange "
+           "trim`; steady=['phi_dot', …] holds those rates at their values in v (default: the "
+           "initial rates), a steady state; free may name parameters or model inputs. A "
+           "namespace with q, v, coordinates, iterations, residual, tolerance, not_isolated, "
+           "inputs (the free ones' values), drift and pseudo_transient. Raises AnalysisError "
+           "saying why when it stalls.")
       .def("jacobian", &jacobian_model, py::arg("q") = py::none(), py::arg("v") = py::none(),
            py::arg("inputs") = std::vector<std::string>{}, py::arg("t") = 0.0,
            "The exact Jacobians at (q, v) (default: the initial state): a namespace with a, "

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/rounding_floor.hpp"
 #include "lagrange/analysis.hpp"
 #include "lagrange/error.hpp"
 
@@ -61,14 +62,53 @@ std::vector<bool> flags(const std::vector<bool>& given, size_t n, const char* wh
   return given;
 }
 
-// What trim varies: tangent coordinates (index < nv) and held rates (nv + velocity index).
-struct Unknowns {
-  std::vector<long> positions, rates;
-  size_t size() const { return positions.size() + rates.size(); }
+// A free input of trim: a model input (held by Dynamics::hold_input) or a parameter
+// (Dynamics::set_parameters), by its index among those.
+struct FreeInput {
+  bool parameter = false;
+  size_t index = 0;
+  long column = 0;  ///< its column of ∂a/∂w (DynamicsJacobian::input_names)
 };
 
-Unknowns unknowns_of(const CompiledModel& cm, const TrimOptions& options,
+// What trim varies: tangent coordinates and held rates (indices < nv), then free inputs; the
+// step's entries come in that order.
+struct Unknowns {
+  std::vector<long> positions, rates;
+  std::vector<FreeInput> inputs;
+  size_t size() const { return positions.size() + rates.size() + inputs.size(); }
+};
+
+// The current values of the free inputs in `dyn` (model inputs as its last evaluation saw them).
+std::vector<double> input_values(Dynamics& dyn, const Unknowns& u, double t,
+                                 const std::vector<double>& q, const std::vector<double>& v) {
+  const CompiledModel& cm = dyn.model();
+  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m), values;
+  if (!u.inputs.empty()) dyn.forward(t, q.data(), v.data(), qdot.data(), a.data(), lambda.data());
+  for (const FreeInput& in : u.inputs)
+    values.push_back(in.parameter ? dyn.parameters()[in.index]
+                                  : dyn.last_inputs()[cm.u_offset() + in.index]);
+  return values;
+}
+
+void set_inputs(Dynamics& dyn, const Unknowns& u, const std::vector<double>& values) {
+  if (u.inputs.empty()) return;
+  std::vector<double> params = dyn.parameters();
+  bool changed = false;
+  for (size_t k = 0; k < u.inputs.size(); ++k) {
+    const FreeInput& in = u.inputs[k];
+    if (!in.parameter) {
+      dyn.hold_input(in.index, values[k]);
+    } else if (params[in.index] != values[k]) {
+      params[in.index] = values[k];
+      changed = true;
+    }
+  }
+  if (changed) dyn.set_parameters(params);
+}
+
+Unknowns unknowns_of(const DynamicsJacobian& jac, const TrimOptions& options,
                      std::vector<bool>& steady) {
+  const CompiledModel& cm = jac.model();
   const size_t n = cm.nv;
   steady = flags(options.steady, n, "steady", std::vector<bool>(n, false));
   for (size_t i = cm.plain; i < n; ++i)
@@ -92,6 +132,21 @@ Unknowns unknowns_of(const CompiledModel& cm, const TrimOptions& options,
                       cm.velocity_names[i]));
     u.rates.push_back(static_cast<long>(i));
   }
+  const std::vector<std::string>& names = jac.input_names();
+  const std::vector<bool> inputs =
+      flags(options.free_inputs, names.size(), "free-input", std::vector<bool>(names.size()));
+  for (size_t j = 0; j < names.size(); ++j) {
+    if (!inputs[j]) continue;
+    FreeInput in;
+    in.column = static_cast<long>(j);
+    const auto p = std::find(cm.parameter_names.begin(), cm.parameter_names.end(), names[j]);
+    in.parameter = p != cm.parameter_names.end();
+    in.index = static_cast<size_t>(
+        in.parameter ? p - cm.parameter_names.begin()
+                     : std::find(cm.input_names.begin(), cm.input_names.end(), names[j]) -
+                           cm.input_names.begin());
+    u.inputs.push_back(in);
+  }
   if (u.size() == 0) throw std::invalid_argument("trim has nothing to vary");
   return u;
 }
@@ -100,6 +155,9 @@ Unknowns unknowns_of(const CompiledModel& cm, const TrimOptions& options,
 // (Af, n × nu) and Z, an orthonormal basis of the directions along the constraint manifold.
 struct Linearised {
   Eigen::MatrixXd Af, Z;
+  /// docs/theory.md §5.5, "Tolerance": below this max |a| is rounding, 4 ε max_i
+  /// (‖(∂a_i/∂q_j q_j)_j‖₂ + ‖(∂a_i/∂v_j v_j)_j‖₂).
+  double floor = 0.0;
 };
 
 Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
@@ -113,10 +171,15 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
   const Eigen::SparseMatrix<double> T = chart.T.sparseView();
   const Eigen::MatrixXd Ax = J.a_q * T;
   Linearised L;
+  L.floor = 4 * (rounding_level(J.a_q, Eigen::Map<const Eigen::VectorXd>(q.data(), J.a_q.cols())) +
+                 rounding_level(J.a_v, Eigen::Map<const Eigen::VectorXd>(v.data(), J.a_v.cols())));
   L.Af.resize(n, nu);
   for (long k = 0; k < np; ++k) L.Af.col(k) = Ax.col(unknowns.positions[static_cast<size_t>(k)]);
-  for (long k = np; k < nu; ++k)
+  const long nr = np + static_cast<long>(unknowns.rates.size());
+  for (long k = np; k < nr; ++k)
     L.Af.col(k) = J.a_v.col(unknowns.rates[static_cast<size_t>(k - np)]);
+  for (long k = nr; k < nu; ++k)
+    L.Af.col(k) = J.a_w.col(unknowns.inputs[static_cast<size_t>(k - nr)].column);
   if (!L.Af.allFinite())
     throw AnalysisError(
         fmt::format("trim: the Jacobian ∂a/∂q is not finite at iteration {} (the dynamics are not "
@@ -147,8 +210,12 @@ bool try_step(Dynamics& dyn, double t, const Unknowns& unknowns, const Eigen::Ve
   Eigen::VectorXd dx = Eigen::VectorXd::Zero(static_cast<long>(cm.nv));
   for (long k = 0; k < np; ++k) dx[unknowns.positions[static_cast<size_t>(k)]] = step[k];
   retract(cm, dx.data(), q.data());
-  for (long k = np; k < step.size(); ++k)
+  const long nr = np + static_cast<long>(unknowns.rates.size());
+  for (long k = np; k < nr; ++k)
     v[static_cast<size_t>(unknowns.rates[static_cast<size_t>(k - np)])] += step[k];
+  std::vector<double> w = state.inputs;
+  for (long k = nr; k < step.size(); ++k) w[static_cast<size_t>(k - nr)] += step[k];
+  set_inputs(dyn, unknowns, w);
   Residual next;
   try {
     next = residual_at(dyn, t, q, v, held);
@@ -158,6 +225,7 @@ bool try_step(Dynamics& dyn, double t, const Unknowns& unknowns, const Eigen::Ve
   if (!std::isfinite(next.norm) || !next.on_manifold) return false;
   state.q = std::move(q);
   state.v = std::move(v);
+  state.inputs = std::move(w);
   r = std::move(next);
   return true;
 }
@@ -178,12 +246,13 @@ std::string pseudo_transient(const DynamicsJacobian& jac, Dynamics& dyn, double 
     return Eigen::VectorXd(Z.transpose() * af);
   };
   double dtau = options.pseudo_step;
-  double previous = -1.0, best = INFINITY;
+  double previous = -1.0, best = INFINITY, floor = 0.0;
   int since_best = 0;  // steps with a large Δτ since max |a| last halved
   for (int it = 0;; ++it) {
     result.iterations = it;
     result.residual = r.a.size() ? r.a.cwiseAbs().maxCoeff() : 0.0;
-    if (result.residual <= options.tol) return "";
+    result.tolerance = std::max(options.tol, floor);
+    if (result.residual <= result.tolerance) return "";
     if (it == options.max_pseudo_steps)
       return fmt::format("{} steps, max |acceleration| = {:.3g}", it, result.residual);
     if (result.residual < 0.5 * best) {
@@ -192,12 +261,11 @@ std::string pseudo_transient(const DynamicsJacobian& jac, Dynamics& dyn, double 
     } else if (dtau > 1e4 * options.pseudo_step && ++since_best == 50) {
       // Only once the steps are nearly Newton's: before that ‖a‖ may rise for a while as the
       // slow modes start to move.
-      return fmt::format(
-          "stalled: max |acceleration| has not halved in 50 steps, {:.3g} after {} (at the "
-          "rounding floor of the accelerations when that is just above the tolerance)",
-          result.residual, it);
+      return fmt::format("stalled: max |acceleration| has not halved in 50 steps, {:.3g} after {}",
+                         result.residual, it);
     }
     const Linearised L = linearised_at(jac, dyn, t, result.q, result.v, unknowns, it);
+    floor = L.floor;
     Eigen::MatrixXd Aff(np, np);
     for (long k = 0; k < np; ++k) Aff.row(k) = L.Af.row(unknowns.positions[static_cast<size_t>(k)]);
     const Eigen::MatrixXd Jr = L.Z.transpose() * Aff * L.Z;
@@ -216,13 +284,154 @@ std::string pseudo_transient(const DynamicsJacobian& jac, Dynamics& dyn, double 
       Residual next;
       if (!try_step(dyn, t, unknowns, L.Z * xi, held, trial, next)) continue;
       if (next.norm > 100.0 * std::max(r.norm, options.tol)) continue;
-      result.q = std::move(trial.q);
-      result.v = std::move(trial.v);
+      result = std::move(trial);
       r = std::move(next);
       accepted = true;
       dtau *= 10.0;
     }
     if (!accepted) return fmt::format("no step accepted at step {} down to Δτ = {:.3g}", it, dtau);
+  }
+}
+
+// "the accelerations do not change along 'x'" for a Jacobian Jr = Af Z of rank below its
+// columns: the coordinate that moves most along the first direction of its null space.
+std::string flat_direction(const DynamicsJacobian& jac, const std::vector<double>& q,
+                           const std::vector<double>& v, const Unknowns& unknowns,
+                           const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Jr) {
+  const CompiledModel& cm = jac.model();
+  const Eigen::MatrixXd N = Eigen::FullPivLU<Eigen::MatrixXd>(Jr).setThreshold(1e-10).kernel();
+  if (N.cols() == 0 || N.col(0).norm() == 0) return "";
+  Eigen::Index top = 0;
+  (Z * N.col(0)).cwiseAbs().maxCoeff(&top);
+  const long np = static_cast<long>(unknowns.positions.size()),
+             nr = np + static_cast<long>(unknowns.rates.size());
+  std::string name;
+  if (top < np)
+    name = tangent_chart(cm, q.data(), v.data())
+               .names[static_cast<size_t>(unknowns.positions[static_cast<size_t>(top)])];
+  else if (top < nr)
+    name = cm.velocity_names[static_cast<size_t>(unknowns.rates[static_cast<size_t>(top - np)])];
+  else
+    name = jac.input_names()[static_cast<size_t>(
+        unknowns.inputs[static_cast<size_t>(top - nr)].column)];
+  return fmt::format("the accelerations do not change along '{}'", name);
+}
+
+// docs/theory.md §5.5, "Levenberg–Marquardt": minimise f = ½‖W a‖², W = diag(M)^½ at the start,
+// over the unknowns along the manifold (δ = Z ξ, J = W (∂a/∂u) Z). Each iteration first tries
+// the Gauss–Newton step J ξ = −W a (column-pivoted QR, least squares) when J has full rank and
+// takes it when ‖W a‖ falls by the Armijo fraction 1e-4; otherwise damped steps
+// (Jᵀ J + μ D) ξ = −Jᵀ W a, μ updated by the gain ratio ρ = (f − f_new)/(½ ξᵀ(μ D ξ − Jᵀ W a))
+// (Nielsen 1999): accepted when ρ > 1e-4, then μ ← μ max(1/10, 1 − (2ρ − 1)³); refused,
+// μ ← μ ν, ν ← 2ν. Every accepted step decreases f. Returns why it stopped, or "" on
+// convergence (with result.tolerance and, where J is singular there, result.not_isolated).
+std::string levenberg_marquardt(const DynamicsJacobian& jac, Dynamics& dyn, double t,
+                                const Unknowns& unknowns, const std::vector<bool>& held,
+                                const TrimOptions& options, const char* what, TrimResult& result,
+                                Residual& r) {
+  const CompiledModel& cm = jac.model();
+  const long n = static_cast<long>(cm.nv);
+  // The mass-weighted residual W a, W = diag(M)^½ at the start: generalised forces over √mass,
+  // so a light distal link's acceleration does not outweigh the arm's.
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(n);
+  {
+    const ImplicitJacobian I = jac.implicit(dyn, t, result.q.data(), result.v.data());
+    for (long i = 0; i < n; ++i)
+      if (I.K.coeff(i, i) > 0.0) w[i] = std::sqrt(I.K.coeff(i, i));
+  }
+  double mu = 0.0, nu = 2.0;
+  for (int it = 0;; ++it) {
+    result.iterations = it;
+    result.residual = n ? r.a.cwiseAbs().maxCoeff() : 0.0;
+    set_inputs(dyn, unknowns, result.inputs);  // a refused trial may have left others
+    const Linearised L = linearised_at(jac, dyn, t, result.q, result.v, unknowns, it);
+    result.tolerance = std::max(options.tol, L.floor);
+    const Eigen::MatrixXd Jr = L.Af * L.Z;
+    if (result.residual <= result.tolerance) {
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Jr);
+      qr.setThreshold(1e-10);
+      if (qr.rank() < Jr.cols())
+        result.not_isolated = fmt::format(
+            "not isolated: the Jacobian has rank {} of {} here ({}), one of a family of {}",
+            qr.rank(), Jr.cols(), flat_direction(jac, result.q, result.v, unknowns, L.Z, Jr),
+            std::string(what) == "equilibrium" ? "equilibria" : "steady states");
+      return "";
+    }
+    if (it == options.max_iterations)
+      return fmt::format("trim did not converge in {} iterations: max |acceleration| = {:.3g}", it,
+                         result.residual);
+    const Eigen::MatrixXd Jw = w.asDiagonal() * Jr;
+    const Eigen::VectorXd rw = w.cwiseProduct(r.a);
+    const Eigen::VectorXd g = Jw.transpose() * rw;
+    // The step's metric D = Zᵀ diag(d) Z over the unknowns: positions mass-weighted (d = W²),
+    // rates as they are, an input like the stiffest of those (Marquardt's diag(Jᵀ J) when only
+    // inputs vary).
+    const long nk = static_cast<long>(unknowns.size()),
+               np = static_cast<long>(unknowns.positions.size()),
+               nr = np + static_cast<long>(unknowns.rates.size());
+    Eigen::VectorXd d = Eigen::VectorXd::Ones(nk);
+    for (long k = 0; k < np; ++k) d[k] = std::pow(w[unknowns.positions[static_cast<size_t>(k)]], 2);
+    const Eigen::VectorXd column2 = (w.asDiagonal() * L.Af).colwise().squaredNorm().transpose();
+    double stiffest = 0.0;
+    for (long k = 0; k < nr; ++k) stiffest = std::max(stiffest, column2[k] / d[k]);
+    for (long k = nr; k < nk; ++k)
+      if (column2[k] > 0.0) d[k] = column2[k] / (stiffest > 0.0 ? stiffest : 1.0);
+    const Eigen::MatrixXd Dm = L.Z.transpose() * d.asDiagonal() * L.Z;
+    const double f = 0.5 * rw.squaredNorm();
+    bool accepted = false;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Jw);
+    qr.setThreshold(1e-10);
+    if (qr.rank() == Jw.cols()) {
+      const Eigen::VectorXd xi = qr.solve(Eigen::VectorXd(-rw));
+      TrimResult trial = result;
+      Residual next;
+      if (xi.allFinite() && try_step(dyn, t, unknowns, L.Z * xi, held, trial, next) &&
+          w.cwiseProduct(next.a).norm() <= (1.0 - 1e-4) * rw.norm()) {
+        result = std::move(trial);
+        r = std::move(next);
+        accepted = true;
+      }
+    }
+    if (!accepted) {
+      Eigen::MatrixXd H = Jw.transpose() * Jw;
+      const double scale = H.rows() ? H.diagonal().cwiseQuotient(Dm.diagonal()).maxCoeff() : 0.0;
+      if (mu <= 0.0) mu = 1e-3 * scale;
+      for (int k = 0; k < 60 && !accepted && g.norm() > 0.0 && mu > 0.0; ++k) {
+        const Eigen::MatrixXd A = H + mu * Dm;
+        const Eigen::VectorXd xi = A.ldlt().solve(-g);
+        const double predicted = 0.5 * xi.dot(mu * Dm * xi - g);
+        TrimResult trial = result;
+        Residual next;
+        if (xi.allFinite() && predicted > 0.0 &&
+            try_step(dyn, t, unknowns, L.Z * xi, held, trial, next)) {
+          const double rho = (f - 0.5 * w.cwiseProduct(next.a).squaredNorm()) / predicted;
+          if (rho > 1e-4) {
+            result = std::move(trial);
+            r = std::move(next);
+            accepted = true;
+            mu *= std::max(0.1, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+            nu = 2.0;
+            continue;
+          }
+        }
+        mu *= nu;
+        nu *= 2.0;
+      }
+    }
+    if (!accepted) {
+      // f is stationary to within what the steps resolve: ‖a‖ has a local minimum that is
+      // not zero. Where the Jacobian is singular, say along what.
+      std::string why = fmt::format(
+          "trim: no equilibrium near the start: no step reduces the accelerations at iteration "
+          "{}, where |a| has a local minimum that is not {} (gradient |Jᵀa| = {:.3g})",
+          it, std::string(what) == "equilibrium" ? "an equilibrium" : "a steady state", g.norm());
+      if (qr.rank() < Jr.cols())
+        why += fmt::format("; the Jacobian ∂a/∂q is singular there (rank {} of {}, {})", qr.rank(),
+                           Jr.cols(), flat_direction(jac, result.q, result.v, unknowns, L.Z, Jr));
+      if (unknowns.size() < static_cast<size_t>(n))
+        why += "; or there is none with these coordinates free";
+      return why;
+    }
   }
 }
 
@@ -234,9 +443,8 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
 }
 
 // docs/theory.md §5.5: solve a(x, v) = 0 for the unknowns u (free tangent coordinates x and
-// free held rates): Newton steps (∂a/∂u) Z ξ = −a, δ = Z ξ along the constraint manifold
-// (least squares), each shortened by halving until ‖a‖₂ decreases by the Armijo fraction
-// 1e-4·s; when that fails from the start, pseudo-transient continuation from the start.
+// free held rates) by Levenberg–Marquardt steps along the constraint manifold; when that stops
+// short, pseudo-transient continuation from the start.
 TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std::vector<double>& q0,
                 const std::vector<double>& v0, const TrimOptions& options) {
   const CompiledModel& cm = jac.model();
@@ -244,100 +452,43 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
   if (v0.size() != cm.nv)
     throw std::invalid_argument(fmt::format("expected {} velocities, got {}", cm.nv, v0.size()));
   std::vector<bool> steady;
-  const Unknowns unknowns = unknowns_of(cm, options, steady);
-  const long nu = static_cast<long>(unknowns.size()),
-             np = static_cast<long>(unknowns.positions.size());
+  const Unknowns unknowns = unknowns_of(jac, options, steady);
   std::vector<bool> held(cm.nq, false);
   for (size_t i = 0; i < cm.plain; ++i)
     held[i] = std::find(unknowns.positions.begin(), unknowns.positions.end(),
                         static_cast<long>(i)) == unknowns.positions.end();
   const bool held_rates = std::find(steady.begin(), steady.end(), true) != steady.end();
   const char* what = held_rates ? "steady state" : "equilibrium";
-  const auto name_of = [&](long k) {
-    return k < np ? tangent_chart(cm, q0.data(), v0.data())
-                        .names[static_cast<size_t>(unknowns.positions[static_cast<size_t>(k)])]
-                  : cm.velocity_names[static_cast<size_t>(
-                        unknowns.rates[static_cast<size_t>(k - np)])];
-  };
 
   TrimResult start;
   start.q = q0;
   start.v.assign(cm.nv, 0.0);
   for (size_t i = 0; i < cm.nv; ++i)
     if (steady[i]) start.v[i] = v0[i];
+  start.inputs = input_values(dyn, unknowns, t, start.q, start.v);
   const Residual r0 = residual_at(dyn, t, start.q, start.v, held);
   TrimResult result = start;
   Residual r = r0;
-  std::string newton_failed;
-  for (int it = 0;; ++it) {
-    result.iterations = it;
-    result.residual = n ? r.a.cwiseAbs().maxCoeff() : 0.0;
-    if (result.residual <= options.tol) break;
-    if (it == options.max_iterations) {
-      newton_failed =
-          fmt::format("trim did not converge in {} iterations: max |acceleration| = {:.3g} at {}",
-                      options.max_iterations, result.residual, describe(cm, result.q, result.v));
-      break;
-    }
-    const Linearised L = linearised_at(jac, dyn, t, result.q, result.v, unknowns, it);
-    const Eigen::MatrixXd Ar = L.Af * L.Z;
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Ar);
-    qr.setThreshold(1e-10);
-    if (qr.rank() < Ar.cols()) {
-      // The direction in which the accelerations do not change: what makes it singular.
-      const Eigen::MatrixXd N = Eigen::FullPivLU<Eigen::MatrixXd>(Ar).kernel();
-      std::string along;
-      if (N.cols() > 0 && N.col(0).norm() > 0) {
-        Eigen::Index top = 0;
-        (L.Z * N.col(0)).cwiseAbs().maxCoeff(&top);
-        along = fmt::format(" (the accelerations do not change along '{}')", name_of(top));
-      }
-      const std::string why = fmt::format(
-          "trim: the Jacobian ∂a/∂q is singular at iteration {} (rank {} of {}){}: no isolated "
-          "{} here; stopped at {} with max |acceleration| = {:.3g}",
-          it, qr.rank(), Ar.cols(), along, what, describe(cm, result.q, result.v), result.residual);
-      if (it == 0) throw AnalysisError(why);  // at the start: no isolated root to relax to
-      newton_failed = why;
-      break;
-    }
-    const Eigen::VectorXd step = L.Z * qr.solve(Eigen::VectorXd(-r.a));
-    double s = 1.0;
-    bool accepted = false;
-    for (int halving = 0; halving < 30 && !accepted; ++halving, s *= 0.5) {
-      TrimResult trial = result;
-      Residual next;
-      if (!try_step(dyn, t, unknowns, s * step, held, trial, next)) continue;
-      if (next.norm <= (1.0 - 1e-4 * s) * r.norm) {
-        result.q = std::move(trial.q);
-        result.v = std::move(trial.v);
-        r = std::move(next);
-        accepted = true;
-      }
-    }
-    if (!accepted) {
-      newton_failed = fmt::format(
-          "trim: no step along the Newton direction reduces the accelerations at iteration {} "
-          "(a local minimum of |a| that is not {}{}); stopped at {} with max "
-          "|acceleration| = {:.3g}",
-          it, held_rates ? "a steady state" : "an equilibrium",
-          nu < n ? ", or none with these coordinates free" : "", describe(cm, result.q, result.v),
-          result.residual);
-      break;
-    }
-  }
-  if (!newton_failed.empty()) {
-    if (!unknowns.rates.empty() || options.max_pseudo_steps <= 0)
-      throw AnalysisError(newton_failed);
+  const std::string failed =
+      levenberg_marquardt(jac, dyn, t, unknowns, held, options, what, result, r);
+  if (!failed.empty()) {
+    const std::string where =
+        fmt::format("{}; stopped at {} with max |acceleration| = {:.3g}", failed,
+                    describe(cm, result.q, result.v), result.residual);
+    set_inputs(dyn, unknowns, start.inputs);
+    if (!unknowns.rates.empty() || !unknowns.inputs.empty() || options.max_pseudo_steps <= 0)
+      throw AnalysisError(where);
     TrimResult relaxed = start;
     Residual rr = r0;
     const std::string why = pseudo_transient(jac, dyn, t, unknowns, held, options, relaxed, rr);
     if (!why.empty())
       throw AnalysisError(fmt::format(
-          "{}; pseudo-transient continuation from the start failed too ({}), stopped at {}",
-          newton_failed, why, describe(cm, relaxed.q, relaxed.v)));
+          "{}; pseudo-transient continuation from the start failed too ({}), stopped at {}", where,
+          why, describe(cm, relaxed.q, relaxed.v)));
     result = std::move(relaxed);
     result.pseudo_transient = true;
   }
+  set_inputs(dyn, unknowns, result.inputs);
   if (!held_rates) return result;
   // docs/theory.md §5.5: a held rate must keep the constraints (Ċ = G v = 0), and the motion
   // q₀ + v t stays steady to first order when ȧ = ∂a/∂q q̇ vanishes.

@@ -223,7 +223,7 @@ int run_linearize(const Options& opt) {
   TrimResult trimmed;
   TrimmedAt at;
   if (opt.at_trim) {
-    trimmed = trim_prepared(p, *jac, trim_options(*p.compiled, p.q, p.v, opt));
+    trimmed = trim_prepared(p, *jac, trim_options(*p.compiled, p.q, p.v, opt, jac->input_names()));
     at = {&trimmed, !opt.steady.empty(), opt.tol};
   } else if (!opt.free.empty() || !opt.fix.empty() || !opt.steady.empty()) {
     throw UsageError("--free, --fix and --steady choose what trim varies: give --at-trim too");

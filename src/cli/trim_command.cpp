@@ -42,8 +42,9 @@ std::string yaml_block(const CompiledModel& cm, const std::vector<double>& q,
 int run_trim(const Options& opt) {
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--at", "lagrangian");
   const CompiledModel& cm = *p.compiled;
-  const TrimOptions options = trim_options(cm, p.q, p.v, opt);
-  const DynamicsJacobian jac(p.equations, p.compiled);
+  const std::vector<std::string> inputs = trim_inputs(cm, opt);
+  const TrimOptions options = trim_options(cm, p.q, p.v, opt, inputs);
+  const DynamicsJacobian jac(p.equations, p.compiled, inputs);
   const TrimResult r = trim_prepared(p, jac, options);
   fmt::print("# {}: {}\n", p.model->name, trim_summary(r, !opt.steady.empty(), opt.tol));
   if (cm.m > 0) {
@@ -54,6 +55,20 @@ int run_trim(const Options& opt) {
     fmt::print("# on the constraints: max |C| = {:.3g}\n", worst);
   }
   fmt::print("{}", yaml_block(cm, r.q, r.v));
+  // The free inputs found, as the model file's parameters (or inputs) would give them.
+  for (const bool parameters : {true, false}) {
+    std::string block;
+    for (size_t k = 0, j = 0; j < inputs.size(); ++j) {
+      if (!options.free_inputs[j]) continue;
+      const bool parameter =
+          std::count(cm.parameter_names.begin(), cm.parameter_names.end(), inputs[j]) > 0;
+      if (parameter == parameters)
+        block += fmt::format("  {}: {:.17g}\n", inputs[j], r.inputs[k] + 0.0);
+      ++k;
+    }
+    if (!block.empty())
+      fmt::print("{}:  # found by trim\n{}", parameters ? "parameters" : "inputs", block);
+  }
   return 0;
 }
 

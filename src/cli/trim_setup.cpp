@@ -19,10 +19,23 @@ long index_of(const std::vector<std::string>& names, const std::string& name) {
   return it == names.end() ? -1 : static_cast<long>(it - names.begin());
 }
 
+bool is_input(const CompiledModel& cm, const std::string& name) {
+  return index_of(cm.parameter_names, name) >= 0 || index_of(cm.input_names, name) >= 0;
+}
+
 }  // namespace
 
+std::vector<std::string> trim_inputs(const CompiledModel& cm, const Options& opt) {
+  std::vector<std::string> names;
+  for (const auto& name : opt.free)
+    if (is_input(cm, name) && index_of(cm.coordinate_names, name) < 0 && index_of(names, name) < 0)
+      names.push_back(name);
+  return names;
+}
+
 TrimOptions trim_options(const CompiledModel& cm, const std::vector<double>& q,
-                         const std::vector<double>& v, const Options& opt) {
+                         const std::vector<double>& v, const Options& opt,
+                         const std::vector<std::string>& inputs) {
   if (!(opt.tol > 0)) throw UsageError(fmt::format("--tol must be positive, got {}", opt.tol));
   const TangentChart chart = tangent_chart(cm, q.data(), v.data());
   const std::vector<std::string> plain_rates(cm.velocity_names.begin(),
@@ -31,6 +44,7 @@ TrimOptions trim_options(const CompiledModel& cm, const std::vector<double>& q,
   options.tol = opt.tol;
   options.steady.assign(cm.nv, false);
   options.free_rates.assign(cm.nv, false);
+  options.free_inputs.assign(inputs.size(), false);
   for (const auto& name : opt.steady) {
     const long i = index_of(plain_rates, name);
     if (i < 0)
@@ -55,16 +69,28 @@ TrimOptions trim_options(const CompiledModel& cm, const std::vector<double>& q,
       options.free_rates[static_cast<size_t>(r)] = value;
       return;
     }
+    const long w = index_of(inputs, name);
+    if (w >= 0) {
+      options.free_inputs[static_cast<size_t>(w)] = value;
+      return;
+    }
+    if (is_input(cm, name))
+      throw UsageError(
+          fmt::format("{}: '{}' is an input or parameter: only --free varies one (with `linearize "
+                      "--at-trim`, name it in --inputs too)",
+                      option, name));
     throw UsageError(fmt::format(
-        "{}: no coordinate '{}' in the model{} (expected a coordinate: {}; or a rate held by "
-        "--steady)",
+        "{}: no coordinate '{}' in the model{} (expected a coordinate: {}; a rate held by "
+        "--steady; or, for --free, a parameter or input)",
         option, name, r >= 0 ? fmt::format(", and '{}' is not held by --steady", name) : "",
         listed(chart.names)));
   };
   for (const auto& name : opt.free) apply("--free", name, true);
   for (const auto& name : opt.fix) apply("--fix", name, false);
-  if (std::none_of(options.free.begin(), options.free.end(), [](bool f) { return f; }) &&
-      std::none_of(options.free_rates.begin(), options.free_rates.end(), [](bool f) { return f; }))
+  const auto none = [](const std::vector<bool>& flags) {
+    return std::none_of(flags.begin(), flags.end(), [](bool f) { return f; });
+  };
+  if (none(options.free) && none(options.free_rates) && none(options.free_inputs))
     throw UsageError("--free/--fix leave no coordinate for trim to vary");
   return options;
 }
@@ -77,13 +103,13 @@ TrimResult trim_prepared(Prepared& p, const DynamicsJacobian& jac, const TrimOpt
 }
 
 std::string trim_summary(const TrimResult& r, bool steady, double tol) {
-  std::string s = fmt::format("{} found by {} in {} {}{}, max |acceleration| = {:.3g}",
-                              steady ? "steady state" : "equilibrium",
-                              r.pseudo_transient
-                                  ? "pseudo-transient continuation (Newton's method alone failed)"
-                                  : "Newton's method",
-                              r.iterations, r.pseudo_transient ? "step" : "iteration",
-                              r.iterations == 1 ? "" : "s", r.residual);
+  std::string s = fmt::format(
+      "{} found by {} in {} {}{}, max |acceleration| = {:.3g} (tolerance {:.3g}){}",
+      steady ? "steady state" : "equilibrium",
+      r.pseudo_transient ? "pseudo-transient continuation (Levenberg–Marquardt alone failed)"
+                         : "Levenberg–Marquardt",
+      r.iterations, r.pseudo_transient ? "step" : "iteration", r.iterations == 1 ? "" : "s",
+      r.residual, r.tolerance, r.not_isolated.empty() ? "" : "; " + r.not_isolated);
   if (!steady) return s;
   return s + fmt::format("; {} along the motion: max |da/dt| = {:.3g}",
                          r.drift <= tol ? "steady" : "only quasi-steady, the accelerations change",

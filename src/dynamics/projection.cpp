@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "dynamics/rounding_floor.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 
@@ -16,15 +17,6 @@ double max_abs(const double* x, size_t n) {
   double r = 0.0;
   for (size_t i = 0; i < n; ++i) r = std::max(r, std::abs(x[i]));
   return r;
-}
-
-// The size of rounding errors in C near q: C's terms are of the order of |∂C/∂q| |q| (exactly
-// so for a distance constraint ½(|d|² − ℓ²)), so below a few ulps of that no step can
-// reduce |C| — with ℓ of 200 m that floor is near 1e-11 however small the requested tolerance. The
-// same with (G, v) bounds the rounding of Ċ = G v + ….
-double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& q) {
-  const Eigen::VectorXd terms = J.cwiseAbs() * q.cwiseAbs();
-  return 16 * std::numeric_limits<double>::epsilon() * (terms.size() ? terms.maxCoeff() : 0.0);
 }
 
 // docs/theory.md §4.3, "Projecting when the drift matters": the minimum-norm solution of

@@ -1,10 +1,11 @@
-// docs/theory.md §5.5: trim finds equilibria by Newton's method on the exact Jacobian, keeps
+// docs/theory.md §5.5: trim finds equilibria by Levenberg–Marquardt on the exact Jacobian, keeps
 // constrained models on the manifold, and fails with a reason where none can be found.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "analysis/analysed.hpp"
 
@@ -87,7 +88,134 @@ coordinates:
 kinetic: m/2*der(x)^2
 potential: m*(x^3/3 + x)
 )");
-  EXPECT_THROW((void)trim(*s.jac, *s.dyn, 0.0, s.q), AnalysisError);
+  try {
+    (void)trim(*s.jac, *s.dyn, 0.0, s.q);
+    FAIL() << "trim reported an equilibrium where a = -(x^2 + 1)";
+  } catch (const AnalysisError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no equilibrium near the start"), std::string::npos) << what;
+    EXPECT_NE(what.find("local minimum"), std::string::npos) << what;
+    EXPECT_NE(what.find("max |acceleration| = 1"), std::string::npos) << what;  // |a(0)| = 1
+  }
+}
+
+// a = -(x³ - 3x + 3): |a| has a local minimum 1 at x = 1 (a' = 0 there) and one root, x* =
+// -(∛((3 + √5)/2) + ∛((3 - √5)/2)) (Cardano). From x = 2 Levenberg–Marquardt descends ½a² to
+// x = 1 and must say that it found no equilibrium there; the overdamped flow ẋ = a runs on
+// through x = 1 (a = -1 < 0) to x*, which attracts it (a'(x*) < 0).
+TEST(Trim, SpuriousMinimumIsReportedAndTheFlowGoesOnToTheRoot) {
+  auto s = analyse_string(R"(
+name: spurious minimum
+parameters: {m: 1.0}
+coordinates:
+  x: {initial: 2.0, rate: 0}
+kinetic: m/2*der(x)^2
+potential: m*(x^4/4 - 3*x^2/2 + 3*x)
+)");
+  TrimOptions alone;
+  alone.max_pseudo_steps = 0;
+  try {
+    (void)trim(*s.jac, *s.dyn, 0.0, s.q, alone);
+    FAIL() << "an equilibrium was reported at the minimum of |a|";
+  } catch (const AnalysisError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no equilibrium near the start"), std::string::npos) << what;
+    EXPECT_NE(what.find("x = 1"), std::string::npos) << what;  // where it stopped: x = 1.000…
+  }
+  const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q);
+  EXPECT_TRUE(r.pseudo_transient);
+  const double root = -(std::cbrt((3 + std::sqrt(5.0)) / 2) + std::cbrt((3 - std::sqrt(5.0)) / 2));
+  EXPECT_NEAR(r.q[0], root, 1e-12);
+}
+
+// The small case behind the Panda (docs/theory.md §5.5): a spatial arm whose first joint turns
+// about the vertical has no isolated equilibrium anywhere — gravity does not depend on that
+// angle, so ∂a/∂q is singular at every state (the former Newton iteration refused at its first
+// step). Levenberg–Marquardt moves only where a changes and lands on the family: the yaw as
+// given, the shoulder's and the elbow's links vertical, cos q2 = cos(q2 + q3) = 0 (each pitch
+// joint carries g (m c) cos of its link's absolute angle); a light forearm (0.05 kg against
+// 2 kg) as at the Panda's wrist.
+TEST(Trim, ArmTurningAboutTheVerticalLandsOnItsFamilyOfEquilibria) {
+  auto s = analyse_string(R"(
+name: spatial arm
+parameters: {m1: 2.0, m2: 0.05, g: 9.81}
+links:
+  base:
+    joint: {name: q1, type: revolute, axis: [0, 0, 1], initial: 0.3}
+    mass: 1.0
+    inertia: [0.01, 0.01, 0.02]
+  upper:
+    parent: base
+    joint: {name: q2, type: revolute, axis: [0, 1, 0], origin: {xyz: [0, 0, 0.3]}, initial: 0.4}
+    mass: m1
+    com: [0.5, 0.02, 0]
+    inertia: [0.01, 0.2, 0.2]
+  fore:
+    parent: upper
+    joint: {name: q3, type: revolute, axis: [0, 1, 0], origin: {xyz: [1, 0, 0]}, initial: 0.5}
+    mass: m2
+    com: [0.4, 0, 0]
+    inertia: [0.0005, 0.003, 0.003]
+gravity: [0, 0, -g]
+)");
+  const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q);
+  EXPECT_LE(r.residual, r.tolerance);
+  EXPECT_LE(r.tolerance, 1e-10);
+  EXPECT_FALSE(r.pseudo_transient);
+  EXPECT_NEAR(r.q[0], 0.3, 1e-12);  // nothing moves the yaw
+  EXPECT_NEAR(std::cos(r.q[1]), 0.0, 1e-10);
+  EXPECT_NEAR(std::cos(r.q[1] + r.q[2]), 0.0, 1e-10);
+  EXPECT_NE(r.not_isolated.find("'q1'"), std::string::npos) << r.not_isolated;
+}
+
+// Gravity compensation: with the angles held and the joint torques as free inputs, a is affine
+// in τ and the first (Newton) step is exact: τ = ∂U/∂q, for point masses on a double pendulum
+// (absolute angles from the downward vertical) τ1 = (m1 + m2) g l1 sin θ1, τ2 = m2 g l2 sin θ2.
+TEST(Trim, FreeTorquesBalanceGravityInOneIteration) {
+  auto s = analyse_string(R"(
+name: held double pendulum
+parameters: {m1: 1.5, m2: 0.7, l1: 1.2, l2: 0.8, g: 9.81, tau1: 0, tau2: 0}
+coordinates:
+  th1: {initial: 0.7, rate: 0}
+  th2: {initial: -1.1, rate: 0}
+points:
+  p1: [l1*sin(th1), 0, -l1*cos(th1)]
+  p2: p1 + [l2*sin(th2), 0, -l2*cos(th2)]
+particles: {p1: m1, p2: m2}
+gravity: [0, 0, -g]
+generalized_forces: {th1: tau1, th2: tau2}
+)",
+                          {"tau1", "tau2"});
+  TrimOptions options;
+  options.free = {false, false};
+  options.free_inputs = {true, true};
+  const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q, options);
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_LE(r.residual, 1e-12);
+  EXPECT_EQ(r.q, s.q);
+  ASSERT_EQ(r.inputs.size(), 2u);
+  EXPECT_NEAR(r.inputs[0], (1.5 + 0.7) * 9.81 * 1.2 * std::sin(0.7), 1e-12);
+  EXPECT_NEAR(r.inputs[1], 0.7 * 9.81 * 0.8 * std::sin(-1.1), 1e-12);
+  EXPECT_NEAR(s.dyn->parameters()[5], r.inputs[0], 0.0);  // dyn keeps the torques found
+}
+
+// docs/theory.md §5.5, "Tolerance": a spring anchored 10⁸ m from the origin. x is known to
+// ε|x| ≈ 1.5e-8 m, so a = -(k/m)(x - X) cannot be computed below about that times k/m; the
+// tolerance rises from 1e-10 to the rounding floor 4 ε (k/m)|x| and trim converges there.
+TEST(Trim, ToleranceRisesToTheRoundingFloorOfTheAccelerations) {
+  auto s = analyse_string(R"(
+name: far spring
+parameters: {m: 1.0, k: 4.0, X: 1e8}
+coordinates:
+  x: {initial: 100000010.0, rate: 0}
+kinetic: m/2*der(x)^2
+potential: k/2*(x - X)^2
+)");
+  const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q);
+  const double floor = 4 * std::numeric_limits<double>::epsilon() * 4.0 * 1e8;  // ≈ 3.6e-7
+  EXPECT_NEAR(r.tolerance, floor, 1e-9 * floor);
+  EXPECT_LE(r.residual, r.tolerance);
+  EXPECT_NEAR(r.q[0], 1e8, 1e-6);
 }
 
 }  // namespace

@@ -66,6 +66,10 @@ def test_trim_finds_the_hanging_equilibrium():
     assert np.array_equal(r.v, [0.0])
     with pytest.raises(ValueError, match="no coordinate 'phi'"):
         m.trim(free=["phi"])
+    # The side force as the unknown with theta held at 0.3: F = m g tan(theta), one step.
+    held = m.trim(q=[0.3], free=["F"])
+    assert held.inputs["F"] == pytest.approx(9.81 * math.tan(0.3), rel=1e-12)
+    assert held.iterations == 1 and held.q[0] == 0.3
 
 
 def lqr_gain(A, B, Q, R, iterations=5000):
