@@ -2,6 +2,8 @@
 // A model derived, compiled and differentiated, at its consistent initial state: what the
 // analysis tests start from.
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +58,26 @@ inline Analysed analyse_example(const std::string& name,
 inline Analysed analyse_string(const std::string& yaml, const std::vector<std::string>& inputs = {},
                                const std::vector<std::string>& outputs = {}) {
   return analyse(std::make_unique<Model>(read_model_string(yaml, "<test>")), inputs, outputs);
+}
+
+/// The reference an implicit method is checked against: DOP853 at rtol 1e-12 over `so`'s span and
+/// output grid, from the analysed start (its method and tolerances are set here).
+inline Trajectory dop853_reference(Analysed& s, SimulationOptions so) {
+  so.integrator.method = "dop853";
+  so.integrator.rtol = 1e-12;
+  so.integrator.atol = 1e-14;
+  s.dyn->set_baumgarte(baumgarte_rate(s.model->stabilization, "dop853"));
+  return simulate(*s.dyn, so, s.q, s.v);
+}
+
+/// The largest difference of any coordinate at any sample of two runs on the same grid.
+inline double worst_coordinate_difference(const Analysed& s, const Trajectory& a,
+                                          const Trajectory& b) {
+  double worst = 0.0;
+  for (size_t r = 0; r < a.rows() && r < b.rows(); ++r)
+    for (const std::string& name : s.cm->coordinate_names)
+      worst = std::max(worst, std::abs(a.at(r, name) - b.at(r, name)));
+  return worst;
 }
 
 }  // namespace lagrange::testing

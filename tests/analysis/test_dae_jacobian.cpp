@@ -85,11 +85,7 @@ void check_against_dop853(Analysed s, const std::string& example, double tol) {
   SimulationOptions so;
   so.t_end = 1.0;
   so.output_step = 0.05;
-  so.integrator.method = "dop853";
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
-  s.dyn->set_baumgarte(baumgarte_rate(s.model->stabilization, "dop853"));
-  const Trajectory ref = simulate(*s.dyn, so, s.q, s.v);
+  const Trajectory ref = testing::dop853_reference(s, so);
   ASSERT_EQ(ref.status, Trajectory::Status::Complete) << ref.message;
 
   so.integrator.method = "ida:jacobian";
@@ -111,11 +107,7 @@ void check_against_dop853(Analysed s, const std::string& example, double tol) {
   ASSERT_EQ(tr.rows(), ref.rows());
   EXPECT_EQ(tr.stats.method, "ida:jacobian");
   EXPECT_GT(evaluations, 0);  // IDA's Newton matrices came from it
-  double worst = 0.0;
-  for (size_t r = 0; r < tr.rows(); ++r)
-    for (const std::string& name : s.cm->coordinate_names)
-      worst = std::max(worst, std::abs(tr.at(r, name) - ref.at(r, name)));
-  EXPECT_LT(worst, tol) << example;
+  EXPECT_LT(testing::worst_coordinate_difference(s, tr, ref), tol) << example;
 }
 
 TEST(IdaJacobian, HangingChainAgreesWithDop853) {

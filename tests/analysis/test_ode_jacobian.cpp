@@ -130,11 +130,7 @@ void check_against_dop853(Analysed s, const std::string& example, double t_end, 
   SimulationOptions so;
   so.t_end = t_end;
   so.output_step = t_end / 20;
-  so.integrator.method = "dop853";
-  so.integrator.rtol = 1e-12;
-  so.integrator.atol = 1e-14;
-  s.dyn->set_baumgarte(baumgarte_rate(s.model->stabilization, "dop853"));
-  const Trajectory ref = simulate(*s.dyn, so, s.q, s.v);
+  const Trajectory ref = testing::dop853_reference(s, so);
   ASSERT_EQ(ref.status, Trajectory::Status::Complete) << ref.message;
 
   so.integrator.method = "cvode:jacobian";
@@ -146,11 +142,7 @@ void check_against_dop853(Analysed s, const std::string& example, double t_end, 
   ASSERT_EQ(tr.status, Trajectory::Status::Complete) << tr.message;
   ASSERT_EQ(tr.rows(), ref.rows());
   EXPECT_EQ(tr.stats.method, "cvode:jacobian");
-  double worst = 0.0;
-  for (size_t r = 0; r < tr.rows(); ++r)
-    for (const std::string& name : s.cm->coordinate_names)
-      worst = std::max(worst, std::abs(tr.at(r, name) - ref.at(r, name)));
-  EXPECT_LT(worst, tol) << example;
+  EXPECT_LT(testing::worst_coordinate_difference(s, tr, ref), tol) << example;
 }
 
 TEST(CvodeJacobian, HangingChainAgreesWithDop853) {
