@@ -284,8 +284,8 @@ void Dynamics::solve_full_kkt(double t) {
   lambda_ = kkt_rhs_.tail(m);
 }
 
-// docs/theory.md §4.3: M v' and G v', Gᵀλ from the tape's structural non-zeros (a tether's M and
-// G are sparse: no dense products).
+// docs/theory.md §4.3: M v' and G v', Gᵀλ from the tape's structural non-zeros (no dense
+// products: M and G of many coordinates are mostly zeros).
 void Dynamics::dae_residual(double t, const double* q, const double* v, const double* qp,
                             const double* vp, const double* lambda, double* r) {
   const CompiledModel& cm = *model_;

@@ -16,8 +16,8 @@ inline double rounding_floor(const Eigen::MatrixXd& J, const Eigen::VectorXd& x)
 }
 
 /// ε max_r (Σ_j (J_rj x_j)²)^½: the rounding of x alone, with the roundings of the x_j
-/// independent and so adding in quadrature — for a dense J (a rigid tether's accelerations
-/// depend on every node) the sum of |J_rj| |x_j| over hundreds of columns overstates them. The
+/// independent and so adding in quadrature — for a dense J (accelerations that depend on every
+/// coordinate) the sum of |J_rj| |x_j| over hundreds of columns overstates them. The
 /// caller scales it by how many roundings the evaluation adds.
 inline double rounding_level(const Eigen::MatrixXd& J, const Eigen::VectorXd& x) {
   const Eigen::VectorXd terms = (J * x.cwiseAbs().asDiagonal()).rowwise().norm();
