@@ -28,9 +28,10 @@ def test_two_simulations_in_threads_equal_sequential_ones(examples_dir, pendulum
 
 
 def test_simulate_releases_the_gil(examples_dir):
-    # While a run integrates on another thread, this thread keeps running Python: the longest
-    # pause between two of its iterations stays far below the time the run took. Were the GIL
-    # held, the pause would last the whole integration.
+    # While a run integrates on another thread, this thread keeps running Python: it iterates
+    # throughout the middle half of the run. Were the GIL held, it could not iterate at all
+    # between the run's start and its end. (The longest pause is not a sound measure on a loaded
+    # machine: the scheduler alone may park this thread for a large part of a short run.)
     tether = lagrange.load(str(examples_dir / "tether_in_wind.yaml"))
     worker = threading.Thread(target=tether.simulate, kwargs=dict(compile="off"))
     ticks = [time.perf_counter()]
@@ -41,7 +42,8 @@ def test_simulate_releases_the_gil(examples_dir):
     duration = ticks[-1] - ticks[0]
     assert duration > 0.05, "the run is too short to show anything"
     assert len(ticks) > 100
-    assert max(np.diff(ticks)) < duration / 2
+    middle = [t for t in ticks if ticks[0] + duration / 4 < t < ticks[0] + 3 * duration / 4]
+    assert len(middle) > 10
 
 
 def test_forward_batch_releases_the_gil(pendulum):
@@ -93,4 +95,5 @@ def test_stepper_releases_the_gil(examples_dir):
     duration = ticks[-1] - ticks[0]
     assert duration > 0.05, "the step is too short to show anything"
     assert len(ticks) > 100
-    assert max(np.diff(ticks)) < duration / 2
+    middle = [t for t in ticks if ticks[0] + duration / 4 < t < ticks[0] + 3 * duration / 4]
+    assert len(middle) > 10
