@@ -128,11 +128,8 @@ TEST(IdaJacobian, FixedOrderConvergesAtItsOrder) {
        {std::pair{"double_pendulum.yaml", 0.05}, std::pair{"cartesian_pendulum.yaml", 2.0}})
     for (const char* method : {"ida:jacobian", "ida"})  // plain ida: difference quotients
       for (int k : {1, 2, 3}) {
-        const std::vector<double> rtols = k == 1
-                                              ? std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6}
-                                              : std::vector<double>{1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
-        const double p =
-            testing::fitted_order(testing::implicit_runs(example, method, k, rtols, output_step));
+        const double p = testing::fitted_order(
+            testing::implicit_runs(example, method, k, testing::order_tolerances(k), output_step));
         EXPECT_GT(p, k - 0.4) << example << ", " << method << ", order " << k;
         EXPECT_LT(p, k + 0.7) << example << ", " << method << ", order " << k;
       }
