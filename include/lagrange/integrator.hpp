@@ -61,7 +61,8 @@ struct IntegratorOptions {
   double step = 0.0;  ///< rk4 / midpoint step (0: output step / 10); dop853, arkode: > 0 fixes
                       ///< the step (no error control)
   long max_steps = 1000000;  ///< per output interval (adaptive methods)
-  /// Highest BDF order of cvode, cvode:jacobian (also within auto) and ida: 1 to 5.
+  /// Highest BDF order of cvode, cvode:jacobian (also within auto), ida and ida:jacobian: 1 to 5
+  /// (docs/theory.md §5.8).
   int max_order = 5;
   StepHook after_step;  ///< optional; ODE methods only (IDA restarts at samples instead)
 };
