@@ -61,7 +61,10 @@ struct IntegratorOptions {
   double step = 0.0;  ///< rk4 / midpoint step (0: output step / 10); dop853, arkode: > 0 fixes
                       ///< the step (no error control)
   long max_steps = 1000000;  ///< per output interval (adaptive methods)
-  StepHook after_step;       ///< optional; ODE methods only (IDA restarts at samples instead)
+  /// Highest BDF order of cvode, cvode:jacobian (also within auto), ida and ida:jacobian: 1 to 5
+  /// (docs/theory.md §5.8).
+  int max_order = 5;
+  StepHook after_step;  ///< optional; ODE methods only (IDA restarts at samples instead)
 };
 
 /// An estimate of the spectral radius of ∂f/∂y at (t, y): the mean growth rate of 60 power

@@ -57,6 +57,7 @@ IntegratorStats integrate_cvode(const OdeProblem& problem, const IntegratorOptio
   ok(CVodeSetUserData(mem.get(), &callback), "CVodeSetUserData", t0);
   ok(CVodeSStolerances(mem.get(), options.rtol, options.atol), "CVodeSStolerances", t0);
   ok(CVodeSetMaxNumSteps(mem.get(), options.max_steps), "CVodeSetMaxNumSteps", t0);
+  ok(CVodeSetMaxOrd(mem.get(), options.max_order), "CVodeSetMaxOrd", t0);
   check(CVodeSetLinearSolver(mem.get(), solver.get(), jacobian.get()), "CVodeSetLinearSolver",
         CVodeGetLinReturnFlagName, t0, &log);
   if (exact)

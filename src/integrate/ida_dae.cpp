@@ -60,6 +60,7 @@ IntegratorStats integrate_ida(const DaeProblem& problem, const IntegratorOptions
   ok(IDASetUserData(mem.get(), &callback), "IDASetUserData", t0);
   ok(IDASStolerances(mem.get(), options.rtol, options.atol), "IDASStolerances", t0);
   ok(IDASetMaxNumSteps(mem.get(), options.max_steps), "IDASetMaxNumSteps", t0);
+  ok(IDASetMaxOrd(mem.get(), options.max_order), "IDASetMaxOrd", t0);
   ok(IDASetId(mem.get(), id_vec.get()), "IDASetId", t0);
   // docs/theory.md §5.6, "The DAE's Newton matrix": the algebraic components (the multipliers λ)
   // follow from the differential ones and stay out of the local error test.

@@ -25,6 +25,10 @@ void validate_options(const IntegratorOptions& options) {
         "integrator: expected rtol >= 0, atol >= 0, not both 0, got rtol = {}, atol = {}",
         options.rtol, options.atol));
   }
+  if (options.max_order < 1 || options.max_order > 5) {
+    throw std::invalid_argument(
+        fmt::format("integrator: expected max_order from 1 to 5 (BDF), got {}", options.max_order));
+  }
   if (!std::isfinite(options.step) || options.step < 0.0) {
     throw std::invalid_argument(
         fmt::format("integrator: expected step >= 0 (0 = output step / 10), got {}", options.step));

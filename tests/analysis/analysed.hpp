@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,71 @@ inline double worst_coordinate_difference(const Analysed& s, const Trajectory& a
     for (const std::string& name : s.cm->coordinate_names)
       worst = std::max(worst, std::abs(a.at(r, name) - b.at(r, name)));
   return worst;
+}
+
+/// One run of an implicit method (cvode:jacobian or ida:jacobian, on `s`'s exact Jacobian) at
+/// rtol (atol = rtol·1e-2) and BDF order at most max_order on `so`'s grid against `ref`: its
+/// steps and worst coordinate error.
+struct OrderPoint {
+  long steps = 0;
+  double error = 0.0;
+};
+
+inline OrderPoint implicit_run(Analysed& s, SimulationOptions so, const std::string& method,
+                               double rtol, int max_order, const Trajectory& ref) {
+  so.integrator.method = method;
+  so.integrator.max_order = max_order;
+  so.integrator.rtol = rtol;
+  so.integrator.atol = rtol * 1e-2;
+  s.dyn->set_baumgarte(baumgarte_rate(s.model->stabilization, method));
+  std::vector<double> y0 = s.q;
+  y0.insert(y0.end(), s.v.begin(), s.v.end());
+  if (method == "cvode:jacobian") so.jacobian = ode_jacobian(*s.jac, *s.dyn, so.t0, y0);
+  so.jacobian_source.dae = [&s](Dynamics& dyn, double t0, const std::vector<double>& y) {
+    return dae_jacobian(*s.jac, dyn, t0, y);
+  };
+  const Trajectory tr = simulate(*s.dyn, so, s.q, s.v);
+  if (tr.status != Trajectory::Status::Complete || tr.rows() != ref.rows())
+    throw std::runtime_error(method + " failed: " + tr.message);
+  return {tr.stats.steps, worst_coordinate_difference(s, tr, ref)};
+}
+
+/// The order p of error ∝ steps^(−p): the least-squares slope of log error against log steps
+/// over `runs` (docs/theory.md §5.8).
+inline double fitted_order(const std::vector<OrderPoint>& runs) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(runs.size());
+  for (const OrderPoint& r : runs) {
+    const double x = std::log(static_cast<double>(r.steps)), y = std::log(r.error);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+/// implicit_run of `example` over 2 s with samples every output_step at each of `rtols`, against
+/// DOP853 at rtol 1e-12.
+inline std::vector<OrderPoint> implicit_runs(const std::string& example, const std::string& method,
+                                             int max_order, const std::vector<double>& rtols,
+                                             double output_step) {
+  Analysed s = analyse_example(example);
+  SimulationOptions so;
+  so.t_end = 2.0;
+  so.output_step = output_step;
+  const Trajectory ref = dop853_reference(s, so);
+  std::vector<OrderPoint> runs;
+  for (double rtol : rtols) runs.push_back(implicit_run(s, so, method, rtol, max_order, ref));
+  return runs;
+}
+
+/// Decade-spaced rtols at which BDF held at order k (1 to 3) is in its asymptotic range on the
+/// pendulums over 2 s, at a few thousand steps at most.
+inline std::vector<double> order_tolerances(int k) {
+  if (k == 1) return {1e-3, 1e-4, 1e-5};
+  if (k == 2) return {1e-4, 1e-5, 1e-6, 1e-7};
+  return {1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
 }
 
 }  // namespace lagrange::testing

@@ -120,5 +120,31 @@ TEST(IdaJacobian, RigidKiteAgreesWithDop853) {
   check_against_dop853(testing::analyse_example("rigid_kite_ap2.yaml"), "rigid AP2", 1e-6);
 }
 
+// docs/theory.md §5.8: BDF held at order k converges at order k — the error against DOP853 falls
+// as steps^(−k) — on the double pendulum (an ODE in IDA's residual form) and on the Cartesian
+// pendulum (q, v and the multiplier λ), sampled once at the end so that no projection restarts it.
+TEST(IdaJacobian, FixedOrderConvergesAtItsOrder) {
+  for (const auto& [example, output_step] :
+       {std::pair{"double_pendulum.yaml", 0.05}, std::pair{"cartesian_pendulum.yaml", 2.0}})
+    for (const char* method : {"ida:jacobian", "ida"})  // plain ida: difference quotients
+      for (int k : {1, 2, 3}) {
+        const double p = testing::fitted_order(
+            testing::implicit_runs(example, method, k, testing::order_tolerances(k), output_step));
+        EXPECT_GT(p, k - 0.4) << example << ", " << method << ", order " << k;
+        EXPECT_LT(p, k + 0.7) << example << ", " << method << ", order " << k;
+      }
+}
+
+// At the default (variable order up to 5) the error follows the tolerance: 100 times tighter,
+// 10 to 1000 times smaller.
+TEST(IdaJacobian, ErrorFollowsTheTolerance) {
+  const auto runs =
+      testing::implicit_runs("double_pendulum.yaml", "ida:jacobian", 5, {1e-4, 1e-6, 1e-8}, 0.05);
+  for (size_t i = 0; i + 1 < runs.size(); ++i) {
+    EXPECT_GT(runs[i].error / runs[i + 1].error, 10.0) << i;
+    EXPECT_LT(runs[i].error / runs[i + 1].error, 1000.0) << i;
+  }
+}
+
 }  // namespace
 }  // namespace lagrange

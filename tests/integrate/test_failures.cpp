@@ -119,6 +119,13 @@ TEST(OdeArguments, BadSizesAndOptionsAreRejected) {
   bad.max_steps = 0;
   EXPECT_THROW(integrate(osc.problem(), bad, 0.0, {1.0, 0.0}, 1.0, 0.1, kContinue),
                std::invalid_argument);
+  for (int order : {0, 6}) {  // BDF has orders 1 to 5
+    bad = options_for("cvode");
+    bad.max_order = order;
+    EXPECT_THROW(integrate(osc.problem(), bad, 0.0, {1.0, 0.0}, 1.0, 0.1, kContinue),
+                 std::invalid_argument)
+        << order;
+  }
   EXPECT_THROW(integrate(osc.problem(), options_for("rk4"), 0.0, {1.0, 0.0}, 1.0, 0.0, kContinue),
                std::invalid_argument);
 }
