@@ -154,7 +154,8 @@ class ReplayedInputs {
 /// A case's inputs read from the model file with its values, or why it rejects them.
 struct CaseRead {
   std::optional<CaseInput> input;
-  std::string rejected;  ///< why the model file rejects the values (when input is empty)
+  std::string rejected;        ///< why the model file rejects the values (when input is empty)
+  double read_seconds = -1.0;  ///< the model file's read time, or negative when not read
 };
 
 /// How one case ended.
@@ -165,6 +166,7 @@ struct CaseResult {
   double failure_time = 0.0;
   std::vector<double> metrics;
   double wall_seconds = 0.0;
+  double read_seconds = -1.0;  ///< the CaseRead's, passed on by the pools
 };
 
 /// Runs one case on `dyn` (a workspace over the study's compiled model): sets its parameters
@@ -199,6 +201,16 @@ struct PoolOptions {
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
               const std::vector<Metric>& metrics, const PoolOptions& options);
+
+/// As run_pool, each worker a process forked from this one (docs/sweeps.md, "Speed"): a
+/// single-threaded worker allocates without glibc's locks, as a lone run does. `read` and `keep`
+/// run in the workers, `done` here; a worker's exception, its death or `done`'s exception stops
+/// the others after their case and is thrown here as std::runtime_error; this process's
+/// interrupt is passed on to them. run_pool (threads) for fewer than two workers, or when this
+/// process has other threads (whose locks a fork would copy held).
+void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
+                        const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
+                        const std::vector<Metric>& metrics, const PoolOptions& options);
 
 /// Makes this process keep the memory that cases free for the next ones (glibc: no unmapping,
 /// no trimming; docs/sweeps.md, "Speed"), for a process that runs a study.

@@ -385,7 +385,7 @@ int run_sweep(const Options& opt) {
   choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);
-  Reading reading;       // counted under the lock
+  Reading reading;       // counted as rows reach the summary
   std::mutex read_lock;  // one model read at a time: GiNaC is not thread-safe
   sweep::PoolOptions pool;
   pool.workers = opt.jobs > 0 ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
@@ -396,20 +396,25 @@ int run_sweep(const Options& opt) {
     const std::lock_guard<std::mutex> lock(read_lock);
     const auto start = Clock::now();
     sweep::CaseRead r = read_case_inputs(s.from, s.plan.cases.at(index).values);
-    reading.seconds += seconds_since(start);
-    ++reading.files;
+    r.read_seconds = seconds_since(start);
     return r;
   };
   pool.done = [&](const sweep::CaseResult& r) {
     summary->append(r.index, row_fields(s.plan.cases[r.index], r));
     progress.add(r.status == Trajectory::Status::Complete);
+    if (r.read_seconds >= 0.0) {
+      ++reading.files;
+      reading.seconds += r.read_seconds;
+    }
   };
   if (opt.keep_trajectories)
     pool.keep = [&](size_t index, const Trajectory& traj) {
       write_trajectory_csv(traj,
                            (fs::path(opt.study) / fmt::format("case_{}.csv", index)).string());
     };
-  sweep::run_pool(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics, pool);
+  // Worker processes (threads when one): docs/sweeps.md, "Speed".
+  sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
+                            pool);
   return conclude(opt, s, *summary, progress, already,
                   fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading);
 }

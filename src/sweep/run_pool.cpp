@@ -49,6 +49,7 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
         if (read.input) read.input->options.interrupt = options.interrupt;
         CaseResult result = run_case(dyn, read, metrics, options.keep ? &traj : nullptr);
         result.index = index;
+        result.read_seconds = read.read_seconds;
         if (result.status == Trajectory::Status::Interrupted) break;
         const std::lock_guard<std::mutex> lock(report);
         if (options.keep && read.input) options.keep(index, traj);
