@@ -197,6 +197,10 @@ struct PoolOptions {
   /// What evaluates each worker's tapes: SharedMachineCode compiles (or loads from the cache)
   /// one library that serves every case whose values fold alike (docs/theory.md §8).
   Evaluation evaluation = Evaluation::Interpreter;
+  /// When set, a workspace over `model` with `evaluation` already chosen, which the calling
+  /// thread's worker (and every worker process, each on its own copy) runs its cases on instead
+  /// of making one: a worker's set-up (tapes specialised, machine code loaded) is then paid once.
+  Dynamics* workspace = nullptr;
 };
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -365,6 +366,21 @@ int run_sweep_mpi(const Options& opt) {
 }
 #endif
 
+// The study is written (its summary published, or its rows kept when interrupted): the process
+// ends with `code` at once, its output flushed, without taking apart the derived model, GiNaC's
+// tables and the loaded machine code. That teardown writes to hundreds of pages, each a page
+// fault (10-25 µs on a virtual machine), after fork made them copy-on-write: ~10 ms of a short
+// study (docs/sweeps.md, "Speed"). Under AddressSanitizer the process ends normally, so that
+// LeakSanitizer still checks it.
+int end_process(int code) {
+#if defined(__SANITIZE_ADDRESS__)
+  return code;
+#else
+  std::fflush(nullptr);
+  std::_Exit(code);
+#endif
+}
+
 }  // namespace
 
 int run_sweep(const Options& opt) {
@@ -391,6 +407,7 @@ int run_sweep(const Options& opt) {
   pool.workers = opt.jobs > 0 ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
   pool.interrupt = opt.interrupt;
   pool.evaluation = s.evaluation;
+  pool.workspace = s.prepared.dynamics.get();  // its evaluation chosen as the workers'
   pool.read = [&](size_t index) {
     if (std::optional<sweep::CaseRead> r = replayed_case(s, index)) return std::move(*r);
     const std::lock_guard<std::mutex> lock(read_lock);
@@ -415,8 +432,9 @@ int run_sweep(const Options& opt) {
   // Worker processes (threads when one): docs/sweeps.md, "Speed".
   sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
                             pool);
-  return conclude(opt, s, *summary, progress, already,
-                  fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading);
+  return end_process(
+      conclude(opt, s, *summary, progress, already,
+               fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading));
 }
 
 }  // namespace lagrange::cli

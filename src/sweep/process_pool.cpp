@@ -15,11 +15,13 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "lagrange/dynamics.hpp"
 #include "lagrange/sweep.hpp"
+#include "sweep/worker_workspace.hpp"
 
 namespace lagrange::sweep {
 
@@ -79,8 +81,8 @@ bool send(int fd, const std::string& data) {
                        Shared& shared, int fd) {
   int code = 0;
   try {
-    Dynamics dyn(model, model->parameter_defaults);
-    if (options.evaluation != Evaluation::Interpreter) dyn.set_evaluation(options.evaluation);
+    std::optional<Dynamics> own;
+    Dynamics& dyn = options.workspace ? *options.workspace : worker_workspace(model, options, own);
     Trajectory traj;
     const auto stopped = [&] {
       return shared.stop.load() || (options.interrupt && options.interrupt->load());
