@@ -227,8 +227,12 @@ class SummaryFile {
  public:
   /// Opens `path` for the columns `header`. Without `resume` the file must not exist (a
   /// std::runtime_error says so); with it, the rows already there are kept (a different header
-  /// is a std::runtime_error) and their case numbers are returned by done().
-  SummaryFile(const std::string& path, std::vector<std::string> header, bool resume);
+  /// is a std::runtime_error) and their case numbers are returned by done(). A new file is
+  /// written by the first append() or finish() (with worker processes, while the first cases
+  /// run), after `before_first_write` (the study's record, say), which an existing file runs at
+  /// once.
+  SummaryFile(const std::string& path, std::vector<std::string> header, bool resume,
+              std::function<void()> before_first_write = {});
   ~SummaryFile();
   SummaryFile(const SummaryFile&) = delete;
   SummaryFile& operator=(const SummaryFile&) = delete;
@@ -243,7 +247,10 @@ class SummaryFile {
   std::string path_;
   std::vector<std::string> header_;
   std::set<size_t> done_;
+  std::function<void()> before_first_write_;
   int fd_ = -1;
+
+  void open_for_appending();
 };
 
 /// A summary field: doubles as `{:.17g}` (they read back to the same bits), text quoted when it

@@ -225,10 +225,11 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
             opt.study, record_changes(was.str(), text)));
     }
     fs::create_directories(opt.study);
-    auto summary = std::make_unique<sweep::SummaryFile>(
-        (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume);
-    write_file_atomically(about.string(), text);
-    return summary;
+    // study.txt, then the summary's header, are written when the first row is (while the first
+    // cases run), or at once when resuming.
+    return std::make_unique<sweep::SummaryFile>(
+        (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume,
+        [about, text] { write_file_atomically(about.string(), text); });
   } catch (const UsageError&) {
     throw;
   } catch (const std::exception& e) {
