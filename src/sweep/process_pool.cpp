@@ -160,6 +160,19 @@ void take_messages(Worker& w, OnResult result, OnError error) {
   w.buffer.erase(0, at);
 }
 
+// Waits for worker `pid` to end; `stop` is told why when it died or stopped with an error.
+template <class Stop>
+void reap(pid_t pid, Stop stop) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status) && WTERMSIG(status) != SIGINT)
+    stop(std::string("a worker process died (") + strsignal(WTERMSIG(status)) +
+         "); the cases it finished are kept");
+  else if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+    stop("a worker process stopped with an error");
+}
+
 }  // namespace
 
 void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
@@ -232,20 +245,13 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
         take_messages(w, on_result, stop_with);
         continue;
       }
-      ::close(w.fd);  // the worker's end is closed: it has ended
+      // The worker's end is closed: it has ended (or is ending); one that died stops the others
+      // after their case.
+      ::close(w.fd);
       w.fd = -1;
       --open;
+      reap(w.pid, stop_with);
     }
-  }
-  for (const Worker& w : workers) {
-    int status = 0;
-    while (::waitpid(w.pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (WIFSIGNALED(status) && WTERMSIG(status) != SIGINT)
-      stop_with(std::string("a worker process died (") + strsignal(WTERMSIG(status)) +
-                "); the cases it finished are kept");
-    else if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
-      stop_with("a worker process stopped with an error");
   }
   shared->~Shared();
   munmap(memory, sizeof(Shared));

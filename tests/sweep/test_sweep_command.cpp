@@ -249,24 +249,13 @@ TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
 }
 
 // A worker process killed part-way (SIGKILL, as the machine's OOM killer would): the study stops
-// with an error naming it and the rows finished are kept (the other worker finishes its case);
-// --resume runs the others to the summary of a study never stopped.
+// with an error naming it and the rows finished are kept (the other worker finishes its case and
+// takes no other); --resume runs the others to the summary of a study never stopped.
 TEST(SweepCommand, AKilledWorkerProcessLosesNoFinishedCase) {
   ScratchDir dir("sweep-killed-worker");
   const auto args = [&](const fs::path& study, const char* jobs, bool resume) {
-    std::vector<std::string> a{"sweep",
-                               kModel,
-                               "--vary",
-                               "l2=0.5:1.5:30",
-                               "--metric",
-                               "final(theta1)",
-                               "--t-end",
-                               "5",
-                               "-q",
-                               "-o",
-                               study.string(),
-                               "-j",
-                               jobs};
+    std::vector<std::string> a{"sweep", kModel, "--vary", "l2=0.5:1.5:30", "--t-end", "30", "-q"};
+    a.insert(a.end(), {"--metric", "final(theta1)", "-o", study.string(), "-j", jobs});
     if (resume) a.push_back("--resume");
     return a;
   };
