@@ -27,7 +27,8 @@ def main():
     took = time.perf_counter() - t0
     failed = int((frame["status"] != "ok").sum())
     print(f"dask {workers} workers: cluster start {started:.2f} s, sweep {took:.3f} s, "
-          f"{cases / took:.1f} cases/s, {failed} failed")
+          f"{cases / took:.1f} cases/s, {failed} failed, "
+          f"{frame.attrs['model_reads']} model reads")
     client.close()
     cluster.close()
 

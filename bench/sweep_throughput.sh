@@ -48,8 +48,9 @@ run_seconds() {
 
 study() {
   local model=$1 name=$2 low=$3 high=$4 cases=$5 metric=$6
-  local args=("$root/examples/$model" --vary "$name=$low:$high:$cases" --t-end 10
-              --metric "$metric" -o "$work/study")
+  local base=("$root/examples/$model" --vary "$name=$low:$high:$cases" --t-end 10
+              --metric "$metric")
+  local args=("${base[@]}" -o "$work/study")
   echo "$model: $cases cases of 10 s, $name from $low to $high, metric $metric"
   rm -rf "$work/study"
   "$lagrange" sweep "${args[@]}" -j 1 | sed -n 's/^  \(derive\|tapes\)/  once: \1/p'
@@ -59,6 +60,15 @@ study() {
   awk -v w1="$wall1" -v c1="$cpu1" -v w2="$last_wall" -v c2="$last_cpu" \
     'BEGIN {printf "  efficiency at 2 workers: wall %.0f %% (-j 1 wall / (2 x -j 2 wall)), cpu %.0f %%\n",
             100 * w1 / (2 * w2), 100 * c1 / c2}'
+  # The hardware's ceiling: two independent -j 1 studies at once, each on a core, slow each other
+  # (shared caches, memory bandwidth); their wall time over one study's alone is the most two
+  # workers of one study can reach.
+  bench "two -j 1 studies at once" "$((2 * cases))" env W="$work" sh -c \
+    'rm -rf "$W/a" "$W/b"; "$0" sweep "$@" -o "$W/a" -q -j 1 & "$0" sweep "$@" -o "$W/b" -q -j 1; wait' \
+    "$lagrange" "${base[@]}"
+  awk -v w1="$wall1" -v w2="$last_wall" \
+    'BEGIN {printf "  the ceiling: each of two -j 1 studies at once runs at %.0f %% of one alone\n",
+            100 * w1 / w2}'
   local run1 run2
   run1=$(run_seconds "$lagrange" sweep "${args[@]}" -j 1)
   run2=$(run_seconds "$lagrange" sweep "${args[@]}" -j 2)
@@ -71,7 +81,7 @@ study() {
       "$lagrange" sweep "${args[@]}" -q
   fi
   if /usr/bin/python3 -c "import distributed" 2> /dev/null &&
-    compgen -G "$build/python/_lagrange*.so" > /dev/null; then
+    compgen -G "$build/python/lagrange/_lagrange*.so" > /dev/null; then
     bench "dask, 2 worker processes" "$cases" env PYTHONPATH="$build/python" /usr/bin/python3 \
       "$root/bench/sweep_dask.py" "$root/examples/$model" "$name" "$low" "$high" "$cases" 10 \
       "$metric"

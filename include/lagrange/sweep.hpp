@@ -154,7 +154,8 @@ class ReplayedInputs {
 /// A case's inputs read from the model file with its values, or why it rejects them.
 struct CaseRead {
   std::optional<CaseInput> input;
-  std::string rejected;  ///< why the model file rejects the values (when input is empty)
+  std::string rejected;        ///< why the model file rejects the values (when input is empty)
+  double read_seconds = -1.0;  ///< the model file's read time, or negative when not read
 };
 
 /// How one case ended.
@@ -165,6 +166,7 @@ struct CaseResult {
   double failure_time = 0.0;
   std::vector<double> metrics;
   double wall_seconds = 0.0;
+  double read_seconds = -1.0;  ///< the CaseRead's, passed on by the pools
 };
 
 /// Runs one case on `dyn` (a workspace over the study's compiled model): sets its parameters
@@ -195,10 +197,24 @@ struct PoolOptions {
   /// What evaluates each worker's tapes: SharedMachineCode compiles (or loads from the cache)
   /// one library that serves every case whose values fold alike (docs/theory.md §8).
   Evaluation evaluation = Evaluation::Interpreter;
+  /// When set, a workspace over `model` with `evaluation` already chosen, which the calling
+  /// thread's worker (and every worker process, each on its own copy) runs its cases on instead
+  /// of making one: a worker's set-up (tapes specialised, machine code loaded) is then paid once.
+  Dynamics* workspace = nullptr;
 };
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
               const std::vector<Metric>& metrics, const PoolOptions& options);
+
+/// As run_pool, each worker a process forked from this one (docs/sweeps.md, "Speed"): a
+/// single-threaded worker allocates without glibc's locks, as a lone run does. `read` and `keep`
+/// run in the workers, `done` here; a worker's exception, its death or `done`'s exception stops
+/// the others after their case and is thrown here as std::runtime_error; this process's
+/// interrupt is passed on to them. run_pool (threads) for fewer than two workers, or when this
+/// process has other threads (whose locks a fork would copy held).
+void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
+                        const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
+                        const std::vector<Metric>& metrics, const PoolOptions& options);
 
 /// Makes this process keep the memory that cases free for the next ones (glibc: no unmapping,
 /// no trimming; docs/sweeps.md, "Speed"), for a process that runs a study.
@@ -211,8 +227,12 @@ class SummaryFile {
  public:
   /// Opens `path` for the columns `header`. Without `resume` the file must not exist (a
   /// std::runtime_error says so); with it, the rows already there are kept (a different header
-  /// is a std::runtime_error) and their case numbers are returned by done().
-  SummaryFile(const std::string& path, std::vector<std::string> header, bool resume);
+  /// is a std::runtime_error) and their case numbers are returned by done(). A new file is
+  /// written by the first append() or finish() (with worker processes, while the first cases
+  /// run), after `before_first_write` (the study's record, say), which an existing file runs at
+  /// once.
+  SummaryFile(const std::string& path, std::vector<std::string> header, bool resume,
+              std::function<void()> before_first_write = {});
   ~SummaryFile();
   SummaryFile(const SummaryFile&) = delete;
   SummaryFile& operator=(const SummaryFile&) = delete;
@@ -227,7 +247,10 @@ class SummaryFile {
   std::string path_;
   std::vector<std::string> header_;
   std::set<size_t> done_;
+  std::function<void()> before_first_write_;
   int fd_ = -1;
+
+  void open_for_appending();
 };
 
 /// A summary field: doubles as `{:.17g}` (they read back to the same bits), text quoted when it

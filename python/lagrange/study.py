@@ -54,6 +54,10 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
     ``distributed.Client(...).get_executor()``) runs chunks of ``chunk`` cases as tasks, each
     worker process loading the model once. An unknown parameter or metric raises ValueError
     before any case runs.
+
+    As for ``lagrange sweep``, the cases' inputs come from one read of the model file per
+    process when it can give them (docs/sweeps.md); ``frame.attrs["model_reads"]`` counts the
+    reads of every process.
     """
     import pandas
 
@@ -63,13 +67,16 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
                     atol=atol, step=step)
     model._run_cases(cases, specs, check_only=True, **settings)
     if executor is None:
-        rows = model._run_cases(cases, specs, **settings)
+        rows, reads = model._run_cases(cases, specs, **settings)
     else:
         size = chunk or max(1, len(cases) // 32)
         state = pickle.dumps(model)
         futures = [executor.submit(_run_chunk, state, cases[i:i + size], specs, settings)
                    for i in range(0, len(cases), size)]
-        rows = [row for f in futures for row in f.result()]
+        chunks = [f.result() for f in futures]
+        rows = [row for chunk_rows, _ in chunks for row in chunk_rows]
+        reads = sum(chunk_reads for _, chunk_reads in chunks)
     frame = pandas.DataFrame(rows)
     frame.index.name = "case"
+    frame.attrs["model_reads"] = reads
     return frame

@@ -173,7 +173,7 @@ PyModel unpickled(const py::tuple& state) {
 PyModel load_model(cli::ModelSource source, ParameterOverrides overrides,
                    const std::string& dynamics,
                    std::vector<std::pair<std::string, double>> initial) {
-  PyModel m{std::move(source), std::move(overrides), dynamics, std::move(initial), nullptr, {}};
+  PyModel m{std::move(source), std::move(overrides), dynamics, std::move(initial), nullptr, {}, {}};
   m.prepared = std::make_shared<cli::Prepared>(
       cli::prepare_source(m.source, m.overrides, dynamics, m.initial));
   return m;

@@ -4,12 +4,14 @@
 
 #include <pybind11/pybind11.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cli/prepare.hpp"
+#include "cli/sweep_inputs.hpp"
 
 namespace lagrange::python {
 
@@ -23,6 +25,9 @@ struct PyModel {
   std::vector<std::pair<std::string, double>> initial;  ///< coordinates and NAME_dot velocities
   std::shared_ptr<cli::Prepared> prepared;
   std::vector<double> qdot;  ///< forward's scratch (used with the GIL held)
+  /// lagrange.sweep's cases' inputs from one read, by varied names and settings (a cache, used
+  /// with the GIL held: a worker process reads the model for its first chunk only).
+  mutable std::map<std::string, std::shared_ptr<const cli::StudyReplay>> replays;
 };
 
 /// What cvode:jacobian's message tells a user of a model in the recursive form to do.

@@ -1,10 +1,13 @@
 #include "study.hpp"
 
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cli/commands.hpp"
+#include "cli/sweep_inputs.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/sweep.hpp"
@@ -13,9 +16,25 @@ namespace py = pybind11;
 
 namespace lagrange::python {
 
-py::list run_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
-                   const std::vector<std::string>& metric_specs, const cli::RunSettings& settings,
-                   bool check_only) {
+namespace {
+
+// What a kept replay depends on besides the model: the varied names and the settings.
+std::string replay_key(const cli::CaseValues& names, const cli::RunSettings& s) {
+  std::string key;
+  for (const auto& [name, value] : names) key += name + '\n';
+  const auto add = [&](const auto& v) {
+    key += v ? fmt::format("{}", *v) : std::string("-");
+    key += '\n';
+  };
+  add(s.t_end), add(s.output_step), add(s.rtol), add(s.atol), add(s.step), add(s.integrator);
+  return key;
+}
+
+}  // namespace
+
+py::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
+                    const std::vector<std::string>& metric_specs, const cli::RunSettings& settings,
+                    bool check_only) {
   const cli::Prepared& p = *m.prepared;
   if (!m.initial.empty())
     throw py::value_error(
@@ -31,27 +50,48 @@ py::list run_cases(const PyModel& m, const std::vector<std::map<std::string, dou
     for (const auto& [name, value] : c)
       if (p.model->parameter_index(name) < 0)
         throw py::value_error("sweep: no parameter '" + name + "' in " + m.source.path);
-  if (check_only) return py::list();
-  // Each case's model read with its values (GiNaC: with the GIL held), then the runs without.
+  if (check_only) return py::make_tuple(py::list(), 0);
+  // The cases' inputs as `lagrange sweep` has them (cli/sweep_inputs.hpp): replayed from one
+  // traced read kept with the model for these parameters and settings, else each case's own
+  // read (GiNaC: with the GIL held); the runs then without it.
+  std::vector<cli::CaseValues> values;
+  for (const auto& c : cases) values.emplace_back(c.begin(), c.end());
+  const cli::CaseInputSource from{m.source, m.overrides, [&p, settings](const Model& cm) {
+                                    SimulationOptions so = cli::simulation_options(cm, settings);
+                                    so.jacobian_source = cli::jacobian_source(
+                                        p, so.integrator.method, kLagrangianHint);
+                                    return sweep::case_input(cm, *p.compiled, so);
+                                  }};
+  size_t reads = 0;
+  std::shared_ptr<const cli::StudyReplay> replay;
+  if (std::all_of(values.begin(), values.end(), [&](const cli::CaseValues& v) {
+        return v.size() == values[0].size() &&
+               std::equal(v.begin(), v.end(), values[0].begin(),
+                          [](const auto& a, const auto& b) { return a.first == b.first; });
+      })) {
+    std::shared_ptr<const cli::StudyReplay>& kept = m.replays[replay_key(values[0], settings)];
+    if (!kept) {
+      kept = std::make_shared<const cli::StudyReplay>(cli::replay_study(from, values));
+      reads += kept->reads;
+      if (!kept->warning.empty()) PyErr_WarnEx(PyExc_RuntimeWarning, kept->warning.c_str(), 1);
+    }
+    replay = kept;
+  }
   std::vector<sweep::CaseInput> inputs(cases.size());
   std::vector<std::string> rejected(cases.size());
   std::vector<size_t> runnable;
   for (size_t i = 0; i < cases.size(); ++i) {
-    ParameterOverrides values = m.overrides;
-    for (const auto& [name, value] : cases[i]) values[name] = value;
-    try {
-      const Model cm = m.source.read(values);
-      SimulationOptions so = cli::simulation_options(cm, settings);
-      so.jacobian_source = cli::jacobian_source(p, so.integrator.method, kLagrangianHint);
-      inputs[i] = sweep::case_input(cm, *p.compiled, so);
+    std::optional<sweep::CaseInput> input;
+    if (replay && replay->inputs) input = (*replay->inputs)(values[i]);
+    if (!input) {
+      ++reads;
+      sweep::CaseRead read = cli::read_case_inputs(from, values[i]);
+      input = std::move(read.input);
+      rejected[i] = std::move(read.rejected);
+    }
+    if (input) {
+      inputs[i] = std::move(*input);
       runnable.push_back(i);
-    } catch (const ModelError& e) {
-      rejected[i] =
-          "the model does not accept these values: " + e.detail() + " (at " + e.loc().str() + ")";
-    } catch (const cli::UsageError& e) {
-      rejected[i] = e.what();
-    } catch (const sweep::StudyError& e) {
-      throw py::value_error(e.what());
     }
   }
   std::vector<sweep::CaseResult> results(cases.size());
@@ -81,7 +121,7 @@ py::list run_cases(const PyModel& m, const std::vector<std::map<std::string, dou
     row["wall_s"] = r.wall_seconds;
     rows.append(row);
   }
-  return rows;
+  return py::make_tuple(rows, reads);
 }
 
 }  // namespace lagrange::python

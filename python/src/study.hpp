@@ -14,11 +14,13 @@
 namespace lagrange::python {
 
 /// Each case (parameter values by name) run on `m`'s compiled model as `lagrange sweep` runs it,
-/// with the GIL released while the cases run: one dict per case with its values, status,
-/// reason, failure_time, the metrics (specs as for `--metric`) and wall_s. ValueError before any
-/// case runs for an unknown parameter or a malformed or unknown metric; `check_only` stops there.
-pybind11::list run_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
-                         const std::vector<std::string>& metrics, const cli::RunSettings& settings,
-                         bool check_only);
+/// with the GIL released while the cases run: (rows, reads), one dict per case with its values,
+/// status, reason, failure_time, the metrics (specs as for `--metric`) and wall_s, and how many
+/// times the model file was read for them (cases' inputs come from one read kept with `m` when
+/// it gives them). ValueError before any case runs for an unknown parameter or a malformed or
+/// unknown metric; `check_only` stops there.
+pybind11::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
+                          const std::vector<std::string>& metrics, const cli::RunSettings& settings,
+                          bool check_only);
 
 }  // namespace lagrange::python

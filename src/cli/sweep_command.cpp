@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -21,6 +21,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
 #include "cli/study_record.hpp"
+#include "cli/sweep_inputs.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
@@ -87,23 +88,23 @@ std::vector<std::string> row_fields(const sweep::Case& c, const sweep::CaseResul
 
 // Everything checked before a case runs: the plan, the model derived and compiled once, the
 // settings every case shares and the summary's columns. The cases' inputs come from one traced
-// read of the model file when it can give them (replay_cases), else the workers read the file
-// for each case (read_case).
+// read of the model file when it can give them (cli/sweep_inputs.hpp), else the workers read the
+// file for each case.
 struct Study {
   StudyPlan plan;
   Prepared prepared;
-  ParameterOverrides fixed;  ///< --set
   RunSettings settings;
+  CaseInputSource from;
   std::vector<std::string> header;
   Evaluation evaluation = Evaluation::Interpreter;  ///< the workers'
-  std::optional<sweep::ReplayedInputs> replay;
-  std::string not_replayed;  ///< why every case's model file is read (when replay is empty)
+  StudyReplay replay;
+
+  Study() = default;
+  Study(const Study&) = delete;  // `from` refers to `prepared`
+  Study& operator=(const Study&) = delete;
 };
 
-void replay_cases(const Options& opt, Study& s);
-
-Study set_up(const Options& opt) {
-  Study s;
+void set_up(const Options& opt, Study& s) {
   s.plan = plan(opt);
   s.prepared = prepare(opt.model, opt.sets, {}, "--initial", opt.dynamics);
   const Prepared& p = s.prepared;
@@ -119,7 +120,6 @@ Study set_up(const Options& opt) {
   } catch (const sweep::StudyError& e) {
     throw UsageError(e.what());
   }
-  s.fixed = parse_sets(opt.sets);
   s.settings = {opt.t_end, opt.output_step, opt.rtol, opt.atol, opt.step, opt.integrator};
   simulation_options(*p.model, s.settings);  // a bad --t-end or tolerance: refused up front
   s.header = {"case"};
@@ -127,95 +127,35 @@ Study set_up(const Options& opt) {
   for (const char* c : {"status", "reason", "failure_time"}) s.header.emplace_back(c);
   for (const auto& m : s.plan.metrics) s.header.push_back(sweep::csv_field(m.name));
   s.header.emplace_back("wall_s");
-  replay_cases(opt, s);
-  return s;
+  // A case's inputs from its model read: its settings, the Jacobian derived once.
+  s.from = {ModelSource{opt.model, std::nullopt}, parse_sets(opt.sets),
+            [&p = s.prepared, &settings = s.settings](const Model& m) {
+              SimulationOptions so = simulation_options(m, settings);
+              so.jacobian_source = jacobian_source(p, so.integrator.method);
+              return sweep::case_input(m, *p.compiled, so);
+            }};
+  std::vector<CaseValues> values;
+  for (const sweep::Case& c : s.plan.cases) values.push_back(c.values);
+  s.replay = replay_study(s.from, values);
+  if (!s.replay.warning.empty()) fmt::print(stderr, "warning: {}\n", s.replay.warning);
 }
 
-// The model file's values with case `index`'s put in.
-ParameterOverrides case_values(const Study& s, size_t index) {
-  ParameterOverrides values = s.fixed;
-  for (const auto& [name, value] : s.plan.cases.at(index).values) values[name] = value;
-  return values;
-}
-
-// The inputs of a case read from `m`, the model file read with its values.
-sweep::CaseInput inputs_of(const Study& s, const Model& m) {
-  SimulationOptions so = simulation_options(m, s.settings);
-  so.jacobian_source = jacobian_source(s.prepared, so.integrator.method);  // derived once
-  return sweep::case_input(m, *s.prepared.compiled, so);
-}
-
-// Case `index`'s inputs from the model file read with its values (parameters, initial state
-// and settings may be expressions of them), or why the model rejects them: a value it refuses,
-// or one that changes its structure, which the one compiled model cannot follow. Not
-// thread-safe (GiNaC).
-sweep::CaseRead read_case(const Options& opt, const Study& s, size_t index) {
-  sweep::CaseRead r;
-  try {
-    r.input = inputs_of(s, read_model_file(opt.model, case_values(s, index)));
-  } catch (const ModelError& e) {
-    r.rejected = fmt::format("the model does not accept these values: {} (at {})", e.detail(),
-                             e.loc().str());
-  } catch (const UsageError& e) {
-    r.rejected = e.what();
-  } catch (const sweep::StudyError& e) {
-    r.rejected = e.what();
-  }
-  return r;
-}
-
-// Case `index`'s inputs without a read (Study::replay), or nothing when the file must say.
+// Case `index`'s inputs from the study's one read, or nothing when the file must say.
 // Thread-safe.
 std::optional<sweep::CaseRead> replayed_case(const Study& s, size_t index) {
-  if (!s.replay) return std::nullopt;
-  std::optional<sweep::CaseInput> input = (*s.replay)(s.plan.cases.at(index).values);
+  if (!s.replay.inputs) return std::nullopt;
+  std::optional<sweep::CaseInput> input = (*s.replay.inputs)(s.plan.cases.at(index).values);
   if (!input) return std::nullopt;
   sweep::CaseRead r;
   r.input = std::move(input);
   return r;
 }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
-
-// Reads the model file once with the first case's values, following the varied parameters
-// (docs/theory.md §9.4): when every use the reader makes of their values can be repeated, the
-// cases' inputs come from that read (Study::replay). The last case it gives, read from the file
-// as well, must come out the same bit for bit; else (a use the trace missed) every case is read.
-void replay_cases(const Options& opt, Study& s) {
-  ReadTrace trace;
-  for (const auto& [name, value] : s.plan.cases.front().values) trace.watched.push_back(name);
-  std::optional<sweep::CaseInput> base;
-  std::optional<Model> traced;
-  try {
-    traced.emplace(read_model_file(opt.model, case_values(s, 0), trace));
-    base = inputs_of(s, *traced);
-  } catch (const std::exception&) {
-    s.not_replayed = "the first case's values are rejected";
-    return;
-  }
-  if (!trace.opaque.empty()) {
-    s.not_replayed = trace.opaque + " depends on the varied parameters";
-    return;
-  }
-  s.replay.emplace(*traced, trace, std::move(*base));
-  size_t last = s.plan.cases.size();  // the last case (after the first) it gives
-  std::optional<sweep::CaseRead> replayed;
-  while (!replayed && --last > 0) replayed = replayed_case(s, last);
-  if (!replayed) return;
-  const sweep::CaseRead read = read_case(opt, s, last);
-  const sweep::CaseInput &a = *replayed->input, *b = read.input ? &*read.input : nullptr;
-  if (b && same_bits(a.parameters, b->parameters) && same_bits(a.q0, b->q0) &&
-      same_bits(a.v0, b->v0) && same_bits({a.baumgarte}, {b->baumgarte}))
-    return;
-  s.replay.reset();
-  s.not_replayed = "the inputs from one read differ from the last case's own read";
-  fmt::print(stderr,
-             "warning: the inputs of case {} computed from one read of {} differ from its own "
-             "read; every case's model file is read instead (please report this)\n",
-             last, opt.model);
+// Case `index`'s inputs, read from the model file when the study's one read does not give them
+// (not thread-safe then: GiNaC).
+sweep::CaseRead case_inputs(const Study& s, size_t index) {
+  if (std::optional<sweep::CaseRead> r = replayed_case(s, index)) return std::move(*r);
+  return read_case_inputs(s.from, s.plan.cases.at(index).values);
 }
 
 // --compile auto or on: machine code with the tapes' constants in memory, built (or loaded)
@@ -247,8 +187,7 @@ class CaseRunner {
       dyn_.set_evaluation(s_.evaluation);  // from the cache rank 0 filled before the first case
       evaluation_set_ = true;
     }
-    sweep::CaseRead read = replayed_case(s_, index).value_or(sweep::CaseRead{});
-    if (!read.input) read = read_case(opt_, s_, index);
+    sweep::CaseRead read = case_inputs(s_, index);
     if (read.input) read.input->options.interrupt = opt_.interrupt;
     const bool keep = opt_.keep_trajectories && read.input;
     sweep::CaseResult r = sweep::run_case(dyn_, read, s_.plan.metrics, keep ? &traj_ : nullptr);
@@ -286,10 +225,11 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
             opt.study, record_changes(was.str(), text)));
     }
     fs::create_directories(opt.study);
-    auto summary = std::make_unique<sweep::SummaryFile>(
-        (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume);
-    write_file_atomically(about.string(), text);
-    return summary;
+    // study.txt, then the summary's header, are written when the first row is (while the first
+    // cases run), or at once when resuming.
+    return std::make_unique<sweep::SummaryFile>(
+        (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume,
+        [about, text] { write_file_atomically(about.string(), text); });
   } catch (const UsageError&) {
     throw;
   } catch (const std::exception& e) {
@@ -342,14 +282,14 @@ struct Reading {
 
 // Where the cases' inputs came from, for the summary line: ", …" or "".
 std::string reading_note(const Study& s, const Reading& r) {
-  if (s.replay)
+  if (s.replay.inputs)
     return r.files == 0 ? ", the cases' inputs from one read of the model file"
                         : fmt::format(
                               ", the cases' inputs from one read of the model file, {} "
                               "read again ({:.3f} s)",
                               r.files, r.seconds);
   return fmt::format(", {:.3f} s of it reading the cases' model files ({})", r.seconds,
-                     s.not_replayed);
+                     s.replay.not_replayed);
 }
 
 // The end of a study on rank 0 or the one machine: 130 when interrupted, else the table sorted.
@@ -393,7 +333,8 @@ int run_sweep_mpi(const Options& opt) {
   if (mpi.rank() != 0) {
     std::optional<Study> s;
     try {
-      s.emplace(set_up(opt));
+      s.emplace();
+      set_up(opt, *s);
       choose_evaluation(opt, *s, false);
     } catch (const std::exception&) {
       return 2;  // rank 0 meets the same mistake and reports it
@@ -402,7 +343,8 @@ int run_sweep_mpi(const Options& opt) {
     mpi_work(std::ref(run));
     return 0;
   }
-  Study s = set_up(opt);
+  Study s;
+  set_up(opt, s);
   std::unique_ptr<sweep::SummaryFile> summary;
   try {
     summary = open_summary(opt, s);
@@ -425,6 +367,21 @@ int run_sweep_mpi(const Options& opt) {
 }
 #endif
 
+// The study is written (its summary published, or its rows kept when interrupted): the process
+// ends with `code` at once, its output flushed, without taking apart the derived model, GiNaC's
+// tables and the loaded machine code. That teardown writes to hundreds of pages, each a page
+// fault (10-25 µs on a virtual machine), after fork made them copy-on-write: ~10 ms of a short
+// study (docs/sweeps.md, "Speed"). Under AddressSanitizer the process ends normally, so that
+// LeakSanitizer still checks it.
+int end_process(int code) {
+#if defined(__SANITIZE_ADDRESS__)
+  return code;
+#else
+  std::fflush(nullptr);
+  std::_Exit(code);
+#endif
+}
+
 }  // namespace
 
 int run_sweep(const Options& opt) {
@@ -439,38 +396,46 @@ int run_sweep(const Options& opt) {
         "MPI: every rank would run the whole study. Run it without mpirun (it uses every core; "
         "-j N chooses), or build lagrange with OpenMPI (libopenmpi-dev) installed");
 #endif
-  Study s = set_up(opt);
+  Study s;
+  set_up(opt, s);
   const auto summary = open_summary(opt, s);
   choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);
-  Reading reading;       // counted under the lock
+  Reading reading;       // counted as rows reach the summary
   std::mutex read_lock;  // one model read at a time: GiNaC is not thread-safe
   sweep::PoolOptions pool;
   pool.workers = opt.jobs > 0 ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
   pool.interrupt = opt.interrupt;
   pool.evaluation = s.evaluation;
+  pool.workspace = s.prepared.dynamics.get();  // its evaluation chosen as the workers'
   pool.read = [&](size_t index) {
     if (std::optional<sweep::CaseRead> r = replayed_case(s, index)) return std::move(*r);
     const std::lock_guard<std::mutex> lock(read_lock);
     const auto start = Clock::now();
-    sweep::CaseRead r = read_case(opt, s, index);
-    reading.seconds += seconds_since(start);
-    ++reading.files;
+    sweep::CaseRead r = read_case_inputs(s.from, s.plan.cases.at(index).values);
+    r.read_seconds = seconds_since(start);
     return r;
   };
   pool.done = [&](const sweep::CaseResult& r) {
     summary->append(r.index, row_fields(s.plan.cases[r.index], r));
     progress.add(r.status == Trajectory::Status::Complete);
+    if (r.read_seconds >= 0.0) {
+      ++reading.files;
+      reading.seconds += r.read_seconds;
+    }
   };
   if (opt.keep_trajectories)
     pool.keep = [&](size_t index, const Trajectory& traj) {
       write_trajectory_csv(traj,
                            (fs::path(opt.study) / fmt::format("case_{}.csv", index)).string());
     };
-  sweep::run_pool(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics, pool);
-  return conclude(opt, s, *summary, progress, already,
-                  fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading);
+  // Worker processes (threads when one): docs/sweeps.md, "Speed".
+  sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
+                            pool);
+  return end_process(
+      conclude(opt, s, *summary, progress, already,
+               fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading));
 }
 
 }  // namespace lagrange::cli

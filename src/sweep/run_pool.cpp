@@ -7,10 +7,12 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "lagrange/dynamics.hpp"
 #include "lagrange/sweep.hpp"
+#include "sweep/worker_workspace.hpp"
 
 namespace lagrange::sweep {
 
@@ -24,6 +26,13 @@ void keep_freed_memory() {
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 }
 
+Dynamics& worker_workspace(const std::shared_ptr<const CompiledModel>& model,
+                           const PoolOptions& options, std::optional<Dynamics>& own) {
+  own.emplace(model, model->parameter_defaults);
+  if (options.evaluation != Evaluation::Interpreter) own->set_evaluation(options.evaluation);
+  return *own;
+}
+
 void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
               const std::vector<Metric>& metrics, const PoolOptions& options) {
@@ -32,11 +41,12 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
   std::exception_ptr error;  // the first exception of a worker (a summary that cannot be written)
   std::atomic<bool> failed{false};
   const auto stopped = [&] { return failed || (options.interrupt && options.interrupt->load()); };
-  const auto work = [&] {
+  const auto work = [&](bool calling_thread) {
     try {
       // Dynamics holds the specialised tapes and all scratch memory: one per worker.
-      Dynamics dyn(model, model->parameter_defaults);
-      if (options.evaluation != Evaluation::Interpreter) dyn.set_evaluation(options.evaluation);
+      std::optional<Dynamics> own;
+      Dynamics& dyn = calling_thread && options.workspace ? *options.workspace
+                                                          : worker_workspace(model, options, own);
       Trajectory traj;
       for (size_t slot = next++; slot < pending.size() && !stopped(); slot = next++) {
         const size_t index = pending[slot];
@@ -49,6 +59,7 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
         if (read.input) read.input->options.interrupt = options.interrupt;
         CaseResult result = run_case(dyn, read, metrics, options.keep ? &traj : nullptr);
         result.index = index;
+        result.read_seconds = read.read_seconds;
         if (result.status == Trajectory::Status::Interrupted) break;
         const std::lock_guard<std::mutex> lock(report);
         if (options.keep && read.input) options.keep(index, traj);
@@ -62,8 +73,8 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
   };
   const size_t n = std::max<size_t>(1, std::min(options.workers, pending.size()));
   std::vector<std::thread> threads;
-  for (size_t i = 1; i < n; ++i) threads.emplace_back(work);
-  work();
+  for (size_t i = 1; i < n; ++i) threads.emplace_back(work, false);
+  work(true);
   for (auto& t : threads) t.join();
   if (error) std::rethrow_exception(error);
 }

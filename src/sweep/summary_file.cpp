@@ -58,8 +58,9 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
-SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> header, bool resume)
-    : path_(path), header_(std::move(header)) {
+SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> header, bool resume,
+                         std::function<void()> before_first_write)
+    : path_(path), header_(std::move(header)), before_first_write_(std::move(before_first_write)) {
   const std::string head = join(header_);
   const bool exists = std::filesystem::exists(path_);
   if (exists && !resume)
@@ -89,9 +90,18 @@ SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> heade
     }
     if (end < text.size() && ::truncate(path_.c_str(), static_cast<off_t>(end)) != 0)
       fail(path_, "cannot cut off its unfinished last row");
-  } else {
-    write_file_atomically(path_, head);
+    open_for_appending();
   }
+}
+
+// A new summary is published (its header, atomically) when the first row or finish() needs it:
+// with worker processes, while the first cases run (docs/sweeps.md, "Speed").
+void SummaryFile::open_for_appending() {
+  if (before_first_write_) {
+    before_first_write_();
+    before_first_write_ = nullptr;
+  }
+  if (!std::filesystem::exists(path_)) write_file_atomically(path_, join(header_));
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) fail(path_, "cannot open for appending");
 }
@@ -101,6 +111,7 @@ SummaryFile::~SummaryFile() {
 }
 
 void SummaryFile::append(size_t index, const std::vector<std::string>& fields) {
+  if (fd_ < 0) open_for_appending();
   const std::string line = join(fields);
   // One write of the whole row to an O_APPEND descriptor: a row is there whole or not at all
   // (a crash mid-write leaves a row without its line end, cut off on resume).
@@ -110,6 +121,7 @@ void SummaryFile::append(size_t index, const std::vector<std::string>& fields) {
 }
 
 void SummaryFile::finish() {
+  if (fd_ < 0) open_for_appending();
   std::ifstream in(path_, std::ios::binary);
   std::string line;
   std::getline(in, line);

@@ -91,6 +91,8 @@ class Child {
   }
 
   void signal(int sig) const { kill(pid_, sig); }
+  /// The process id (to find the processes it started).
+  pid_t pid() const { return pid_; }
 
   /// Caps the child's address space at `bytes` (RLIMIT_AS, set from here at once after the
   /// start): an allocation beyond it fails inside the child instead of swapping the machine.

@@ -48,12 +48,27 @@ def check(frame, expected):
         assert row["peak"] == peak
 
 
-def test_sweep_here_equals_lone_runs(expected):
+def test_sweep_here_equals_lone_runs(expected, cli, tmp_path):
     model = lagrange.load(MODEL)
     frame = lagrange.sweep(model, GRID, METRICS, t_end=T_END)
     assert list(frame.columns[:2]) == ["l2", "m2"]
     assert list(frame["l2"]) == [0.5, 0.5, 1.0, 1.0, 1.5, 1.5]  # last name fastest
     check(frame, expected)
+    # The cases' inputs from one traced read and its check, as `lagrange sweep` has them, whose
+    # summary holds the same bits; the model keeps that read for the next study.
+    assert frame.attrs["model_reads"] == 2
+    study = tmp_path / "study"
+    subprocess.run([cli, "sweep", MODEL, "--vary", "l2=0.5,1.0,1.5", "--vary", "m2=1.0,2.5",
+                    "--t-end", repr(T_END), "-o", str(study), "-q"]
+                   + [f"--metric={name}={expr}" for name, expr in METRICS.items()],
+                   check=True, capture_output=True)
+    with open(study / "summary.csv", newline="") as f:
+        summary = list(csv.DictReader(f))
+    for name in METRICS:
+        assert [float(row[name]) for row in summary] == list(frame[name])
+    again = lagrange.sweep(model, {"l2": [0.75], "m2": [1.5]}, METRICS, t_end=T_END)
+    assert again.attrs["model_reads"] == 0
+    assert list(again["last"]) == [lone_metrics(cli, tmp_path, 0.75, 1.5)[0]]
 
 
 def test_sweep_through_a_process_pool(expected):

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -204,21 +205,22 @@ TEST(SweepCommand, ModelFileMetricsReadTheCaseParameters) {
   EXPECT_FALSE(fs::exists(study / "summary.csv"));
 }
 
-// SIGINT part-way: exit 130 with the finished cases kept; --resume runs only the others and
-// the summary equals that of a study never stopped, each case once.
+// SIGINT part-way (to the study's process alone, with two worker processes, which it passes the
+// signal on to): exit 130 with the finished cases kept; --resume runs only the others and the
+// summary equals that of a study never stopped, each case once.
 TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
   ScratchDir dir("sweep-resume");
   const std::vector<std::string> grid{
-      "--vary", "l2=0.5:1.5:30", "--metric", "final(theta1)", "--t-end", "5", "-j", "1", "-q"};
-  const auto args = [&](const fs::path& study, bool resume) {
-    std::vector<std::string> a{"sweep", kModel, "-o", study.string()};
+      "--vary", "l2=0.5:1.5:30", "--metric", "final(theta1)", "--t-end", "5", "-q"};
+  const auto args = [&](const fs::path& study, bool resume, const char* jobs = "1") {
+    std::vector<std::string> a{"sweep", kModel, "-o", study.string(), "-j", jobs};
     a.insert(a.end(), grid.begin(), grid.end());
     if (resume) a.push_back("--resume");
     return a;
   };
   const fs::path whole = dir.path() / "whole", stopped = dir.path() / "stopped";
   ASSERT_EQ(run_lagrange(dir.path(), args(whole, false)).exit_code, 0);
-  Child child(dir.path(), args(stopped, false));
+  Child child(dir.path(), args(stopped, false, "2"));
   const auto rows_now = [&] {
     std::error_code ec;
     return fs::exists(stopped / "summary.csv", ec) ? read_summary(stopped / "summary.csv").size()
@@ -242,6 +244,43 @@ TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
   EXPECT_NE(refused.err.find("started with other options"), std::string::npos) << refused.err;
   EXPECT_EQ(read_summary(stopped / "summary.csv").size(), kept);
   const RunResult resumed = run_lagrange(dir.path(), args(stopped, true));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(without_wall_time(stopped / "summary.csv"), without_wall_time(whole / "summary.csv"));
+}
+
+// A worker process killed part-way (SIGKILL, as the machine's OOM killer would): the study stops
+// with an error naming it and the rows finished are kept (the other worker finishes its case and
+// takes no other); --resume runs the others to the summary of a study never stopped.
+TEST(SweepCommand, AKilledWorkerProcessLosesNoFinishedCase) {
+  ScratchDir dir("sweep-killed-worker");
+  const auto args = [&](const fs::path& study, const char* jobs, bool resume) {
+    std::vector<std::string> a{"sweep", kModel, "--vary", "l2=0.5:1.5:30", "--t-end", "30", "-q"};
+    a.insert(a.end(), {"--metric", "final(theta1)", "-o", study.string(), "-j", jobs});
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  const fs::path whole = dir.path() / "whole", stopped = dir.path() / "stopped";
+  ASSERT_EQ(run_lagrange(dir.path(), args(whole, "1", false)).exit_code, 0);
+  Child child(dir.path(), args(stopped, "2", false));
+  const auto rows_now = [&] {
+    std::error_code ec;
+    return fs::exists(stopped / "summary.csv", ec) ? read_summary(stopped / "summary.csv").size()
+                                                   : 0u;
+  };
+  for (int i = 0; i < 2000 && rows_now() < 3; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const std::string task =
+      "/proc/" + std::to_string(child.pid()) + "/task/" + std::to_string(child.pid()) + "/children";
+  pid_t worker = 0;
+  std::ifstream(task) >> worker;
+  if (worker > 0) kill(worker, SIGKILL);
+  const RunResult r = child.wait(std::chrono::seconds(60));
+  if (worker <= 0 || r.exit_code == 0) GTEST_SKIP() << "the study finished before the kill";
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("a worker process died"), std::string::npos) << r.err;
+  const size_t kept = rows_now();
+  EXPECT_LT(kept, 30u);
+  const RunResult resumed = run_lagrange(dir.path(), args(stopped, "2", true));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(without_wall_time(stopped / "summary.csv"), without_wall_time(whole / "summary.csv"));
 }
