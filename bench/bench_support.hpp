@@ -84,6 +84,16 @@ inline BuiltModel build_model_file(const std::string& path,
   return build_with([&] { return read_model_file(path); }, form);
 }
 
+/// What evaluates the tapes, as `lagrange simulate` runs once its cache holds the model (machine
+/// code) unless `interpreter`; returns the CPU seconds it took (a compiler run when not cached).
+/// evaluation_note() then says which it is.
+inline double choose_evaluation(BuiltModel& b, bool interpreter) {
+  const Stopwatch clock;
+  const auto c0 = clock.now();
+  if (!interpreter) b.dynamics->set_evaluation(Evaluation::MachineCode);
+  return clock.now().cpu - c0.cpu;
+}
+
 /// CPU seconds per Dynamics::forward call (KKT solve included) at the model's initial state,
 /// after one warm-up call, averaged over at least 0.3 s of calls.
 inline double forward_call_seconds(const BuiltModel& b) {
