@@ -55,9 +55,7 @@ int main(int argc, char** argv) {
     bench::BuiltModel b = bench::build_model(bench::kite_yaml(c.n), fmt::format("<ap2 N={}>", c.n));
     const double build = clock.now().cpu - b0.cpu;
     const CompiledModel& cm = *b.compiled;
-    const double machine_code = bench::choose_evaluation(b, interpreter);
-    notes += fmt::format("N = {}: {} ({:.2f} CPU s to load or compile, not counted above)\n", c.n,
-                         b.dynamics->evaluation_note(), machine_code);
+    notes += fmt::format("N = {}: {}\n", c.n, bench::choose_evaluation(b, interpreter));
     call[c.n] = bench::forward_call_seconds(b);
     if (!c.fly) {
       std::printf("| %d | — | %zu | %zu | %.3f | %.2f | (not flown; --all) | | | |\n", c.n, cm.nq,

@@ -84,14 +84,11 @@ inline BuiltModel build_model_file(const std::string& path,
   return build_with([&] { return read_model_file(path); }, form);
 }
 
-/// What evaluates the tapes, as `lagrange simulate` runs once its cache holds the model (machine
-/// code) unless `interpreter`; returns the CPU seconds it took (a compiler run when not cached).
-/// evaluation_note() then says which it is.
-inline double choose_evaluation(BuiltModel& b, bool interpreter) {
-  const Stopwatch clock;
-  const auto c0 = clock.now();
+/// What evaluates the tapes: machine code, as `lagrange simulate` runs once its cache holds the
+/// model (compiled first when it does not), unless `interpreter`. Returns evaluation_note().
+inline std::string choose_evaluation(BuiltModel& b, bool interpreter) {
   if (!interpreter) b.dynamics->set_evaluation(Evaluation::MachineCode);
-  return clock.now().cpu - c0.cpu;
+  return b.dynamics->evaluation_note();
 }
 
 /// CPU seconds per Dynamics::forward call (KKT solve included) at the model's initial state,

@@ -55,9 +55,7 @@ int main(int argc, char** argv) {
         bench::build_model(bench::balloon_yaml(n), fmt::format("<balloon N={}>", n));
     const double build = clock.now().cpu - b0.cpu;
     const CompiledModel& cm = *b.compiled;
-    const double machine_code = bench::choose_evaluation(b, interpreter);
-    notes += fmt::format("N = {}: {} ({:.2f} CPU s to load or compile, not counted above)\n", n,
-                         b.dynamics->evaluation_note(), machine_code);
+    notes += fmt::format("N = {}: {}\n", n, bench::choose_evaluation(b, interpreter));
     call[n] = bench::forward_call_seconds(b);
     SimulationOptions so;
     so.output_step = 0.01;
