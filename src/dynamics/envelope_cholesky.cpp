@@ -47,19 +47,30 @@ bool EnvelopeCholesky::factorize(double singular_below) {
   return min_pivot > singular_below * max_diag;
 }
 
+// The neighbour's value y_{i−1} (forward) and b_{i−1}'s last update (backward) stay in a
+// register: on a banded S the chain through them is the solve's critical path, and a round trip
+// through memory would add to every row. Same operations in the same order as without.
 void EnvelopeCholesky::solve(double* b) const {
   const size_t m = first_.size();
+  if (m == 0) return;
+  double previous = 0.0;
   for (size_t i = 0; i < m; ++i) {  // L y = b
     const double* row = values_.data() + offset_[i] - first_[i];
     double s = b[i];
-    for (size_t k = first_[i]; k < i; ++k) s -= row[k] * b[k];
-    b[i] = s;
+    if (first_[i] < i) {
+      for (size_t k = first_[i]; k + 1 < i; ++k) s -= row[k] * b[k];
+      s -= row[i - 1] * previous;
+    }
+    b[i] = previous = s;
   }
   for (size_t i = 0; i < m; ++i) b[i] *= inverse_pivot_[i];  // D z = y
-  for (size_t i = m; i-- > 0;) {                             // Lᵀ x = z, column by column
+  double carried = b[m - 1];
+  for (size_t i = m; i-- > 0;) {  // Lᵀ x = z, column by column
     const double* row = values_.data() + offset_[i] - first_[i];
-    const double x = b[i];
-    for (size_t k = first_[i]; k < i; ++k) b[k] -= row[k] * x;
+    const double x = b[i] = carried;
+    if (i == 0) break;
+    for (size_t k = first_[i]; k + 1 < i; ++k) b[k] -= row[k] * x;
+    carried = first_[i] < i ? b[i - 1] - row[i - 1] * x : b[i - 1];
   }
 }
 
