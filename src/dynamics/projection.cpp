@@ -30,11 +30,13 @@ double distance(const double* x, const double* y, size_t n) {
 // free coordinates that satisfies C = 0 (Gauss–Newton on the linearisation (∂C/∂q) Δq = −C,
 // each step halved until ‖C‖₂ decreases, so that the residual never grows), then the
 // minimum-norm change of the free velocities that satisfies Ċ = G v + … = 0. A free body's R
-// moves along SO(3) (tangent_step), so that a constraint on a body point does not push R off
+// moves along SO(3) (TangentJacobian), so that a constraint on a body point does not push R off
 // it by the size of the correction. Stops without
 // converging when no halving of the step reduces ‖C‖₂, e.g. at a least-squares minimum where
 // C ≠ 0 (or fixed coordinates in the way) or after max_iterations, at the state of least ‖C‖₂
 // found. A residual at the rounding floor of C's terms counts as converged whatever `tol` asks.
+// The sparse structure of both minimum-norm problems is set up by the first call; later calls
+// only compute (docs/theory.md §4.3, "The KKT solve without per-call overhead").
 ProjectionResult Dynamics::try_project(double t, double* q, double* v,
                                        const std::vector<bool>& fixed, double tol,
                                        int max_iterations) {
