@@ -22,7 +22,7 @@ EnvelopeCholesky::EnvelopeCholesky(std::vector<size_t> first) : first_(std::move
 // divisions by D_j become products with the stored 1/D_j, so a banded row costs one division on
 // its critical path.
 bool EnvelopeCholesky::factorize(double singular_below) {
-  double max_diag = 0.0, min_pivot = INFINITY;
+  double max_diag = 0.0, min_pivot = INFINITY, previous_inverse = 0.0;
   for (size_t i = 0; i < first_.size(); ++i)
     max_diag = std::max(max_diag, std::abs(values_[index(i, i)]));
   for (size_t i = 0; i < first_.size(); ++i) {
@@ -34,15 +34,20 @@ bool EnvelopeCholesky::factorize(double singular_below) {
       row_i[j] = s;
     }
     double d = row_i[i];
-    for (size_t j = first_[i]; j < i; ++j) {
+    for (size_t j = first_[i]; j + 1 < i; ++j) {
       const double l = row_i[j] * inverse_pivot_[j];
       d -= row_i[j] * l;
       row_i[j] = l;
     }
+    if (first_[i] < i) {  // the neighbour's 1/D from a register (the critical path of a band)
+      const double l = row_i[i - 1] * previous_inverse;
+      d -= row_i[i - 1] * l;
+      row_i[i - 1] = l;
+    }
     if (!(d > 0.0)) return false;
     min_pivot = std::min(min_pivot, d);
     row_i[i] = d;
-    inverse_pivot_[i] = 1.0 / d;
+    inverse_pivot_[i] = previous_inverse = 1.0 / d;
   }
   return min_pivot > singular_below * max_diag;
 }

@@ -131,6 +131,10 @@ SparseRangeSpace::SparseRangeSpace(size_t n, size_t m, const Pattern& M, const P
       entries.emplace_back(static_cast<uint32_t>(e),
                            static_cast<uint32_t>(local[j] * k + local[i]));
   }
+  scalars_contiguous_ = !scalar_velocity_.empty();
+  for (size_t s = 0; s < scalar_velocity_.size(); ++s)
+    scalars_contiguous_ = scalars_contiguous_ && scalar_velocity_[s] == scalar_velocity_[0] + s &&
+                          scalar_value_[s] == scalar_value_[0] + s;
   group(G, m, true, row_start_, row_value_, row_column_);
   group(G, n, false, column_start_, column_value_, column_row_);
   // S_rs = Σ G_rj (M⁻¹)_jk G_sk over the columns j, k of one block (r ≥ s), grouped by the value
@@ -176,10 +180,18 @@ bool SparseRangeSpace::factorize(const double* m_values, const double* g) {
   // M⁻¹ block by block: 1/M_jj for a block of one velocity, a Cholesky inverse for the others.
   if (structurally_singular_) return false;
   bool positive = true;
-  for (size_t s = 0; s < scalar_velocity_.size(); ++s) {
-    const double d = m_values[scalar_value_[s]];
-    positive = positive && d > 0.0;
-    inverse_[scalar_velocity_[s]] = 1.0 / d;
+  const size_t scalars = scalar_velocity_.size();
+  if (scalars_contiguous_) {  // a run of M's values onto a run of velocities: vectorised
+    const double* d = m_values + scalar_value_[0];
+    double* inv = inverse_.data() + scalar_velocity_[0];
+    for (size_t s = 0; s < scalars; ++s) inv[s] = 1.0 / d[s];
+    for (size_t s = 0; s < scalars; ++s) positive &= d[s] > 0.0;
+  } else {
+    for (size_t s = 0; s < scalars; ++s) {
+      const double d = m_values[scalar_value_[s]];
+      positive &= d > 0.0;
+      inverse_[scalar_velocity_[s]] = 1.0 / d;
+    }
   }
   if (!positive) return false;
   for (const Block& b : blocks_) {

@@ -75,6 +75,7 @@ class SparseRangeSpace {
   double singular_below_;
   bool structurally_singular_ = false;  // a velocity with no diagonal entry of M at all
   std::vector<uint32_t> scalar_velocity_, scalar_value_;  // 1×1 blocks: velocity, its M value
+  bool scalars_contiguous_ = false;  // both ascending by one (point masses in M's order)
   std::vector<Block> blocks_;
   // 1/M_jj for velocity j of a 1×1 block, 1 for the others (first n values), then the inverses
   // of the larger blocks, k × k each.
