@@ -84,6 +84,13 @@ inline BuiltModel build_model_file(const std::string& path,
   return build_with([&] { return read_model_file(path); }, form);
 }
 
+/// What evaluates the tapes: machine code, as `lagrange simulate` runs once its cache holds the
+/// model (compiled first when it does not), unless `interpreter`. Returns evaluation_note().
+inline std::string choose_evaluation(BuiltModel& b, bool interpreter) {
+  if (!interpreter) b.dynamics->set_evaluation(Evaluation::MachineCode);
+  return b.dynamics->evaluation_note();
+}
+
 /// CPU seconds per Dynamics::forward call (KKT solve included) at the model's initial state,
 /// after one warm-up call, averaged over at least 0.3 s of calls.
 inline double forward_call_seconds(const BuiltModel& b) {

@@ -3,8 +3,10 @@
 // CPU seconds of this process: read + derive + compile, the forward-dynamics call (KKT solve
 // included), and 60 s of simulation with output every 0.01 s at rtol 1e-6, atol 1e-8, with the
 // real-time factor. Targets: t_call(200)/t_call(50) ≤ 5, N = 100 at ≥ 20× real time, derive +
-// compile of N = 200 under 2 s.
-//   bench_tether [--quick] [--integrator METHOD] [--up-to N]   (--quick: 5 s of simulation
+// compile of N = 200 under 2 s. The tapes run as machine code, as `lagrange simulate` runs them
+// once its cache holds the model (the compiler run, when not cached, is not counted).
+//   bench_tether [--quick] [--interpreter] [--integrator METHOD] [--up-to N]
+//   (--interpreter: the tape interpreter instead of machine code; --quick: 5 s of simulation
 //   instead of 60, for a smoke run; --integrator: another method than the default, to compare in
 //   one run — cvode:jacobian derives the exact Jacobian first, its CPU time printed apart;
 //   --up-to: only the sizes up to N; --step-drift TOL: SimulationOptions::step_drift_tol)
@@ -26,12 +28,13 @@
 
 int main(int argc, char** argv) {
   using namespace lagrange;
-  bool quick = false;
+  bool quick = false, interpreter = false;
   int up_to = 200;
   double step_drift = 0.0;
   std::string method = IntegratorOptions{}.method;
   for (int i = 1; i < argc; ++i) {
     quick = quick || std::strcmp(argv[i], "--quick") == 0;
+    interpreter = interpreter || std::strcmp(argv[i], "--interpreter") == 0;
     if (std::strcmp(argv[i], "--integrator") == 0 && i + 1 < argc) method = argv[++i];
     if (std::strcmp(argv[i], "--up-to") == 0 && i + 1 < argc) up_to = std::atoi(argv[++i]);
     if (std::strcmp(argv[i], "--step-drift") == 0 && i + 1 < argc)
@@ -52,6 +55,7 @@ int main(int argc, char** argv) {
         bench::build_model(bench::balloon_yaml(n), fmt::format("<balloon N={}>", n));
     const double build = clock.now().cpu - b0.cpu;
     const CompiledModel& cm = *b.compiled;
+    notes += fmt::format("N = {}: {}\n", n, bench::choose_evaluation(b, interpreter));
     call[n] = bench::forward_call_seconds(b);
     SimulationOptions so;
     so.output_step = 0.01;

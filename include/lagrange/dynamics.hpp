@@ -16,6 +16,7 @@ namespace lagrange {
 namespace dynamics {
 class SparseRangeSpace;
 struct NativeTapes;
+struct ProjectionWorkspace;
 }  // namespace dynamics
 
 /// What evaluates a Dynamics' tapes (docs/theory.md §8, machine code). Both give the same
@@ -148,8 +149,9 @@ class Dynamics {
   Eigen::MatrixXd K_;  // full KKT matrix, used only when M is singular
   Eigen::VectorXd kkt_rhs_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_K_;
-  std::unique_ptr<dynamics::SparseRangeSpace> sparse_;  // diagonal M with many constraints
-  std::unique_ptr<dynamics::NativeTapes> native_;       // machine code, when chosen
+  std::unique_ptr<dynamics::SparseRangeSpace> sparse_;         // diagonal M with many constraints
+  std::unique_ptr<dynamics::NativeTapes> native_;              // machine code, when chosen
+  std::unique_ptr<dynamics::ProjectionWorkspace> projection_;  // set up by the first projection
   /// Build or start building machine code for the current tapes (after set_parameters).
   void refresh_machine_code();
 };

@@ -1,7 +1,8 @@
 #pragma once
-// Allocation-free Cholesky factorisation of a symmetric positive definite matrix stored by its
-// lower envelope (profile): row i holds columns first[i] … i. Fill-in stays inside the envelope,
-// so banded matrices (chains) cost O(m b²) with no allocation after construction.
+// Allocation-free square-root-free Cholesky factorisation (L D Lᵀ) of a symmetric positive
+// definite matrix stored by its lower envelope (profile): row i holds columns first[i] … i.
+// Fill-in stays inside the envelope, so banded matrices (chains) cost O(m b²) with no allocation
+// after construction.
 
 #include <cstddef>
 #include <vector>
@@ -16,21 +17,24 @@ class EnvelopeCholesky {
   size_t size() const { return first_.size(); }
   /// Position of entry (i, j), first[i] ≤ j ≤ i, in values().
   size_t index(size_t i, size_t j) const { return offset_[i] + (j - first_[i]); }
-  /// Matrix entries (lower envelope); overwritten by L on factorize().
+  /// Matrix entries (lower envelope); overwritten by the factors on factorize() (L's strict lower
+  /// triangle, D on the diagonal).
   double* values() { return values_.data(); }
   size_t num_values() const { return values_.size(); }
 
-  /// In-place factorisation A = L Lᵀ. False when a pivot is not positive or the smallest
-  /// squared pivot is below 1e-13 of the largest diagonal entry (numerically singular).
-  bool factorize();
-  /// Solve L Lᵀ x = b in place.
+  /// In-place factorisation A = L D Lᵀ (L unit lower triangular). False when a pivot Dᵢ is not
+  /// positive or the smallest is not above `singular_below` times the largest diagonal entry of
+  /// A (numerically singular).
+  bool factorize(double singular_below = 1e-13);
+  /// Solve L D Lᵀ x = b in place.
   void solve(double* b) const;
-  /// Solve L Lᵀ X = B in place for k right-hand sides, B row-major (size() × k).
+  /// Solve L D Lᵀ X = B in place for k right-hand sides, B row-major (size() × k).
   void solve_rows(double* B, size_t k) const;
 
  private:
   std::vector<size_t> first_, offset_;
   std::vector<double> values_;
+  std::vector<double> inverse_pivot_;  // 1/Dᵢ: the solves multiply instead of divide
 };
 
 }  // namespace lagrange::dynamics

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "dynamics/native_tapes.hpp"
+#include "dynamics/projection_workspace.hpp"
 #include "dynamics/sparse_range_space.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
@@ -202,21 +203,17 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   const CompiledModel& cm = *model_;
   eval_dynamics(t, q, v);
   const double* out = out_.data();
-  assemble_M();
-  for (size_t i = 0; i < cm.nv; ++i) rhs_[static_cast<long>(i)] = out[cm.rhs_out() + i];
   for (size_t i = 0; i < cm.nq; ++i) {
     qdot[i] = out[cm.qdot_out() + i];
     if (!std::isfinite(qdot[i]))
       fail_singular(t, fmt::format("the rate of '{}' is not finite", cm.coordinate_names[i]));
   }
-  if (cm.m > 0) {
-    assemble_G();
-    for (size_t r = 0; r < cm.m; ++r)
-      gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] - 2.0 * alpha_ * out[cm.Cdot_out() + r] -
-                                     alpha_ * alpha_ * out[cm.C_out() + r];
-  }
+  for (size_t r = 0; r < cm.m; ++r)
+    gamma_[static_cast<long>(r)] = -out[cm.c_out() + r] - 2.0 * alpha_ * out[cm.Cdot_out() + r] -
+                                   alpha_ * alpha_ * out[cm.C_out() + r];
+  // The sparse path reads M, G and h + Q where the tape left them: no dense M or G to fill.
   if (sparse_) {
-    if (sparse_->solve(out, out + cm.G_out(), rhs_.data(), gamma_.data(), a, lambda)) {
+    if (sparse_->solve(out, out + cm.G_out(), out + cm.rhs_out(), gamma_.data(), a, lambda)) {
       for (size_t i = 0; i < cm.nv; ++i)
         if (!std::isfinite(a[i]))
           fail_singular(
@@ -224,6 +221,9 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
+  assemble_M();
+  for (size_t i = 0; i < cm.nv; ++i) rhs_[static_cast<long>(i)] = out[cm.rhs_out() + i];
+  if (cm.m > 0) assemble_G();
   if (cm.m == 0 && cm.M_diagonal && cm.nv > 0) {
     // A diagonal M (among them the recursive formulation's M = 1, docs/theory.md §4.9):
     // a = (h + Q)/Mᵢᵢ, under the Cholesky path's conditioning test (pivot² = Mᵢᵢ).

@@ -1,4 +1,4 @@
-// The envelope Cholesky against Eigen's dense LLT on banded SPD matrices.
+// The envelope L D Lᵀ against Eigen's dense LLT on banded SPD matrices.
 
 #include <gtest/gtest.h>
 

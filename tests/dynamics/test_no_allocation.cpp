@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 
 #include "n_link_pendulum.hpp"
@@ -85,6 +86,26 @@ TEST(NoAllocation, RecursiveChainAndArm) {
 
 TEST(NoAllocation, SparseChain) {
   EXPECT_EQ(allocations_in_forward(bench::cartesian_chain_yaml(15), false), 0);
+}
+
+// Projection onto the constraints (docs/theory.md §4.3): its sparse structure is set up by the
+// first call; later ones only compute.
+TEST(NoAllocation, ProjectionAfterTheFirst) {
+  auto sys = testing::load_string(bench::cartesian_chain_yaml(15, 0.4));
+  const CompiledModel& cm = *sys.compiled;
+  const std::vector<bool> none(cm.nq, false);
+  std::vector<double> q = cm.q0, v = cm.v0;
+  sys.dynamics->project(0.0, q.data(), v.data(), none);
+  g_mallocs = 0;
+  for (int k = 1; k <= 10; ++k) {
+    for (size_t i = 0; i < cm.nq; ++i) q[i] += 1e-6 * k * std::sin(double(i));
+    for (size_t i = 0; i < cm.nv; ++i) v[i] += 1e-4 * k * std::cos(double(i));
+    g_counting = true;
+    const ProjectionResult res = sys.dynamics->project(0.0, q.data(), v.data(), none);
+    g_counting = false;
+    EXPECT_GT(res.position_change, 0.0);
+  }
+  EXPECT_EQ(g_mallocs.load(), 0);
 }
 
 }  // namespace
