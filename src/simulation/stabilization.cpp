@@ -1,14 +1,14 @@
 #include <algorithm>
 
 #include "lagrange/simulation.hpp"
+#include "simulation/drift_correction.hpp"
 
 namespace lagrange {
 
 // docs/theory.md §4.3, "Choosing α".
 double baumgarte_rate(const Stabilization& stabilization, const std::string& method) {
   if (stabilization.alpha) return *stabilization.alpha;
-  const bool projects_after_steps = method.rfind("cvode", 0) != 0 && method.rfind("ida", 0) != 0;
-  return stabilization.project && projects_after_steps ? 0.0 : kDefaultBaumgarte;
+  return stabilization.project && !corrects_only_at_samples(method) ? 0.0 : kDefaultBaumgarte;
 }
 
 // docs/theory.md §4.3, "Projecting when the drift matters".

@@ -211,7 +211,7 @@ TEST(SweepCommand, ModelFileMetricsReadTheCaseParameters) {
 TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
   ScratchDir dir("sweep-resume");
   const std::vector<std::string> grid{
-      "--vary", "l2=0.5:1.5:30", "--metric", "final(theta1)", "--t-end", "5", "-q"};
+      "--vary", "l2=0.5:1.5:30", "--metric", "final(theta1)", "--t-end", "30", "-q"};
   const auto args = [&](const fs::path& study, bool resume, const char* jobs = "1") {
     std::vector<std::string> a{"sweep", kModel, "-o", study.string(), "-j", jobs};
     a.insert(a.end(), grid.begin(), grid.end());
