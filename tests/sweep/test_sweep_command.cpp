@@ -205,6 +205,18 @@ TEST(SweepCommand, ModelFileMetricsReadTheCaseParameters) {
   EXPECT_FALSE(fs::exists(study / "summary.csv"));
 }
 
+// The rows a study's summary holds now (0 before it is published).
+size_t rows_in(const fs::path& study) {
+  std::error_code ec;
+  return fs::exists(study / "summary.csv", ec) ? read_summary(study / "summary.csv").size() : 0u;
+}
+
+// Waits, up to 10 s, until a running study's summary holds `rows` rows.
+void wait_for_rows(const fs::path& study, size_t rows) {
+  for (int i = 0; i < 2000 && rows_in(study) < rows; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
 // SIGINT part-way (to the study's process alone, with two worker processes, which it passes the
 // signal on to): exit 130 with the finished cases kept; --resume runs only the others and the
 // summary equals that of a study never stopped, each case once.
@@ -221,16 +233,10 @@ TEST(SweepCommand, InterruptedStudyResumesToTheSameSummary) {
   const fs::path whole = dir.path() / "whole", stopped = dir.path() / "stopped";
   ASSERT_EQ(run_lagrange(dir.path(), args(whole, false)).exit_code, 0);
   Child child(dir.path(), args(stopped, false, "2"));
-  const auto rows_now = [&] {
-    std::error_code ec;
-    return fs::exists(stopped / "summary.csv", ec) ? read_summary(stopped / "summary.csv").size()
-                                                   : 0u;
-  };
-  for (int i = 0; i < 2000 && rows_now() < 3; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  wait_for_rows(stopped, 3);
   child.signal(SIGINT);
   const RunResult r = child.wait(std::chrono::seconds(60));
-  const size_t kept = rows_now();
+  const size_t kept = rows_in(stopped);
   if (r.exit_code == 0) GTEST_SKIP() << "the study finished before the signal";
   ASSERT_EQ(r.exit_code, 130) << r.err;
   EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
@@ -262,13 +268,7 @@ TEST(SweepCommand, AKilledWorkerProcessLosesNoFinishedCase) {
   const fs::path whole = dir.path() / "whole", stopped = dir.path() / "stopped";
   ASSERT_EQ(run_lagrange(dir.path(), args(whole, "1", false)).exit_code, 0);
   Child child(dir.path(), args(stopped, "2", false));
-  const auto rows_now = [&] {
-    std::error_code ec;
-    return fs::exists(stopped / "summary.csv", ec) ? read_summary(stopped / "summary.csv").size()
-                                                   : 0u;
-  };
-  for (int i = 0; i < 2000 && rows_now() < 3; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  wait_for_rows(stopped, 3);
   const std::string task =
       "/proc/" + std::to_string(child.pid()) + "/task/" + std::to_string(child.pid()) + "/children";
   pid_t worker = 0;
@@ -278,7 +278,7 @@ TEST(SweepCommand, AKilledWorkerProcessLosesNoFinishedCase) {
   if (worker <= 0 || r.exit_code == 0) GTEST_SKIP() << "the study finished before the kill";
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("a worker process died"), std::string::npos) << r.err;
-  const size_t kept = rows_now();
+  const size_t kept = rows_in(stopped);
   EXPECT_LT(kept, 30u);
   const RunResult resumed = run_lagrange(dir.path(), args(stopped, "2", true));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
