@@ -2,6 +2,8 @@
 // A model derived, compiled and differentiated, at its consistent initial state: what the
 // analysis tests start from.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -144,6 +146,28 @@ inline std::vector<double> order_tolerances(int k) {
   if (k == 1) return {1e-3, 1e-4, 1e-5};
   if (k == 2) return {1e-4, 1e-5, 1e-6, 1e-7};
   return {1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+}
+
+/// docs/theory.md §5.8: `method` held at order k = 1, 2, 3 on `example` converges at order k —
+/// the fitted slope of error against steps lies in [k − 0.4, k + 0.7].
+inline void expect_fixed_order_convergence(const std::string& example, const std::string& method,
+                                           double output_step) {
+  for (int k : {1, 2, 3}) {
+    const double p =
+        fitted_order(implicit_runs(example, method, k, order_tolerances(k), output_step));
+    EXPECT_GT(p, k - 0.4) << example << ", " << method << ", order " << k;
+    EXPECT_LT(p, k + 0.7) << example << ", " << method << ", order " << k;
+  }
+}
+
+/// At the default (variable order up to 5) the error of `method` on the double pendulum follows
+/// the tolerance: 100 times tighter, 10 to 1000 times smaller.
+inline void expect_error_follows_tolerance(const std::string& method) {
+  const auto runs = implicit_runs("double_pendulum.yaml", method, 5, {1e-4, 1e-6, 1e-8}, 0.05);
+  for (size_t i = 0; i + 1 < runs.size(); ++i) {
+    EXPECT_GT(runs[i].error / runs[i + 1].error, 10.0) << method << ", " << i;
+    EXPECT_LT(runs[i].error / runs[i + 1].error, 1000.0) << method << ", " << i;
+  }
 }
 
 }  // namespace lagrange::testing
