@@ -50,6 +50,10 @@ struct CompiledModel {
   std::vector<StopSpec> fail_when;
   /// Model::warn_when: the first sample where one holds adds a warning to the trajectory.
   std::vector<StopSpec> warn_when;
+  /// stop_when, fail_when and warn_when compiled once, each to one tape over a trajectory row
+  /// (trajectory_columns) and the parameters (compile_conditions, lagrange/stop_conditions.hpp):
+  /// a run evaluates them without the symbolic layer.
+  Tape stop_tape, fail_tape, warn_tape;
   /// T + U is a constant of motion (conserves_energy()): a run that changes it fails.
   bool conservative = false;
 
@@ -93,6 +97,16 @@ ModelInitialState model_initial_state(const Model& model);
 /// Compile derived equations into tapes (common subexpressions shared, parameters kept as
 /// tape inputs so that a new value needs no new derivation).
 std::shared_ptr<const CompiledModel> compile(const Equations& eq);
+
+/// The column names simulate() produces for a compiled model.
+std::vector<std::string> trajectory_columns(const CompiledModel& model);
+
+/// `specs` (stop_when, fail_when or warn_when: `lhs < rhs` or `lhs > rhs`) compiled to one tape
+/// over a row of `columns` (trajectory_columns(cm)), then cm's parameters: output i is g_i,
+/// positive exactly when condition i holds. ModelError at the condition for an unknown name or a
+/// vector-valued side. compile() makes cm's three.
+Tape compile_conditions(const std::vector<StopSpec>& specs, const CompiledModel& cm,
+                        const std::vector<std::string>& columns);
 
 /// The expressions of `cm.dynamics`' outputs, in its output order (`cm` compiled from `eq`).
 std::vector<GiNaC::ex> dynamics_expressions(const Equations& eq, const CompiledModel& cm);

@@ -138,7 +138,4 @@ DaeJacobian run_dae_jacobian(Dynamics& dynamics, const SimulationOptions& option
 Trajectory simulate(Dynamics& dynamics, const SimulationOptions& options, std::vector<double> q0,
                     std::vector<double> v0);
 
-/// The column names simulate() produces for a compiled model.
-std::vector<std::string> trajectory_columns(const CompiledModel& model);
-
 }  // namespace lagrange

@@ -11,28 +11,26 @@
 
 namespace lagrange {
 
-/// The compiled conditions of a model; g_i > 0 exactly when condition i holds. One per run
-/// (evaluate uses scratch space).
+/// One run's view of a model's compiled conditions (cm's tape and scratch space; evaluate uses
+/// the scratch, so one per run). Making one runs no symbolic code.
 class StopConditions {
  public:
-  StopConditions() = default;
-  /// Compiles cm.stop_when against `columns` (trajectory_columns(cm)) and cm's parameters;
-  /// ModelError at the condition for an unknown name or a vector-valued side.
-  StopConditions(const CompiledModel& cm, const std::vector<std::string>& columns);
-  /// The same for other conditions over those columns (cm.fail_when).
-  StopConditions(const std::vector<StopSpec>& specs, const CompiledModel& cm,
-                 const std::vector<std::string>& columns);
+  enum class Kind { Stop, Fail, Warn };  ///< cm.stop_when, cm.fail_when, cm.warn_when
 
-  bool empty() const { return specs_.empty(); }
-  size_t size() const { return specs_.size(); }
-  const StopSpec& spec(size_t i) const { return specs_[i]; }
-  /// g (size()) for one trajectory row (the columns given above) and the parameter values.
+  StopConditions() = default;
+  /// cm's conditions of `kind`; `cm` must outlive this.
+  explicit StopConditions(const CompiledModel& cm, Kind kind = Kind::Stop);
+
+  bool empty() const { return size() == 0; }
+  size_t size() const { return specs_ ? specs_->size() : 0; }
+  const StopSpec& spec(size_t i) const { return (*specs_)[i]; }
+  /// g (size()) for one trajectory row (trajectory_columns(cm)) and the parameter values.
   void evaluate(const double* row, const double* parameters, double* g) const;
 
  private:
-  std::vector<StopSpec> specs_;
+  const std::vector<StopSpec>* specs_ = nullptr;
+  const Tape* tape_ = nullptr;
   size_t columns_ = 0, parameters_ = 0;
-  Tape tape_;
   mutable std::vector<double> in_, work_;
 };
 

@@ -9,7 +9,6 @@
 #include "cli/commands.hpp"
 #include "cli/initial_state.hpp"
 #include "lagrange/error.hpp"
-#include "lagrange/stop_conditions.hpp"
 
 namespace lagrange::cli {
 
@@ -81,7 +80,6 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   p.derive_seconds = seconds_since(t0);
   const auto t1 = Clock::now();
   p.compiled = compile(p.equations);
-  StopConditions(*p.compiled, trajectory_columns(*p.compiled));  // names checked before any run
   p.dynamics = std::make_unique<Dynamics>(p.compiled, p.compiled->parameter_defaults);
   p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, p.model->simulate.integrator));
   p.compile_seconds = seconds_since(t1);

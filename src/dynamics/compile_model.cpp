@@ -142,6 +142,12 @@ std::shared_ptr<const CompiledModel> compile(const Equations& eq) {
   for (const auto& u : model.inputs) sig.push_back(u.expr.diff(model.t));
   for (const auto& u : model.inputs) sig.push_back(u.expr.diff(model.t, 2));
   cm->inputs = Tape::compile(sig, in);
+
+  // The conditions' names are checked here, before any run, and no run parses them again.
+  const std::vector<std::string> columns = trajectory_columns(*cm);
+  cm->stop_tape = compile_conditions(cm->stop_when, *cm, columns);
+  cm->fail_tape = compile_conditions(cm->fail_when, *cm, columns);
+  cm->warn_tape = compile_conditions(cm->warn_when, *cm, columns);
   return cm;
 }
 

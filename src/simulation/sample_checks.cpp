@@ -12,7 +12,7 @@ namespace lagrange {
 SampleChecks::SampleChecks(const CompiledModel& cm, const std::vector<std::string>& columns)
     : cm_(cm),
       columns_(columns),
-      cautions_(cm.warn_when, cm, columns),
+      cautions_(cm, StopConditions::Kind::Warn),
       caution_g_(cautions_.size()),
       cautioned_(cautions_.size(), false) {
   kinetic_ = 1 + cm.nq + cm.nv;  // t, q, v, then kinetic, potential, energy, outputs

@@ -16,21 +16,6 @@
 
 namespace lagrange {
 
-std::vector<std::string> trajectory_columns(const CompiledModel& cm) {
-  std::vector<std::string> cols{"t"};
-  for (const auto& q : cm.coordinate_names) cols.push_back(q);
-  for (const auto& v : cm.velocity_names) cols.push_back(v);
-  cols.insert(cols.end(), {"kinetic", "potential", "energy"});
-  for (const auto& o : cm.output_names) cols.push_back(o);
-  if (cm.m > 0) {
-    for (const auto& c : cm.constraint_names) cols.push_back(c);
-    cols.insert(cols.end(), {"constraint_residual", "constraint_rate_residual"});
-    for (const auto& r : cm.reaction_names) cols.push_back(r);
-  }
-  for (const auto& load : cm.loads) cols.push_back(load.name);
-  return cols;
-}
-
 size_t Trajectory::column_index(const std::string& column) const {
   auto it = std::find(columns.begin(), columns.end(), column);
   if (it == columns.end()) throw std::out_of_range("no column '" + column + "' in the trajectory");
@@ -237,7 +222,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   };
   // The model's stop conditions end the run; its elements' domain conditions (cm.fail_when)
   // fail it, both located between samples.
-  const StopConditions stop(cm, traj.columns), guards(cm.fail_when, cm, traj.columns);
+  const StopConditions stop(cm), guards(cm, StopConditions::Kind::Fail);
   StopWatch watch(stop.size(), n), guard_watch(guards.size(), n);
   std::vector<double> stop_row, stop_g(stop.size()), guard_g(guards.size());
   const auto values_of = [&](const StopConditions& conditions) -> StopWatch::Evaluate {

@@ -11,7 +11,7 @@
 #include "lagrange/error.hpp"
 #include "lagrange/sweep.hpp"
 #include "model/expression_parser.hpp"
-#include "simulation/row_expression.hpp"
+#include "dynamics/row_expression.hpp"
 #include "sweep/spec_text.hpp"
 
 namespace lagrange::sweep {

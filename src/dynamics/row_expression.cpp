@@ -1,6 +1,6 @@
-// Expressions over a trajectory row (src/simulation/row_expression.hpp).
+// Expressions over a trajectory row (src/dynamics/row_expression.hpp).
 
-#include "simulation/row_expression.hpp"
+#include "dynamics/row_expression.hpp"
 
 #include "model/expression_parser.hpp"
 
