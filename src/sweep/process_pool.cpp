@@ -73,6 +73,20 @@ bool send(int fd, const std::string& data) {
   return true;
 }
 
+// Case `index` on `dyn`, as every worker runs it (this process's own cases included).
+CaseResult run_slot(Dynamics& dyn, size_t index, const std::vector<CaseInput>& inputs,
+                    const std::vector<Metric>& metrics, const PoolOptions& options,
+                    Trajectory& traj) {
+  CaseRead read = options.read ? options.read(index) : CaseRead{inputs[index], {}, -1.0};
+  if (read.input) read.input->options.interrupt = options.interrupt;
+  CaseResult result = run_case(dyn, read, metrics, options.keep ? &traj : nullptr);
+  result.index = index;
+  result.read_seconds = read.read_seconds;
+  if (result.status != Trajectory::Status::Interrupted && options.keep && read.input)
+    options.keep(index, traj);
+  return result;
+}
+
 // A worker process: cases until none is left, the study stops or it is interrupted; never
 // returns.
 [[noreturn]] void work(const std::shared_ptr<const CompiledModel>& model,
@@ -88,14 +102,8 @@ bool send(int fd, const std::string& data) {
       return shared.stop.load() || (options.interrupt && options.interrupt->load());
     };
     for (size_t slot = shared.next++; slot < pending.size() && !stopped(); slot = shared.next++) {
-      const size_t index = pending[slot];
-      CaseRead read = options.read ? options.read(index) : CaseRead{inputs[index], {}, -1.0};
-      if (read.input) read.input->options.interrupt = options.interrupt;
-      CaseResult result = run_case(dyn, read, metrics, options.keep ? &traj : nullptr);
-      result.index = index;
-      result.read_seconds = read.read_seconds;
+      const CaseResult result = run_slot(dyn, pending[slot], inputs, metrics, options, traj);
       if (result.status == Trajectory::Status::Interrupted) break;
-      if (options.keep && read.input) options.keep(index, traj);
       if (!send(fd, message(Kind::Result, result, result.reason))) {
         code = 1;
         break;
@@ -187,7 +195,8 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
   Shared* shared = new (memory) Shared;
   std::vector<Worker> workers;
   std::string error;  // the first: a worker's exception, a worker's death, or `done`'s
-  for (size_t i = 0; i < n && error.empty(); ++i) {
+  // n − 1 worker processes; this one is the n-th, taking their results between its cases.
+  for (size_t i = 1; i < n && error.empty(); ++i) {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {
       error = std::string("cannot make a pipe for a worker: ") + std::strerror(errno);
@@ -221,7 +230,9 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
       stop_with(e.what());
     }
   };
-  for (size_t open = workers.size(); open > 0;) {
+  size_t open = workers.size();
+  // The workers' messages that have arrived, waiting up to `timeout` ms for the first.
+  const auto take_results = [&](int timeout) {
     if (options.interrupt && options.interrupt->load() && !forwarded) {
       for (const Worker& w : workers) ::kill(w.pid, SIGINT);
       forwarded = true;
@@ -233,7 +244,7 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
         fds.push_back({w.fd, POLLIN, 0});
         polled.push_back(&w);
       }
-    if (::poll(fds.data(), fds.size(), 100) < 0 && errno != EINTR)
+    if (::poll(fds.data(), fds.size(), timeout) < 0 && errno != EINTR)
       stop_with(std::string("cannot wait for the workers: ") + std::strerror(errno));
     for (size_t i = 0; i < fds.size(); ++i) {
       if (fds[i].revents == 0) continue;
@@ -253,7 +264,31 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
       --open;
       reap(w.pid, stop_with);
     }
+  };
+  // This process's own cases (its workspace and caches are warm, and it is not a third process
+  // competing with n workers for n cores), the workers' results taken before each.
+  const auto stopped = [&] {
+    return shared->stop.load() || (options.interrupt && options.interrupt->load());
+  };
+  if (error.empty()) {
+    try {
+      std::optional<Dynamics> own;
+      Dynamics& dyn =
+          options.workspace ? *options.workspace : worker_workspace(model, options, own);
+      Trajectory traj;
+      for (size_t slot = shared->next++; slot < pending.size() && !stopped();
+           slot = shared->next++) {
+        take_results(0);
+        if (stopped()) break;
+        const CaseResult result = run_slot(dyn, pending[slot], inputs, metrics, options, traj);
+        if (result.status == Trajectory::Status::Interrupted) break;
+        on_result(result);
+      }
+    } catch (const std::exception& e) {
+      stop_with(e.what());
+    }
   }
+  while (open > 0) take_results(100);
   shared->~Shared();
   munmap(memory, sizeof(Shared));
   if (!error.empty()) throw std::runtime_error(error);

@@ -1,14 +1,16 @@
-// A study's workers as forked processes (sweep::run_pool_processes, docs/sweeps.md "Workers"):
-// every case reported once, here, with the numbers the thread pool gives, bit for bit; a
-// worker's exception stops the study and is thrown here with its message.
+// A study's workers as forked processes and this one (sweep::run_pool_processes, docs/sweeps.md
+// "Speed"): every case reported once, here, with the numbers the thread pool gives, bit for
+// bit; a worker's exception stops the study and is thrown here with its message.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstring>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/equations.hpp"
@@ -80,21 +82,26 @@ TEST(ProcessPool, EveryCaseOnceWithTheThreadPoolsNumbers) {
   }
 }
 
+// With two workers, one is a forked process and the other this one (docs/sweeps.md, "Speed"):
+// an exception in either stops the study and is thrown here with its message.
 TEST(ProcessPool, AWorkersExceptionIsThrownHere) {
   const Study s = pendulums();
-  PoolOptions pool;
   const pid_t here = getpid();
-  pool.read = [&](size_t index) -> CaseRead {
-    if (index == 5)
-      throw std::runtime_error("case 5 refused" +
-                               std::string(getpid() == here ? "" : " in a worker"));
-    return {s.inputs[index], {}, -1.0};
-  };
-  try {
-    results(s, true, pool);
-    FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
-    EXPECT_STREQ(e.what(), "case 5 refused in a worker");
+  for (const bool in_the_fork : {true, false}) {
+    PoolOptions pool;
+    pool.read = [&](size_t index) -> CaseRead {
+      if ((getpid() != here) == in_the_fork)
+        throw std::runtime_error(in_the_fork ? "refused in a worker" : "refused here");
+      // This process's cases wait, so that the forked worker, started after it, gets one.
+      if (in_the_fork) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      return {s.inputs[index], {}, -1.0};
+    };
+    try {
+      results(s, true, pool);
+      FAIL() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), in_the_fork ? "refused in a worker" : "refused here");
+    }
   }
 }
 
