@@ -37,13 +37,28 @@ bench() {
             l, w, n / w, c, 1e3 * c / n, load}'
 }
 
-# The median over RUNS of the pool's own time, the "run X s" of the study's summary line (the
-# cases alone: without start-up, derivation and the reading of the model).
+# The pool's own time, the "run X s" of the study's summary line (the cases alone: without
+# start-up, derivation and the reading of the model), of one run of COMMAND…
 run_seconds() {
-  for _ in $(seq "$runs"); do
-    rm -rf "$work/study"
-    "$@" | sed -n 's/.* run \([0-9.]*\) s .*/\1/p'
-  done | sort -n | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'
+  rm -rf "$work/study"
+  "$@" | sed -n 's/.* run \([0-9.]*\) s .*/\1/p'
+}
+
+# …and of 2 × RUNS runs with -j 1 and -j 2 in turn, so that a drift of the machine's speed
+# meets both alike: the median of each, and the median of the pairs' efficiencies
+# (-j 1 run / (2 × -j 2 run)).
+cases_alone() {
+  for _ in $(seq "$((2 * runs))"); do
+    echo "$(run_seconds "$@" -j 1) $(run_seconds "$@" -j 2)"
+  done | awk -v load="$(uptime | sed 's/.*load average: //')" '
+    function median(a, n,   i, j, t) {
+      for (i = 2; i <= n; i++) for (j = i; j > 1 && a[j - 1] > a[j]; j--) {
+        t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+      return a[int((n + 1) / 2)]
+    }
+    {n++; one[n] = $1; two[n] = $2; eff[n] = $1 / (2 * $2)}
+    END {printf "  the cases alone (the summary line'"'"'s run time), %d pairs in turn: -j 1 %.3f s, -j 2 %.3f s, efficiency %.0f %% (median of the pairs; load %s)\n",
+         n, median(one, n), median(two, n), 100 * median(eff, n), load}'
 }
 
 study() {
@@ -69,12 +84,7 @@ study() {
   awk -v w1="$wall1" -v w2="$last_wall" \
     'BEGIN {printf "  the ceiling: each of two -j 1 studies at once runs at %.0f %% of one alone\n",
             100 * w1 / w2}'
-  local run1 run2
-  run1=$(run_seconds "$lagrange" sweep "${args[@]}" -j 1)
-  run2=$(run_seconds "$lagrange" sweep "${args[@]}" -j 2)
-  awk -v r1="$run1" -v r2="$run2" -v load="$(uptime | sed 's/.*load average: //')" \
-    'BEGIN {printf "  the cases alone (the summary line'"'"'s run time): -j 1 %.3f s, -j 2 %.3f s, efficiency %.0f %%  (load %s)\n",
-            r1, r2, 100 * r1 / (2 * r2), load}'
+  cases_alone "$lagrange" sweep "${args[@]}"
 
   if command -v mpirun > /dev/null; then
     bench "mpirun -n 2 lagrange sweep" "$cases" mpirun -n 2 --oversubscribe --allow-run-as-root \
