@@ -211,6 +211,7 @@ struct SimulateOptions {
   double rtol = 1e-8;
   double atol = 1e-10;
   double step = 0.0;  ///< fixed step for rk4; 0 means output_step / 10
+  int max_order = 5;  ///< the highest order of the BDF methods (cvode*, ida*), 1 to 5
   SourceLoc loc;
 };
 

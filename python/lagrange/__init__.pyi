@@ -159,6 +159,7 @@ class Model:
         atol: Optional[float] = None,
         step: Optional[float] = None,
         compile: str = "auto",
+        max_order: Optional[int] = None,
     ) -> Run:
         """Simulate from the initial state; unset settings keep the file's simulate: values.
 
@@ -221,6 +222,7 @@ class Model:
         atol: Optional[float] = None,
         step: Optional[float] = None,
         compile: str = "auto",
+        max_order: Optional[int] = None,
     ) -> "Stepper":
         """A Stepper from the initial state; unset settings keep the file's simulate: values.
 
@@ -269,6 +271,7 @@ def sweep(
     rtol: Optional[float] = None,
     atol: Optional[float] = None,
     step: Optional[float] = None,
+    max_order: Optional[int] = None,
 ) -> Any:
     """Every case of a grid ({name: values}) or list of cases ([{name: value}]) run on model as
     `lagrange sweep` runs it, here or on an Executor: a pandas DataFrame, one row per case

@@ -42,7 +42,7 @@ def _run_chunk(state, cases, metrics, settings):
 
 
 def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=None,
-          output_step=None, integrator=None, rtol=None, atol=None, step=None):
+          output_step=None, integrator=None, rtol=None, atol=None, step=None, max_order=None):
     """Run every case of a study on ``model`` and return a pandas DataFrame, one row per case:
     the parameter values, ``status`` ("ok" or "failed"), ``reason``, ``failure_time``, the
     metrics and ``wall_s``.
@@ -64,7 +64,7 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
     cases = _cases(grid_or_samples)
     specs = _metric_specs(metrics)
     settings = dict(t_end=t_end, output_step=output_step, integrator=integrator, rtol=rtol,
-                    atol=atol, step=step)
+                    atol=atol, step=step, max_order=max_order)
     model._run_cases(cases, specs, check_only=True, **settings)
     if executor is None:
         rows, reads = model._run_cases(cases, specs, **settings)

@@ -73,10 +73,11 @@ py::dict parameters(const PyModel& m) {
 py::object simulate(const PyModel& m, std::optional<double> t_end,
                     std::optional<double> output_step, std::optional<std::string> integrator,
                     std::optional<double> rtol, std::optional<double> atol,
-                    std::optional<double> step, const std::string& compile) {
+                    std::optional<double> step, const std::string& compile,
+                    std::optional<int> max_order) {
   const cli::Prepared& p = prepared(m);
   SimulationOptions so = cli::simulation_options(
-      *p.model, cli::RunSettings{t_end, output_step, rtol, atol, step, integrator});
+      *p.model, cli::RunSettings{t_end, output_step, rtol, atol, step, integrator, max_order});
   so.jacobian_source = cli::jacobian_source(p, so.integrator.method, kLagrangianHint);
   // A workspace of its own, so that runs of one model on several threads never share scratch.
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
@@ -235,9 +236,10 @@ void bind_model(py::module_& m) {
       .def("simulate", &simulate, py::arg("t_end") = py::none(),
            py::arg("output_step") = py::none(), py::arg("integrator") = py::none(),
            py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("step") = py::none(),
-           py::arg("compile") = "auto",
-           "Simulate from the initial state (unset settings keep the file's simulate: values), "
-           "with the GIL released. Raises SimulationError carrying the partial run on failure.")
+           py::arg("compile") = "auto", py::arg("max_order") = py::none(),
+           "Simulate from the initial state (unset settings keep the file's simulate: values; "
+           "max_order caps the BDF methods' order, 1 to 5), with the GIL released. Raises "
+           "SimulationError carrying the partial run on failure.")
       .def("forward", &forward, py::arg("q"), py::arg("v"), py::arg("t") = 0.0,
            "Accelerations v̇ at (t, q, v) (q̈ for plain coordinates); for a constrained model "
            "the tuple (v̇, λ).")
@@ -273,6 +275,7 @@ void bind_model(py::module_& m) {
       .def("stepper", &make_stepper, py::arg("t_end") = py::none(),
            py::arg("integrator") = py::none(), py::arg("rtol") = py::none(),
            py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("compile") = "auto",
+           py::arg("max_order") = py::none(),
            "A Stepper from the initial state (unset settings keep the file's simulate: values; "
            "t_end is where dop853 lands its last step, as in simulate, and stepping past it is "
            "allowed).")
@@ -288,15 +291,16 @@ void bind_model(py::module_& m) {
              const std::vector<std::string>& metrics, std::optional<double> t_end,
              std::optional<double> output_step, std::optional<std::string> integrator,
              std::optional<double> rtol, std::optional<double> atol, std::optional<double> step,
-             bool check_only) {
-            return run_cases(pm, cases, metrics,
-                             cli::RunSettings{t_end, output_step, rtol, atol, step, integrator},
-                             check_only);
+             std::optional<int> max_order, bool check_only) {
+            return run_cases(
+                pm, cases, metrics,
+                cli::RunSettings{t_end, output_step, rtol, atol, step, integrator, max_order},
+                check_only);
           },
           py::arg("cases"), py::arg("metrics"), py::kw_only(), py::arg("t_end") = py::none(),
           py::arg("output_step") = py::none(), py::arg("integrator") = py::none(),
           py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("step") = py::none(),
-          py::arg("check_only") = false,
+          py::arg("max_order") = py::none(), py::arg("check_only") = false,
           "The cases of a study (lagrange.sweep) run here, one dict per case.")
       .def("__repr__",
            [](const PyModel& pm) {

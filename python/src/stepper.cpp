@@ -97,10 +97,10 @@ py::dict outputs(const PyStepper& s) {
 py::object make_stepper(const PyModel& m, std::optional<double> t_end,
                         std::optional<std::string> integrator, std::optional<double> rtol,
                         std::optional<double> atol, std::optional<double> step,
-                        const std::string& compile) {
+                        const std::string& compile, std::optional<int> max_order) {
   const cli::Prepared& p = *m.prepared;
   SimulationOptions so = cli::simulation_options(
-      *p.model, cli::RunSettings{t_end, std::nullopt, rtol, atol, step, integrator});
+      *p.model, cli::RunSettings{t_end, std::nullopt, rtol, atol, step, integrator, max_order});
   so.jacobian_source = cli::jacobian_source(p, so.integrator.method, kLagrangianHint);
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
   dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));

@@ -15,7 +15,7 @@ namespace lagrange::python {
 pybind11::object make_stepper(const PyModel& m, std::optional<double> t_end,
                               std::optional<std::string> integrator, std::optional<double> rtol,
                               std::optional<double> atol, std::optional<double> step,
-                              const std::string& compile);
+                              const std::string& compile, std::optional<int> max_order);
 
 /// Binds lagrange.Stepper.
 void bind_stepper(pybind11::module_& m);

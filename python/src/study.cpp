@@ -27,6 +27,7 @@ std::string replay_key(const cli::CaseValues& names, const cli::RunSettings& s) 
     key += '\n';
   };
   add(s.t_end), add(s.output_step), add(s.rtol), add(s.atol), add(s.step), add(s.integrator);
+  add(s.max_order);
   return key;
 }
 

@@ -33,8 +33,8 @@ double seconds_since(Clock::time_point start) {
 }
 
 SimulationOptions simulation_options(const Model& model, const Options& opt) {
-  return simulation_options(
-      model, RunSettings{opt.t_end, opt.output_step, opt.rtol, opt.atol, opt.step, opt.integrator});
+  return simulation_options(model, RunSettings{opt.t_end, opt.output_step, opt.rtol, opt.atol,
+                                               opt.step, opt.integrator, opt.max_order});
 }
 
 // --plot and --plot-columns, checked before the run: a known image format whose gnuplot terminal

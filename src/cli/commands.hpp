@@ -21,6 +21,7 @@ struct Options {
   std::string format = "text";
   std::string form = "lagrange";  ///< derive: lagrange | manipulator
   std::optional<double> t_end, output_step, rtol, atol, step;
+  std::optional<int> max_order;
   std::optional<std::string> integrator;
   std::string compile = "auto";  ///< simulate --compile: auto | on | off
   std::string dynamics =
@@ -61,7 +62,8 @@ int run_report(const Options& opt);
 int run_eval(const Options& opt);
 /// A, B, C, D and the modes at an operating point (src/cli/linearize_command.cpp).
 int run_linearize(const Options& opt);
-/// An equilibrium by Levenberg–Marquardt (docs/theory.md §5.5), printed as an initial-state block (src/cli/trim_command.cpp).
+/// An equilibrium by Levenberg–Marquardt (docs/theory.md §5.5), printed as an initial-state block
+/// (src/cli/trim_command.cpp).
 int run_trim(const Options& opt);
 /// Every case of a parameter grid or random sample, one derivation shared by a pool of workers,
 /// into STUDY/summary.csv (src/cli/sweep_command.cpp, docs/sweeps.md).

@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(lagrange::integrator_methods()));
   sim->add_option("--rtol", opt.rtol, "relative tolerance");
   sim->add_option("--atol", opt.atol, "absolute tolerance");
+  sim->add_option("--max-order", opt.max_order, "highest order of cvode*, ida* (1-5)");
   sim->add_option(
       "--step", opt.step,
       "fixed step of rk4 and midpoint; set, it also fixes the step of dop853 and arkode");
@@ -201,6 +202,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(lagrange::integrator_methods()));
   sweep->add_option("--rtol", opt.rtol, "relative tolerance");
   sweep->add_option("--atol", opt.atol, "absolute tolerance");
+  sweep->add_option("--max-order", opt.max_order, "highest order of cvode*, ida* (1-5)");
   sweep->add_option("--step", opt.step, "fixed step, as for simulate");
   sweep
       ->add_option("--compile", opt.compile,

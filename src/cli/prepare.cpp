@@ -192,11 +192,17 @@ SimulationOptions simulation_options(const Model& model, const RunSettings& give
   so.integrator.rtol = given.rtol.value_or(model.simulate.rtol);
   so.integrator.atol = given.atol.value_or(model.simulate.atol);
   so.integrator.step = given.step.value_or(model.simulate.step);
+  so.integrator.max_order = given.max_order.value_or(model.simulate.max_order);
   so.project = model.stabilization.project;
   if (!(so.t_end > 0)) throw UsageError("--t-end must be positive");
   if (!(so.output_step > 0)) throw UsageError("--output-step must be positive");
   if (!(so.integrator.rtol > 0) || !(so.integrator.atol > 0))
     throw UsageError("tolerances must be positive");
+  if (so.integrator.max_order < 1 || so.integrator.max_order > 5)
+    throw UsageError(
+        fmt::format("--max-order must be from 1 to 5 (the BDF methods' highest "
+                    "order), got {}",
+                    so.integrator.max_order));
   return so;
 }
 

@@ -92,6 +92,7 @@ Prepared prepare_source(const ModelSource& source, const ParameterOverrides& ove
 struct RunSettings {
   std::optional<double> t_end, output_step, rtol, atol, step;
   std::optional<std::string> integrator;
+  std::optional<int> max_order;  ///< the BDF methods' highest order, 1 to 5
 };
 
 /// The model's `simulate:` settings with `given` applied and projection as the model says;

@@ -57,6 +57,7 @@ std::string study_record(const Options& opt, const CompiledModel& cm,
   number("--rtol", opt.rtol);
   number("--atol", opt.atol);
   number("--step", opt.step);
+  if (opt.max_order) d += fmt::format("--max-order {}\n", *opt.max_order);
   if (opt.integrator) d += fmt::format("--integrator {}\n", *opt.integrator);
   d += fmt::format("--dynamics {}\n", opt.dynamics);
   return d;

@@ -120,7 +120,8 @@ void set_up(const Options& opt, Study& s) {
   } catch (const sweep::StudyError& e) {
     throw UsageError(e.what());
   }
-  s.settings = {opt.t_end, opt.output_step, opt.rtol, opt.atol, opt.step, opt.integrator};
+  s.settings = {opt.t_end, opt.output_step, opt.rtol,     opt.atol,
+                opt.step,  opt.integrator,  opt.max_order};
   simulation_options(*p.model, s.settings);  // a bad --t-end or tolerance: refused up front
   s.header = {"case"};
   for (const auto& [name, value] : s.plan.cases.front().values) s.header.push_back(name);

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "lagrange/integrator.hpp"
 #include "model/model_reader.hpp"
@@ -24,7 +25,8 @@ void ModelReader::read_stabilization(const YAML::Node& node) {
 }
 
 void ModelReader::read_simulate(const YAML::Node& node) {
-  check_keys(node, {"t_end", "output_step", "integrator", "rtol", "atol", "step"}, "simulate");
+  check_keys(node, {"t_end", "output_step", "integrator", "rtol", "atol", "step", "max_order"},
+             "simulate");
   SimulateOptions& o = m_.simulate;
   o.loc = src_.at(node);
   auto positive = [&](const char* key, double& out, bool allow_zero) {
@@ -38,6 +40,15 @@ void ModelReader::read_simulate(const YAML::Node& node) {
   positive("rtol", o.rtol, false);
   positive("atol", o.atol, false);
   positive("step", o.step, true);
+  if (node["max_order"]) {
+    const double order = number(node["max_order"], kParams, "simulate max_order");
+    if (order != std::floor(order) || order < 1 || order > 5)
+      fail(node["max_order"],
+           fmt::format("expected max_order an integer from 1 to 5 (the BDF methods' highest "
+                       "order), got {:g}",
+                       order));
+    o.max_order = static_cast<int>(order);
+  }
   if (node["integrator"]) {
     o.integrator = scalar(node["integrator"], "simulate integrator");
     const std::vector<std::string>& known = integrator_methods();

@@ -24,7 +24,7 @@ const std::string kElasticTether =
 // The example's own settings over its first second, with `method`, and the Jacobian it needs.
 SimulationOptions options(const Prepared& p, const std::string& method, double rtol) {
   SimulationOptions so =
-      simulation_options(*p.model, RunSettings{1.0, 0.05, rtol, rtol * 1e-2, {}, method});
+      simulation_options(*p.model, RunSettings{1.0, 0.05, rtol, rtol * 1e-2, {}, method, {}});
   so.jacobian_source = jacobian_source(p, method);
   return so;
 }
@@ -173,7 +173,7 @@ dampers:
 simulate: {t_end: 4, output_step: 0.02}
 )";
   Prepared p = prepare_source(ModelSource{"<window>", yaml}, {}, "lagrangian");
-  SimulationOptions so = simulation_options(*p.model, RunSettings{{}, {}, {}, {}, {}, "auto"});
+  SimulationOptions so = simulation_options(*p.model, RunSettings{{}, {}, {}, {}, {}, "auto", {}});
   so.jacobian_source = jacobian_source(p, "auto");
   p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, "auto"));
   const Trajectory automatic = simulate(*p.dynamics, so, p.q, p.v);

@@ -25,7 +25,7 @@ std::string slurp(const std::string& path) {
 }
 
 Trajectory run(Prepared& p, double t_end) {
-  SimulationOptions so = simulation_options(*p.model, RunSettings{t_end, {}, {}, {}, {}, {}});
+  SimulationOptions so = simulation_options(*p.model, RunSettings{t_end, {}, {}, {}, {}, {}, {}});
   return simulate(*p.dynamics, so, p.q, p.v);
 }
 
@@ -79,15 +79,18 @@ TEST(SimulationOptions, GivenValuesReplaceTheFilesAndAreChecked) {
   const SimulationOptions file = simulation_options(*p.model, RunSettings{});
   EXPECT_EQ(file.t_end, 10.0);
   EXPECT_EQ(file.integrator.rtol, 1e-10);
+  EXPECT_EQ(file.integrator.max_order, 5);
   const SimulationOptions given =
-      simulation_options(*p.model, RunSettings{2.0, 0.5, 1e-6, {}, {}, std::string("rk4")});
+      simulation_options(*p.model, RunSettings{2.0, 0.5, 1e-6, {}, {}, std::string("rk4"), 3});
   EXPECT_EQ(given.t_end, 2.0);
   EXPECT_EQ(given.output_step, 0.5);
   EXPECT_EQ(given.integrator.rtol, 1e-6);
   EXPECT_EQ(given.integrator.atol, 1e-12);
   EXPECT_EQ(given.integrator.method, "rk4");
-  EXPECT_THROW(simulation_options(*p.model, RunSettings{-1.0, {}, {}, {}, {}, {}}), UsageError);
-  EXPECT_THROW(simulation_options(*p.model, RunSettings{{}, {}, 0.0, {}, {}, {}}), UsageError);
+  EXPECT_EQ(given.integrator.max_order, 3);
+  EXPECT_THROW(simulation_options(*p.model, RunSettings{-1.0, {}, {}, {}, {}, {}, {}}), UsageError);
+  EXPECT_THROW(simulation_options(*p.model, RunSettings{{}, {}, 0.0, {}, {}, {}, {}}), UsageError);
+  EXPECT_THROW(simulation_options(*p.model, RunSettings{{}, {}, {}, {}, {}, {}, 0}), UsageError);
 }
 
 TEST(ChooseEvaluation, OffKeepsTheInterpreterAndUnknownWordsAreRejected) {

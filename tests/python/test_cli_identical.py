@@ -47,3 +47,22 @@ def test_example_matches_the_cli_bit_for_bit(name, examples_dir, cli, tmp_path):
     same = (run.array == table) | (np.isnan(run.array) & np.isnan(table))
     assert same.all(), f"{name}: first difference at {np.argwhere(~same)[0]}"
 
+
+
+def test_max_order_matches_the_cli_bit_for_bit(examples_dir, cli, tmp_path):
+    """max_order= reaches CVODE from simulate, the Stepper's settings and a sweep as
+    --max-order does from the command line."""
+    path = examples_dir / "double_pendulum.yaml"
+    model = lagrange.load(str(path))
+    out = tmp_path / "run.csv"
+    settings = ["--t-end", "1", "--integrator", "cvode", "--rtol", "1e-5", "--compile", "off"]
+    subprocess.run([cli, "simulate", str(path), "-o", str(out), "--max-order", "2", "-q"]
+                   + settings, check=True, capture_output=True)
+    _, table = read_csv(out)
+    run = model.simulate(t_end=1, integrator="cvode", rtol=1e-5, compile="off", max_order=2)
+    assert (run.array == table).all()
+    default = model.simulate(t_end=1, integrator="cvode", rtol=1e-5, compile="off")
+    assert not (default.array == table).all()
+    frame = lagrange.sweep(model, [{"m1": 1.0}], ["final(theta1)"], t_end=1, integrator="cvode",
+                           rtol=1e-5, max_order=2)
+    assert frame["final(theta1)"].iloc[0] == run["theta1"][-1]
