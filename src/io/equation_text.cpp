@@ -13,7 +13,8 @@ namespace lagrange::io {
 namespace {
 
 // Small expressions are shown in their shortest form among: as derived, expanded, and
-// simplified with sin² + cos² = 1 (lagrange::simplify); only those whose expansion is bounded.
+// simplified with sin² + cos² = 1 (lagrange::simplify); only those whose expansion, and for
+// the simplified form whose common denominator (normal()), is bounded.
 GiNaC::ex tidy(const GiNaC::ex& e) {
   using symbolic::printed_size;
   size_t best_size = printed_size(e);
@@ -21,10 +22,13 @@ GiNaC::ex tidy(const GiNaC::ex& e) {
   constexpr size_t kTidyTerms = 400;
   if (best_size > 600 || !symbolic::expands_within(e, kTidyTerms)) return e;
   GiNaC::ex best = e;
-  const GiNaC::ex simplified = simplify(e);
-  std::vector<GiNaC::ex> candidates{e.expand(), simplified};
-  // The simplified form is bounded on its own terms: its expansion is asked about too.
-  if (symbolic::expands_within(simplified, kTidyTerms)) candidates.push_back(simplified.expand());
+  std::vector<GiNaC::ex> candidates{e.expand()};
+  if (symbolic::normalizes_within(e, kTidyTerms)) {
+    const GiNaC::ex simplified = simplify(e);
+    candidates.push_back(simplified);
+    // The simplified form is bounded on its own terms: its expansion is asked about too.
+    if (symbolic::expands_within(simplified, kTidyTerms)) candidates.push_back(simplified.expand());
+  }
   for (const GiNaC::ex& c : candidates) {
     const size_t size = printed_size(c);
     if (size < best_size) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "compile/ginac_util.hpp"
 
@@ -48,6 +49,30 @@ class ExpansionBound {
 /// True when e.expand() has at most `terms` terms by ExpansionBound.
 inline bool expands_within(const GiNaC::ex& e, size_t terms) {
   return ExpansionBound(terms + 1)(e) <= terms;
+}
+
+/// True when the numerator of e.normal() has at most `terms` terms by the same bound: e's terms
+/// times the product of the expansions of every distinct denominator anywhere in e (inside
+/// functions too), which a common denominator multiplies into the numerator. A short sum of
+/// fractions can have an exponential normal form: Σ 1/(xᵢ + yᵢ), i < 20, has 20 · 2¹⁹ terms.
+inline bool normalizes_within(const GiNaC::ex& e, size_t terms) {
+  ExpansionBound bound(terms + 1);
+  size_t n = bound(e);
+  tape_detail::ExMap<bool> seen;
+  std::vector<GiNaC::ex> stack{e};
+  while (!stack.empty() && n <= terms) {
+    const GiNaC::ex x = stack.back();
+    stack.pop_back();
+    if (!seen.emplace(x, true).second) continue;
+    if (GiNaC::is_a<GiNaC::power>(x) && x.op(1).info(GiNaC::info_flags::negint)) {
+      const GiNaC::numeric k = -GiNaC::ex_to<GiNaC::numeric>(x.op(1));
+      const size_t base = bound(x.op(0));
+      for (GiNaC::numeric i = 0; i < k && n <= terms; ++i)
+        n = base != 0 && n > (terms + 1) / base ? terms + 1 : std::min(terms + 1, n * base);
+    }
+    for (size_t i = 0; i < x.nops(); ++i) stack.push_back(x.op(i));
+  }
+  return n <= terms;
 }
 
 }  // namespace lagrange::symbolic
