@@ -22,13 +22,10 @@ GiNaC::ex tidy(const GiNaC::ex& e) {
   constexpr size_t kTidyTerms = 400;
   if (best_size > 600 || !symbolic::expands_within(e, kTidyTerms)) return e;
   GiNaC::ex best = e;
-  std::vector<GiNaC::ex> candidates{e.expand()};
-  if (symbolic::normalizes_within(e, kTidyTerms)) {
-    const GiNaC::ex simplified = simplify(e);
-    candidates.push_back(simplified);
-    // The simplified form is bounded on its own terms: its expansion is asked about too.
-    if (symbolic::expands_within(simplified, kTidyTerms)) candidates.push_back(simplified.expand());
-  }
+  const GiNaC::ex simplified = symbolic::simplify_within(e, kTidyTerms);
+  std::vector<GiNaC::ex> candidates{e.expand(), simplified};
+  // The simplified form is bounded on its own terms: its expansion is asked about too.
+  if (symbolic::expands_within(simplified, kTidyTerms)) candidates.push_back(simplified.expand());
   for (const GiNaC::ex& c : candidates) {
     const size_t size = printed_size(c);
     if (size < best_size) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compile/ginac_util.hpp"
+#include "lagrange/equations.hpp"
 
 namespace lagrange::symbolic {
 
@@ -73,6 +74,12 @@ inline bool normalizes_within(const GiNaC::ex& e, size_t terms) {
     for (size_t i = 0; i < x.nops(); ++i) stack.push_back(x.op(i));
   }
   return n <= terms;
+}
+
+/// simplify(e) (sin² + cos² = 1 over a common denominator) when normalizes_within(e, terms),
+/// else e as it is: the form printers may ask for without unbounded algebra.
+inline GiNaC::ex simplify_within(const GiNaC::ex& e, size_t terms) {
+  return normalizes_within(e, terms) ? simplify(e) : e;
 }
 
 }  // namespace lagrange::symbolic
