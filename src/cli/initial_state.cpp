@@ -9,6 +9,7 @@
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/tape.hpp"
+#include "symbolic/expansion_bound.hpp"
 
 namespace lagrange::cli {
 
@@ -147,7 +148,7 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
                                  model.parameters[j].name, dyn.parameters()[j]);
       const Coordinate& c = model.coordinates[i];
       std::ostringstream entry;
-      entry << simplify(Mii);
+      entry << symbolic::simplify_within(Mii, 2000);  // an error message: bounded algebra only
       throw ModelError(c.loc,
                        fmt::format("coordinate '{}' has no inertia at the initial state: the mass "
                                    "matrix entry M[{},{}] = {} is 0{}; expected positive masses "
