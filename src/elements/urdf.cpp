@@ -64,12 +64,22 @@ class UrdfReader {
 
   /// An angle: within 1e-9 rad of a multiple of π/2 it is taken as exactly that multiple
   /// (URDFs write 1.57079632679 for π/2), so that the frame's cosines are exact 0 and ±1.
-  static GiNaC::ex angle(const GiNaC::ex& a) {
+  /// Beyond kMaxAngle a double's spacing exceeds 1e-10 rad and the rotation it names is
+  /// rounding noise: such an angle is refused, located, rather than snapped or cast.
+  GiNaC::ex angle(const GiNaC::ex& a, const XMLElement* at, const std::string& what) const {
+    static constexpr double kMaxAngle = 1e6;  // rad; ulp(1e6) ≈ 1.2e-10
     const double x = GiNaC::ex_to<GiNaC::numeric>(a).to_double();
+    if (!(std::abs(x) <= kMaxAngle))
+      fail(at, fmt::format("expected an angle of magnitude at most {:g} rad for {}, got {:g}",
+                           kMaxAngle, what, x));
+    // |k| ≤ kMaxAngle / (π/2) + 1, well inside long's range: the cast below is defined.
     const double k = std::round(x / (M_PI / 2));
     if (std::abs(x - k * M_PI / 2) < 1e-9)
       return GiNaC::numeric(static_cast<long>(k), 2) * GiNaC::Pi;
     return a;
+  }
+  Vec3 angles(const Vec3& rpy, const XMLElement* at, const std::string& what) const {
+    return {angle(rpy[0], at, what), angle(rpy[1], at, what), angle(rpy[2], at, what)};
   }
 
   std::string name(const XMLElement* e, const char* what) const {
@@ -230,8 +240,7 @@ LinkChain read_urdf(const std::string& path) {
           u.triple(origin, "xyz", {0, 0, 0}, "the origin xyz of joint '" + j.name + "'");
       const Vec3 rpy =
           u.triple(origin, "rpy", {0, 0, 0}, "the origin rpy of joint '" + j.name + "'");
-      link.joint.rpy = {UrdfReader::angle(rpy[0]), UrdfReader::angle(rpy[1]),
-                        UrdfReader::angle(rpy[2])};
+      link.joint.rpy = u.angles(rpy, origin, "the origin rpy of joint '" + j.name + "'");
       const XMLElement* axis = e->FirstChildElement("axis");
       link.joint.axis = u.triple(axis, "xyz", {1, 0, 0}, "the axis of joint '" + j.name + "'");
       link.joint.axis_loc = u.loc(axis ? axis : e);
@@ -277,8 +286,8 @@ LinkChain read_urdf(const std::string& path) {
                       : GiNaC::ex(0);
         }
       // The tensor is given in the inertial frame, rotated by rpy from the link frame.
-      const Mat3 R = rpy_rotation(
-          {UrdfReader::angle(rpy[0]), UrdfReader::angle(rpy[1]), UrdfReader::angle(rpy[2])});
+      const Mat3 R =
+          rpy_rotation(u.angles(rpy, origin, "the inertial origin rpy of link '" + n + "'"));
       Mat3 Rt;
       for (size_t a = 0; a < 3; ++a)
         for (size_t b = 0; b < 3; ++b) Rt[a][b] = R[b][a];

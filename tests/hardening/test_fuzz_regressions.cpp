@@ -116,6 +116,30 @@ TEST(FuzzRegressions, UrdfSeedsReplay) {
             std::string::npos);
 }
 
+TEST(FuzzRegressions, AHugeUrdfAngleIsALocatedErrorNotACast) {
+  // fuzz_urdf, seed 1, from a clone in another folder (issue 37): rpy="0 0 1e67" reached
+  // static_cast<long>(round(x / (pi/2))), undefined behaviour. It is refused, located.
+  ScratchDir dir("fuzz-urdf-angle");
+  const std::string path = (dir.path() / "robot.urdf").string();
+  const std::string joint = fuzz::read_urdf_bytes(
+      slurp(kSource / "fuzz/corpus/urdf/huge_angle.urdf"), path);
+  EXPECT_NE(joint.find("robot.urdf:12"), std::string::npos) << joint;
+  EXPECT_NE(joint.find("expected an angle of magnitude at most 1e+06 rad for the origin rpy of "
+                       "joint 'shoulder', got 1e+67"),
+            std::string::npos)
+      << joint;
+  // The same in an inertial origin, and at the edge: 1e6 rad itself is still an angle.
+  std::string inertial = slurp(kSource / "fuzz/corpus/urdf/two_links.urdf");
+  const std::string at = "<origin xyz=\"0 0 0.5\" rpy=\"0 0 0\"/>";
+  ASSERT_NE(inertial.find(at), std::string::npos);
+  std::string edge = inertial;
+  edge.replace(edge.find(at), at.size(), "<origin xyz=\"0 0 0.5\" rpy=\"-1e6 0 0\"/>");
+  EXPECT_EQ(fuzz::read_urdf_bytes(edge, path), "ok");
+  inertial.replace(inertial.find(at), at.size(), "<origin xyz=\"0 0 0.5\" rpy=\"0 -1.5e6 0\"/>");
+  EXPECT_NE(fuzz::read_urdf_bytes(inertial, path).find("the inertial origin rpy of link 'upper'"),
+            std::string::npos);
+}
+
 TEST(FuzzRegressions, DeepNestingIsAnErrorNotAStackOverflow) {
   const std::string deep = std::string(100000, '(') + "x" + std::string(100000, ')');
   EXPECT_NE(replay_expression(deep), "ok");
