@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 MAKEFLAGS += --no-print-directory
 
-.PHONY: deps configure build demo install test bench asan fuzz clean
+.PHONY: deps configure build demo install test bench asan-configure asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -39,9 +39,11 @@ bench: build
 	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@./bench/run.sh $(BUILD)
 
-# AddressSanitizer + UndefinedBehaviorSanitizer: Debug at -O1 (sanitized -O0 GiNaC code is too slow),
-# the library, the CLI and the tests only, then the whole test suite under the sanitizers. The
-# build needs the sanitizer settings too: gtest_discover_tests runs each test binary to list it.
+# AddressSanitizer + UndefinedBehaviorSanitizer: clang, Debug at -O1 (sanitized -O0 GiNaC code is
+# too slow) with line tables only (file:line in reports at a fraction of full -g's compile and link
+# time); the library, the CLI and the tests, then the whole test suite under the sanitizers. The
+# same build holds the libFuzzer targets (`make fuzz`), so the library is compiled once for both.
+# The build needs the sanitizer settings too: gtest_discover_tests runs each test binary to list it.
 ASAN_BUILD ?= build-asan
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/lsan.supp:print_suppressions=0 \
@@ -51,30 +53,29 @@ SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_
 # same code), the longest chains of the scaling tests (the short ones run), the 300-link URDF (the
 # 200-link chain runs), a kill-timing loop. About 400 of the 2300 test-seconds under ASan.
 ASAN_SKIP ?= [Pp]anda|KillDuringALongWrite|GrowsLinearlyWithTheChain|RecursiveChain.MatchesTheClosedFormPendulum/[45]|AThreeHundredLinkUrdf|SkewSymmetry.*planar_arm_pd|Ur5ManipulatorFormIsSkewSymmetric|InertiaMatrixOfTheUr5|ExportManipulator.Ur5MatchesEval
-asan: deps
-	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-	  -DLAGRANGE_SANITIZE=ON -DLAGRANGE_BUILD_BENCH=OFF -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
+asan-configure:
+	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
+	@CC=clang CXX=clang++ cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug \
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_DEBUG="-O1 -gline-tables-only" \
+	  -DLAGRANGE_SANITIZE=ON -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_BENCH=OFF -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
+
+asan: asan-configure
 	@$(SANITIZER_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS)
 	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) -E '$(ASAN_SKIP)'
 
-# libFuzzer targets of the model reader (fuzz/), built with clang; each runs FUZZ_SECONDS (or
-# exactly FUZZ_RUNS inputs from a fixed seed, reproducibly, as CI does) on its
-# corpus (seeded from examples/ and fuzz/corpus/). Findings land in $(FUZZ_BUILD)/fuzz/artifacts/.
-FUZZ_BUILD ?= build-fuzz
+# libFuzzer targets of the model reader (fuzz/), in the sanitizer build; each runs FUZZ_SECONDS
+# (or exactly FUZZ_RUNS inputs from a fixed seed, reproducibly, as CI does) on its corpus (seeded
+# from examples/ and fuzz/corpus/). Findings land in $(ASAN_BUILD)/fuzz/artifacts/.
 FUZZ_SECONDS ?= 600
 FUZZ_RUNS ?=
 FUZZ_RUNS_MODEL ?=
 FUZZ_RUNS_EXPRESSION ?=
 FUZZ_RUNS_URDF ?=
-fuzz:
-	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
-	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-	  -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF \
-	  -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
-	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression fuzz_urdf
+fuzz: asan-configure
+	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression fuzz_urdf
 	@FUZZ_RUNS=$(FUZZ_RUNS) FUZZ_RUNS_MODEL=$(FUZZ_RUNS_MODEL) FUZZ_RUNS_EXPRESSION=$(FUZZ_RUNS_EXPRESSION) \
 	  FUZZ_RUNS_URDF=$(FUZZ_RUNS_URDF) \
-	  ./fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+	  ./fuzz/run.sh $(ASAN_BUILD) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD) out

@@ -38,6 +38,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "bench_support.hpp"
 #include "lagrange/analysis.hpp"
 #include "lagrange/integrator.hpp"

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "bench_support.hpp"
 #include "lagrange/analysis.hpp"
 #include "lagrange/reader.hpp"

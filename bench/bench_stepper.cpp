@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "bench_support.hpp"
 #include "lagrange/simulation.hpp"
 #include "lagrange/stepper.hpp"

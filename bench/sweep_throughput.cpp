@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "support/test_paths.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"

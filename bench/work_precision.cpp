@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "bench_support.hpp"
 #include "lagrange/simulation.hpp"
 #include "n_link_pendulum.hpp"

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/test_paths.hpp"
 #include "analysis/euler_top.hpp"
 #include "cli/shell_run.hpp"
 

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <string>
 
+#include "support/test_paths.hpp"
+
 namespace lagrange::testing {
 
 /// Exit code (-1 when the command did not exit normally) and combined output.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/test_paths.hpp"
 #include "cli/shell_run.hpp"
 
 namespace {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace {

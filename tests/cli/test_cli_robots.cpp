@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

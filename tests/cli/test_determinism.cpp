@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/test_paths.hpp"
 #include "cli/shell_run.hpp"
 
 namespace {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "support/test_paths.hpp"
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
 #include "hardening/cli_runner.hpp"

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/test_paths.hpp"
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
 #include "lagrange/error.hpp"

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;

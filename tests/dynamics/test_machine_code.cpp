@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "support/test_paths.hpp"
 #include "lagrange/error.hpp"
 #include "n_link_pendulum.hpp"
 #include "support/harness.hpp"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "support/test_paths.hpp"
 #include "n_link_pendulum.hpp"
 #include "support/harness.hpp"
 

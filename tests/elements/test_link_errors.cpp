@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "support/test_paths.hpp"
 #include "lagrange/manipulator.hpp"
 #include "support/harness.hpp"
 

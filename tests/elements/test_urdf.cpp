@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 #include "lagrange/manipulator.hpp"
 #include "support/harness.hpp"

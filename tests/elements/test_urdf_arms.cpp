@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "support/test_paths.hpp"
 #include "lagrange/tape.hpp"
 #include "support/harness.hpp"
 

@@ -21,6 +21,8 @@
 #include <thread>
 #include <vector>
 
+#include "support/test_paths.hpp"
+
 extern char** environ;
 
 namespace lagrange::hardening {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "../fuzz/model_budget.hpp"
 #include "../fuzz/urdf_input.hpp"
 #include "hardening/cli_runner.hpp"

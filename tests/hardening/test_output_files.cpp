@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <map>
 
+#include "support/test_paths.hpp"
 #include "support/harness.hpp"
 
 namespace lagrange {

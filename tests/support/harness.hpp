@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "support/test_paths.hpp"
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 
 namespace lagrange::hardening {

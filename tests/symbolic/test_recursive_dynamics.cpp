@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <random>
 
+#include "support/test_paths.hpp"
 #include "n_link_pendulum.hpp"
 #include "support/harness.hpp"
 
