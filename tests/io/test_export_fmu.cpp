@@ -93,17 +93,18 @@ std::vector<std::vector<double>> run_cs(FmuImporter& f, fmi2Component c, double 
 }
 
 // The FMU's Co-Simulation against `lagrange simulate` (dop853, the model's tolerances) on the
-// output grid, and T + U conserved; returns the largest difference found.
-void expect_matches_simulate(Exported& e, const std::vector<std::string>& columns, double tol) {
+// output grid of 0.01 up to `steps`, and T + U conserved.
+void expect_matches_simulate(Exported& e, const std::vector<std::string>& columns, double tol,
+                             int steps = 200) {
   SimulationOptions so = e.sys.options();
-  so.t_end = 2.0;
+  so.t_end = 0.01 * steps;
   so.output_step = 0.01;
   const Trajectory tr = e.sys.run(so);
   FmuLog log;
   fmi2Component c = start_cs(*e.fmu, log);
   std::vector<std::string> all = columns;
   all.push_back("energy");
-  const auto rows = run_cs(*e.fmu, c, 0.01, 200, all);
+  const auto rows = run_cs(*e.fmu, c, 0.01, steps, all);
   const double e0 = tr.at(0, "energy");
   for (size_t r = 0; r < rows.size(); ++r) {
     for (size_t j = 0; j < columns.size(); ++j)
@@ -128,6 +129,25 @@ TEST(ExportFmu, CartesianPendulumStaysOnItsConstraint) {
   fmi2Component c = start_cs(*e.fmu, log);
   for (const auto& row : run_cs(*e.fmu, c, 0.05, 40, {"x", "y"}))
     EXPECT_LE(std::abs((row[0] * row[0] + row[1] * row[1] - 1.0) / 2), 2e-11);
+  e.fmu->free_instance(c);
+}
+
+// The heavy top, a free body in SO(3) held at a pivot: the FMU's projection (all of q, then R's
+// polar factor) ends where the engine's (tangent coordinates) does, within the tolerances; R stays
+// orthonormal and the pivot at the origin.
+TEST(ExportFmu, HeavyTopKeepsItsRotationAndPivot) {
+  Exported& e = exported("heavy_top", [] { return testing::load_example("heavy_top.yaml"); });
+  expect_matches_simulate(e, {"top.x", "top.R13", "axis.z", "top.wz", "pivot.z"}, 1e-6, 30);
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  ASSERT_EQ(e.fmu->do_step(c, 0.0, 0.3, fmi2True), fmi2OK);
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      R(i, j) = e.fmu->get(c, "top.R" + std::to_string(i + 1) + std::to_string(j + 1));
+  EXPECT_LE((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 2e-11);
+  const Eigen::Vector3d r{e.fmu->get(c, "top.x"), e.fmu->get(c, "top.y"), e.fmu->get(c, "top.z")};
+  EXPECT_LE((r + R * Eigen::Vector3d(0, 0, -0.1)).norm(), 2e-11);  // C = r + R p
   e.fmu->free_instance(c);
 }
 
@@ -240,7 +260,10 @@ TEST(ExportFmu, MisuseIsAnErrorWithAMessage) {
   EXPECT_NE(log.messages.back().find("not allowed in instantiated"), std::string::npos)
       << log.messages.back();
   EXPECT_EQ(f.reset(c), fmi2OK);
-  EXPECT_EQ(f.set(c, "no such", 1.0), fmi2Error);  // unknown names never reach the FMU
+  const fmi2ValueReference unknown = 99999;
+  const double one = 1.0;
+  EXPECT_EQ(f.set_real(c, &unknown, 1, &one), fmi2Error);
+  EXPECT_NE(log.messages.back().find("99999"), std::string::npos) << log.messages.back();
   f.free_instance(c);
   fmi2Component c2 = start_cs(f, log);
   EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a fixed parameter after initialisation

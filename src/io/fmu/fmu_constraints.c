@@ -1,6 +1,7 @@
 /* Part of the FMU that `lagrange export --fmu` writes (docs/fmu.md): keeping the state on its
    manifold. Included by lagrange_fmu.c after lagrange_model.c and lagrange_fmu_model.h. */
 
+#if LAGRANGE_M > 0
 /* Largest |x_i|. */
 static double lg_max_abs(const double* x, int n) {
   double m = 0.0;
@@ -12,19 +13,13 @@ static double lg_max_abs(const double* x, int n) {
   return m;
 }
 
-/* The dynamics tape at (t, q, v) with the instance's inputs and parameters into c->tape_out. */
-static void lg_eval_tape(Instance* c, double t, const double* q, const double* v) {
-  double* in = c->tape_in;
-  int i;
-  in[0] = t;
-  for (i = 0; i < LAGRANGE_NQ; ++i) in[1 + i] = q[i];
-  for (i = 0; i < LAGRANGE_N; ++i) in[1 + LAGRANGE_NQ + i] = v[i];
-  lg_current_inputs(c, t, in + 1 + LAGRANGE_NQ + LAGRANGE_N);
-  for (i = 0; i < LAGRANGE_NP; ++i) in[1 + LAGRANGE_NQ + LAGRANGE_N + 3 * LAGRANGE_K + i] = c->p[i];
-  lagrange_tape(in, c->tape_out);
+/* The dynamics tape at (t, y = (q, v)) with the instance's inputs and parameters into
+   c->tape_out. */
+static void lg_eval_tape(Instance* c, double t, const double* y) {
+  lg_pack_inputs(c, t, y);
+  lagrange_tape(c->tape_in, c->tape_out);
 }
 
-#if LAGRANGE_M > 0
 /* Minimum-norm solution dx (n entries) of J dx = r for the m x n matrix J (row-major) through
    the Cholesky factor of J J^T; r is overwritten. 1 when J J^T is singular. */
 static int lg_min_norm(Instance* c, const double* J, int n, double* r, double* dx) {
@@ -48,18 +43,25 @@ static int lg_min_norm(Instance* c, const double* J, int n, double* r, double* d
 
 /* docs/theory.md §4.3 (projection): damped Gauss-Newton onto C(q, t) = 0 with the least-squares
    change of the coordinates not in `fixed`, then the least-squares change of v that gives
-   Cdot = 0. 0 when max |C| reaches tol, 1 when it does not in 50 iterations, 2 when singular. */
-static int lg_project(Instance* c, double t, double* q, double* v, const int* fixed, double tol) {
+   Cdot = 0, of y = (q, v) in place. 0 when max |C| reaches tol; 1 when it does not (in 50
+   iterations, or for want of descent: q is then the best found, v still projected); 2 when
+   singular. */
+static int lg_project(Instance* c, double t, double* y, const int* fixed, double tol) {
+  double* q = y;
+  double* v = y + LAGRANGE_NQ;
   const double* out = c->tape_out;
   double* J = c->proj_J;
   double* r = c->proj_r;
   double* d = c->proj_d;
-  int it, e, i, halvings;
-  lg_eval_tape(c, t, q, v);
+  int it, e, i, halvings, status = 0;
+  lg_eval_tape(c, t, y);
   for (it = 0;; ++it) {
     double here, there, scale = 1.0;
     if (lg_max_abs(out + LG_OUT_C, LAGRANGE_M) <= tol) break;
-    if (it == 50) return 1;
+    if (it == 50) {
+      status = 1;
+      break;
+    }
     for (i = 0; i < LAGRANGE_M * LAGRANGE_NQ; ++i) J[i] = 0.0;
     for (e = 0; e < LG_NCQ; ++e)
       if (!fixed[lg_Cq_col[e]]) J[lg_Cq_row[e] * LAGRANGE_NQ + lg_Cq_col[e]] = out[LG_OUT_CQ + e];
@@ -69,13 +71,15 @@ static int lg_project(Instance* c, double t, double* q, double* v, const int* fi
     for (i = 0; i < LAGRANGE_NQ; ++i) c->proj_q[i] = q[i];
     for (halvings = 0; halvings <= 30; ++halvings, scale *= 0.5) {
       for (i = 0; i < LAGRANGE_NQ; ++i) q[i] = c->proj_q[i] + scale * d[i];
-      lg_eval_tape(c, t, q, v);
+      lg_eval_tape(c, t, y);
       there = lg_max_abs(out + LG_OUT_C, LAGRANGE_M);
       if (there < here) break; /* false for NaN: a step into a pole is halved */
     }
     if (halvings > 30) { /* no descent along the Gauss-Newton direction */
       for (i = 0; i < LAGRANGE_NQ; ++i) q[i] = c->proj_q[i];
-      return 1;
+      lg_eval_tape(c, t, y);
+      status = 1;
+      break;
     }
   }
   /* G v = -(Cdot - G v): the velocity change is the minimum-norm solution of G dv = -Cdot. */
@@ -86,7 +90,7 @@ static int lg_project(Instance* c, double t, double* q, double* v, const int* fi
   for (i = 0; i < LAGRANGE_M; ++i) r[i] = -out[LG_OUT_CDOT + i];
   if (lg_min_norm(c, J, LAGRANGE_N, r, d)) return 2;
   for (i = 0; i < LAGRANGE_N; ++i) v[i] += d[i];
-  return 0;
+  return status;
 }
 #endif
 
@@ -147,10 +151,10 @@ static int lg_after_step(Instance* c) {
 #if LAGRANGE_M > 0
   if (c->project) {
     const double allowed = c->atol > 1e-11 ? c->atol : 1e-11;
-    lg_eval_tape(c, c->t, c->y, c->y + LAGRANGE_NQ);
+    lg_eval_tape(c, c->t, c->y);
     if (lg_max_abs(c->tape_out + LG_OUT_C, LAGRANGE_M) > allowed ||
         lg_max_abs(c->tape_out + LG_OUT_CDOT, LAGRANGE_M) > allowed) {
-      if (lg_project(c, c->t, c->y, c->y + LAGRANGE_NQ, lg_none_fixed, 1e-13) == 2) {
+      if (lg_project(c, c->t, c->y, lg_none_fixed, 1e-13) == 2) {
         lg_log_error(c, "fmi2DoStep: the constraints are singular at t = %.17g", c->t);
         return -1;
       }

@@ -80,6 +80,16 @@ static void lg_current_inputs(Instance* c, double t, double* u) {
     }
 }
 
+/* The tapes' input vector [t, q, v, u, u_dot, u_ddot, p] at (t, y = (q, v)) into c->tape_in. */
+static void lg_pack_inputs(Instance* c, double t, const double* y) {
+  double* in = c->tape_in;
+  int i;
+  in[0] = t;
+  for (i = 0; i < LG_NX; ++i) in[1 + i] = y[i];
+  lg_current_inputs(c, t, in + 1 + LG_NX);
+  for (i = 0; i < LAGRANGE_NP; ++i) in[1 + LG_NX + 3 * LAGRANGE_K + i] = c->p[i];
+}
+
 enum { LG_RHS_OK, LG_RHS_SINGULAR, LG_RHS_NOT_FINITE };
 
 /* y' = (q_dot, a) and the multipliers at (t, y): the exported KKT solve (docs/theory.md §4.3). */
