@@ -84,7 +84,7 @@ std::string documentation(const fmu::Description& d, const std::string& equation
   return fmt::format(
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{0}</title></head><body>\n"
       "<h1>{0}</h1>\n<p>FMI 2.0 FMU exported by <code>lagrange export --fmu</code>. States: the "
-      "coordinates and their velocities. Co-Simulation integrates with Dormand&ndash;Prince 5(4) "
+      "coordinates and their velocities. Co-Simulation integrates with DOP853, as lagrange simulate does "
       "(tolerances fmu.rtol, fmu.atol) and projects onto the constraints after each step; Model "
       "Exchange gives the derivatives of the KKT solve with Baumgarte rate fmu.baumgarte_alpha. "
       "The equations are in <a href=\"equations.txt\">equations.txt</a>.</p>\n<pre>{1}</pre>\n"

@@ -99,10 +99,10 @@ std::string model_description(const CompiledModel& cm, const Description& d) {
                    "Baumgarte rate alpha of the constraint stabilisation (docs/theory.md §4.3)",
                    start(d.alpha));
   vars += variable("fmu.rtol", vr.rtol, kParameter,
-                   "relative tolerance of fmi2DoStep's Dormand-Prince 5(4) integrator",
+                   "relative tolerance of fmi2DoStep's DOP853 integrator",
                    start(d.rtol));
   vars += variable("fmu.atol", vr.atol, kParameter,
-                   "absolute tolerance of fmi2DoStep's Dormand-Prince 5(4) integrator",
+                   "absolute tolerance of fmi2DoStep's DOP853 integrator",
                    start(d.atol));
   for (size_t i = 0; i < cm.m + observed.size(); ++i) initial.push_back(vr.lambda + i + 1);
   initial.insert(initial.end(), derivatives.begin(), derivatives.end());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "integrate/dop853_coefficients.hpp"
 #include "io/fmu_layout.hpp"
 
 namespace lagrange::fmu {
@@ -59,6 +60,20 @@ std::string model_header(const CompiledModel& cm, const Description& d) {
   s += int_array("lg_external", external);
   s += double_array("lg_q0", cm.q0) + double_array("lg_v0", cm.v0) +
        double_array("lg_p0", cm.parameter_defaults);
+  // DOP853's coefficients from the engine's table (src/integrate/dop853_coefficients.cpp).
+  const integration::Dop853Coefficients& dop = integration::dop853();
+  s += "\n/* DOP853 (Hairer, Norsett, Wanner, Solving ODEs I, §II.10), stages 1-12. */\n";
+  s += double_array("lg_dop_c", {dop.main.c.begin(), dop.main.c.begin() + 12});
+  s += double_array("lg_dop_b", {dop.main.b.begin(), dop.main.b.begin() + 12});
+  s += double_array("lg_dop_e5", {dop.e5.begin(), dop.e5.begin() + 12});
+  s += double_array("lg_dop_e3", {dop.e3.begin(), dop.e3.begin() + 12});
+  s += "static const double lg_dop_a[12][12] = {\n";
+  for (size_t i = 0; i < 12; ++i) {
+    std::vector<double> row(dop.main.a[i]);
+    row.resize(12, 0.0);
+    s += fmt::format("    {{{:.17g}}},\n", fmt::join(row, ", "));
+  }
+  s += "};\n";
   s += "\n/* T, U, the model's outputs, then reaction scales and load coefficients. */\n";
   s += cm.observables.to_c("lagrange_observables", true);
   return s;

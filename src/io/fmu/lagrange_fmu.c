@@ -37,10 +37,12 @@ typedef struct {
   int is_held[LG_MAX1(LAGRANGE_K)];
   double alpha, rtol, atol;
   int project;
-  double h; /* the integrator's next step */
+  double h;        /* the integrator's next step */
+  double err_prev; /* its last accepted error (the PI control's memory) */
+  int rejections;  /* rejected tries of the current step */
   /* Scratch. */
   double dy[LG_NX], lambda[LG_MAX1(LAGRANGE_M)], obs[LG_MAX1(LG_NOBS_ALL)];
-  double k[7][LG_NX], y_stage[LG_NX], y_error[LG_NX];
+  double k[12][LG_NX], y_stage[LG_NX], y_new[LG_NX];
   double tape_in[LG_NIN], tape_out[LAGRANGE_NOUT];
 #if LAGRANGE_M > 0
   double proj_J[LAGRANGE_M * (LAGRANGE_NQ > LAGRANGE_N ? LAGRANGE_NQ : LAGRANGE_N)];
@@ -106,5 +108,5 @@ static int lg_rhs(Instance* c, double t, const double* y, double* dy) {
 }
 
 #include "fmu_constraints.c"
-#include "fmu_dopri5.c"
+#include "fmu_dop853.c"
 #include "fmu_fmi2.c"
