@@ -70,14 +70,14 @@ void export_manipulator_c(const Equations& eq, const std::string& dir);
 
 /// What `export --fmu` takes from the model besides its compiled form (docs/fmu.md).
 struct FmuOptions {
-  std::string fmi_type = "both";  ///< cs | me | both: the interfaces the FMU offers
-  std::string model_name;         ///< modelName; its C identifier is the modelIdentifier
+  std::string fmi_type = "both";     ///< cs | me | both: the interfaces the FMU offers
+  std::string model_name;            ///< modelName; its C identifier is the modelIdentifier
   double alpha = kDefaultBaumgarte;  ///< Baumgarte rate (the FMU parameter fmu.baumgarte_alpha)
   bool project = true;  ///< Co-Simulation keeps the constraints and rotations by projection
-  double rtol = 1e-8, atol = 1e-10;  ///< fmi2DoStep's tolerances (fmu.rtol, fmu.atol)
+  double rtol = 1e-8, atol = 1e-10;         ///< fmi2DoStep's tolerances (fmu.rtol, fmu.atol)
   double t_end = 10.0, output_step = 0.01;  ///< the DefaultExperiment
-  std::string equations;  ///< documentation/equations.txt (derive's text)
-  std::string compiler;   ///< empty: $LAGRANGE_CC, $CC or cc (lagrange/machine_code.hpp)
+  std::string equations;                    ///< documentation/equations.txt (derive's text)
+  std::string compiler;  ///< empty: $LAGRANGE_CC, $CC or cc (lagrange/machine_code.hpp)
 };
 
 /// FmuOptions from a model file's settings: its name, `stabilization:` (α when set, else

@@ -172,10 +172,9 @@ int run_export(const Options& opt) {
   const auto cm = compile(eq);
   if (!opt.c_dir.empty()) {
     export_c(*cm, opt.c_dir);
-    fmt::print(
-        "wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions, {2})\n",
-        opt.c_dir, cm->dynamics.num_instructions(),
-        form == Formulation::Recursive ? "recursive" : "lagrangian");
+    fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions, {2})\n",
+               opt.c_dir, cm->dynamics.num_instructions(),
+               form == Formulation::Recursive ? "recursive" : "lagrangian");
   }
   if (!opt.fmu.empty()) write_fmu(model, eq, *cm, opt);
   return 0;

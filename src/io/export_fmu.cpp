@@ -59,7 +59,8 @@ struct ScratchDir {
 std::string read_binary(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw std::runtime_error("export --fmu: cannot read " + path.string());
+  if (!in.good() && !in.eof())
+    throw std::runtime_error("export --fmu: cannot read " + path.string());
   return bytes;
 }
 
@@ -76,7 +77,8 @@ std::vector<double> input_starts(const CompiledModel& cm) {
 
 std::string html_escape(const std::string& s) {
   std::string out;
-  for (char ch : s) out += ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : ch == '&' ? "&amp;" : std::string(1, ch);
+  for (char ch : s)
+    out += ch == '<' ? "&lt;" : ch == '>' ? "&gt;" : ch == '&' ? "&amp;" : std::string(1, ch);
   return out;
 }
 
@@ -84,7 +86,8 @@ std::string documentation(const fmu::Description& d, const std::string& equation
   return fmt::format(
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{0}</title></head><body>\n"
       "<h1>{0}</h1>\n<p>FMI 2.0 FMU exported by <code>lagrange export --fmu</code>. States: the "
-      "coordinates and their velocities. Co-Simulation integrates with DOP853, as lagrange simulate does "
+      "coordinates and their velocities. Co-Simulation integrates with DOP853, as lagrange "
+      "simulate does "
       "(tolerances fmu.rtol, fmu.atol) and projects onto the constraints after each step; Model "
       "Exchange gives the derivatives of the KKT solve with Baumgarte rate fmu.baumgarte_alpha. "
       "The equations are in <a href=\"equations.txt\">equations.txt</a>.</p>\n<pre>{1}</pre>\n"
@@ -134,7 +137,8 @@ void export_fmu(const CompiledModel& cm, const FmuOptions& o, const std::string&
       {"lagrange_model.c", read_binary(sources / "lagrange_model.c")},
       {"lagrange_fmu_model.h", fmu::model_header(cm, d)}};
   for (const fmu::File& f : fmu::files()) source_files.emplace_back(f.name, f.text);
-  for (const auto& [name, text] : source_files) std::ofstream(sources / name, std::ios::binary) << text;
+  for (const auto& [name, text] : source_files)
+    std::ofstream(sources / name, std::ios::binary) << text;
 
   const fs::path so = scratch.path / (d.identifier + ".so");
   try {

@@ -14,11 +14,20 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char ch : s) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -33,7 +42,9 @@ std::string variable(const std::string& name, size_t vr, const std::string& attr
       xml_escape(name), vr, attributes, xml_escape(description), real);
 }
 
-std::string start(double value) { return fmt::format(" start=\"{:.17g}\"", value); }
+std::string start(double value) {
+  return fmt::format(" start=\"{:.17g}\"", value);
+}
 
 constexpr const char* kState = R"(causality="output" variability="continuous" initial="exact")";
 constexpr const char* kCalculated =
@@ -99,11 +110,9 @@ std::string model_description(const CompiledModel& cm, const Description& d) {
                    "Baumgarte rate alpha of the constraint stabilisation (docs/theory.md §4.3)",
                    start(d.alpha));
   vars += variable("fmu.rtol", vr.rtol, kParameter,
-                   "relative tolerance of fmi2DoStep's DOP853 integrator",
-                   start(d.rtol));
+                   "relative tolerance of fmi2DoStep's DOP853 integrator", start(d.rtol));
   vars += variable("fmu.atol", vr.atol, kParameter,
-                   "absolute tolerance of fmi2DoStep's DOP853 integrator",
-                   start(d.atol));
+                   "absolute tolerance of fmi2DoStep's DOP853 integrator", start(d.atol));
   for (size_t i = 0; i < cm.m + observed.size(); ++i) initial.push_back(vr.lambda + i + 1);
   initial.insert(initial.end(), derivatives.begin(), derivatives.end());
   std::sort(initial.begin(), initial.end());

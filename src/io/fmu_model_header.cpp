@@ -33,9 +33,10 @@ std::string model_header(const CompiledModel& cm, const Description& d) {
                    d.model_exchange ? 1 : 0, d.co_simulation ? 1 : 0);
   s += fmt::format("#define LG_NX {}\n#define LG_PLAIN {}\n#define LG_NROT {}\n", cm.nq + cm.nv,
                    cm.plain, cm.rotations.size());
-  s += fmt::format("#define LG_ALPHA {:.17g}\n#define LG_RTOL {:.17g}\n#define LG_ATOL {:.17g}\n"
-                   "#define LG_PROJECT {}\n",
-                   d.alpha, d.rtol, d.atol, d.project ? 1 : 0);
+  s += fmt::format(
+      "#define LG_ALPHA {:.17g}\n#define LG_RTOL {:.17g}\n#define LG_ATOL {:.17g}\n"
+      "#define LG_PROJECT {}\n",
+      d.alpha, d.rtol, d.atol, d.project ? 1 : 0);
   // Blocks of the dynamics tape's outputs (CompiledModel::dynamics).
   s += fmt::format(
       "#define LG_OUT_G {}\n#define LG_OUT_CDOT {}\n#define LG_OUT_C {}\n#define LG_OUT_CQ {}\n"
@@ -44,9 +45,10 @@ std::string model_header(const CompiledModel& cm, const Description& d) {
   s += fmt::format(
       "#define LG_VR_Q {}\n#define LG_VR_V {}\n#define LG_VR_DQ {}\n#define LG_VR_P {}\n"
       "#define LG_VR_U {}\n#define LG_VR_LAMBDA {}\n#define LG_VR_OBS {}\n#define LG_VR_ALPHA {}\n"
-      "#define LG_VR_RTOL {}\n#define LG_VR_ATOL {}\n#define LG_NOBS {}\n#define LG_NOBS_ALL {}\n\n",
-      vr.q, vr.v, vr.dq, vr.p, vr.u, vr.lambda, vr.obs, vr.alpha, vr.rtol, vr.atol,
-      vr.observables, cm.observables.num_outputs());
+      "#define LG_VR_RTOL {}\n#define LG_VR_ATOL {}\n#define LG_NOBS {}\n#define LG_NOBS_ALL "
+      "{}\n\n",
+      vr.q, vr.v, vr.dq, vr.p, vr.u, vr.lambda, vr.obs, vr.alpha, vr.rtol, vr.atol, vr.observables,
+      cm.observables.num_outputs());
   // Tables lagrange_fmu.c reads only for constrained models or free bodies are left out of the
   // others (an unused static array is a warning in C).
   std::vector<size_t> rows, cols, fixed, external;

@@ -65,13 +65,13 @@ std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& e
     archive += common;
     put16(archive, 0);  // extra field length
     archive += name + content;
-    put32(directory, 0x02014b50);  // central directory header
+    put32(directory, 0x02014b50);     // central directory header
     put16(directory, (3 << 8) | 20);  // made by Unix, version 2.0
     directory += common;
-    put16(directory, 0);  // extra field length
-    put16(directory, 0);  // comment length
-    put16(directory, 0);  // disk number
-    put16(directory, 0);  // internal attributes
+    put16(directory, 0);                                     // extra field length
+    put16(directory, 0);                                     // comment length
+    put16(directory, 0);                                     // disk number
+    put16(directory, 0);                                     // internal attributes
     put32(directory, static_cast<uint32_t>(0100644) << 16);  // external: -rw-r--r--
     put32(directory, static_cast<uint32_t>(offset));
     directory += name;

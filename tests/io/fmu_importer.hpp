@@ -58,8 +58,9 @@ class FmuImporter {
       order.push_back(v->Attribute("name"));
     }
     for (const char* list : {"Outputs", "Derivatives", "InitialUnknowns"})
-      for (const tinyxml2::XMLElement* u =
-               root->FirstChildElement("ModelStructure")->FirstChildElement(list)->FirstChildElement("Unknown");
+      for (const tinyxml2::XMLElement* u = root->FirstChildElement("ModelStructure")
+                                               ->FirstChildElement(list)
+                                               ->FirstChildElement("Unknown");
            u; u = u->NextSiblingElement("Unknown"))
         structure[list].push_back(u->UnsignedAttribute("index"));
     library = (dir / "binaries" / "linux64" / (identifier + ".so")).string();

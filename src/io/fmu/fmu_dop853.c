@@ -109,14 +109,16 @@ static int lg_integrate(Instance* c, double t_end) {
       if (last) h = t_end - c->t;
       if (++steps > LG_MAX_STEPS || !(h > 16.0 * 2.220446049250313e-16 * fabs(c->t)) ||
           !(h > 0.0)) {
-        lg_log_error(c, "fmi2DoStep: at t = %.17g the step size fell to %.3g (%ld steps)", c->t,
-                     h, steps);
+        lg_log_error(c, "fmi2DoStep: at t = %.17g the step size fell to %.3g (%ld steps)", c->t, h,
+                     steps);
         return -1;
       }
       rc = lg_stages(c, h);
       if (rc == LG_RHS_SINGULAR) {
-        lg_log_error(c, "fmi2DoStep: the mass matrix or the constraints are singular near t = "
-                        "%.17g", c->t);
+        lg_log_error(c,
+                     "fmi2DoStep: the mass matrix or the constraints are singular near t = "
+                     "%.17g",
+                     c->t);
         return -1;
       }
       err = rc == LG_RHS_OK ? lg_error(c, h) : HUGE_VAL;
@@ -142,7 +144,7 @@ static int lg_integrate(Instance* c, double t_end) {
       }
       ++c->rejections;
       h /= (grow / LG_SAFETY < 1.0 / LG_SMALLEST_FACTOR ? grow / LG_SAFETY
-                                                         : 1.0 / LG_SMALLEST_FACTOR);
+                                                        : 1.0 / LG_SMALLEST_FACTOR);
     }
   }
   return 0;

@@ -1,19 +1,20 @@
 /* Part of the FMU that `lagrange export --fmu` writes (docs/fmu.md): the FMI 2.0 functions.
    Included by lagrange_fmu.c. Value references are laid out in lagrange_fmu_model.h (LG_VR_*). */
 
-#define LG_NOT_FAILED(c, fn)                                                         \
-  do {                                                                               \
-    if (!(c)) return fmi2Error;                                                      \
-    if ((c)->phase == LG_FAILED) {                                                   \
+#define LG_NOT_FAILED(c, fn)                                                                   \
+  do {                                                                                         \
+    if (!(c)) return fmi2Error;                                                                \
+    if ((c)->phase == LG_FAILED) {                                                             \
       lg_log_error((c), "%s: an earlier call failed; call fmi2Reset or fmi2FreeInstance", fn); \
-      return fmi2Error;                                                              \
-    }                                                                                \
+      return fmi2Error;                                                                        \
+    }                                                                                          \
   } while (0)
 
 /* 1 when the instance is in one of the phases in `allowed` (a bit mask), else an error. */
 static int lg_in_phase(Instance* c, int allowed, const char* fn) {
-  static const char* names[] = {"instantiated", "initialization mode", "event mode",
-                                "continuous-time mode", "step mode", "terminated", "failed"};
+  static const char* names[] = {
+      "instantiated", "initialization mode", "event mode", "continuous-time mode",
+      "step mode",    "terminated",          "failed"};
   if (allowed & (1 << c->phase)) return 1;
   lg_log_error(c, "%s: not allowed in %s", fn, names[c->phase]);
   return 0;
@@ -36,12 +37,16 @@ static void lg_defaults(Instance* c) {
   c->h = 0.0;
 }
 
-const char* fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
-const char* fmi2GetVersion(void) { return fmi2Version; }
+const char* fmi2GetTypesPlatform(void) {
+  return fmi2TypesPlatform;
+}
+const char* fmi2GetVersion(void) {
+  return fmi2Version;
+}
 
-fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
-                              fmi2String resources, const fmi2CallbackFunctions* functions,
-                              fmi2Boolean visible, fmi2Boolean logging) {
+fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid, fmi2String resources,
+                              const fmi2CallbackFunctions* functions, fmi2Boolean visible,
+                              fmi2Boolean logging) {
   Instance* c;
   (void)resources;
   (void)visible;
@@ -143,8 +148,9 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component comp) {
 #endif
   (void)rc;
   if (lg_rhs(c, c->t, c->y, c->dy) != LG_RHS_OK) {
-    lg_log_error(c, "fmi2ExitInitializationMode: the dynamics cannot be evaluated at the initial "
-                    "state (singular mass matrix or constraints, or values not finite)");
+    lg_log_error(c,
+                 "fmi2ExitInitializationMode: the dynamics cannot be evaluated at the initial "
+                 "state (singular mass matrix or constraints, or values not finite)");
     return fmi2Error;
   }
   c->phase = c->type == fmi2ModelExchange ? LG_EVENT : LG_STEPPING;
@@ -209,9 +215,10 @@ fmi2Status fmi2GetReal(fmi2Component comp, const fmi2ValueReference vr[], size_t
   for (i = 0; i < n; ++i) {
     const int rc = lg_get(c, vr[i], &value[i]);
     if (rc) {
-      lg_log_error(c, rc == 1 ? "fmi2GetReal: no Real variable has value reference %u"
-                              : "fmi2GetReal: the mass matrix or the constraints are singular "
-                                "(value reference %u)",
+      lg_log_error(c,
+                   rc == 1 ? "fmi2GetReal: no Real variable has value reference %u"
+                           : "fmi2GetReal: the mass matrix or the constraints are singular "
+                             "(value reference %u)",
                    vr[i]);
       return fmi2Error;
     }
@@ -356,8 +363,7 @@ fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], 
   (void)s, (void)b, (void)n;
   return lg_unsupported(c, "fmi2SerializeFMUstate");
 }
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n,
-                                   fmi2FMUstate* s) {
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate* s) {
   (void)s, (void)b, (void)n;
   return lg_unsupported(c, "fmi2DeSerializeFMUstate");
 }
@@ -377,7 +383,9 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
   (void)vr, (void)n, (void)order, (void)value;
   return lg_unsupported(c, "fmi2GetRealOutputDerivatives");
 }
-fmi2Status fmi2CancelStep(fmi2Component c) { return lg_unsupported(c, "fmi2CancelStep"); }
+fmi2Status fmi2CancelStep(fmi2Component c) {
+  return lg_unsupported(c, "fmi2CancelStep");
+}
 
 /* ---- Model Exchange ---- */
 
@@ -505,8 +513,10 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real now, fmi2Real h, fmi2Boolean 
   LG_NOT_FAILED(c, "fmi2DoStep");
   if (!lg_in_phase(c, LG_BIT(LG_STEPPING), "fmi2DoStep")) return fmi2Error;
   if (!(h >= 0.0) || !isfinite(now) || fabs(now - c->t) > 1e-9 * (1.0 + fabs(c->t))) {
-    lg_log_error(c, "fmi2DoStep: expected the communication point %.17g and a step >= 0, got %.17g "
-                    "and %g", c->t, now, h);
+    lg_log_error(c,
+                 "fmi2DoStep: expected the communication point %.17g and a step >= 0, got %.17g "
+                 "and %g",
+                 c->t, now, h);
     return fmi2Error;
   }
   c->t = now;

@@ -10,15 +10,22 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
-#include "lagrange_model.c"
 #include "lagrange_fmu_model.h"
+#include "lagrange_model.c"
 
 #define LG_MAX1(n) ((n) > 0 ? (n) : 1)
 #define LG_NIN (1 + LAGRANGE_NQ + LAGRANGE_N + 3 * LAGRANGE_K + LAGRANGE_NP)
 
 /* Where an instance is in the FMI 2.0 state machine (FMI 2.0 §4.2.4 and §3.2.3). */
-enum { LG_INSTANTIATED, LG_INITIALIZATION, LG_EVENT, LG_CONTINUOUS, LG_STEPPING, LG_TERMINATED,
-       LG_FAILED };
+enum {
+  LG_INSTANTIATED,
+  LG_INITIALIZATION,
+  LG_EVENT,
+  LG_CONTINUOUS,
+  LG_STEPPING,
+  LG_TERMINATED,
+  LG_FAILED
+};
 
 typedef struct {
   /* The importer's callbacks and names (copied: fmi2CallbackFunctions has const members). */
@@ -99,8 +106,7 @@ static int lg_rhs(Instance* c, double t, const double* y, double* dy) {
   double u[LG_MAX1(3 * LAGRANGE_K)];
   int i;
   lg_current_inputs(c, t, u);
-  if (lagrange_dynamics(t, y, y + LAGRANGE_NQ, u, c->p, c->alpha, dy, dy + LAGRANGE_NQ,
-                        c->lambda))
+  if (lagrange_dynamics(t, y, y + LAGRANGE_NQ, u, c->p, c->alpha, dy, dy + LAGRANGE_NQ, c->lambda))
     return LG_RHS_SINGULAR;
   for (i = 0; i < LG_NX; ++i)
     if (!isfinite(dy[i])) return LG_RHS_NOT_FINITE;
