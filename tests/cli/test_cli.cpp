@@ -268,7 +268,8 @@ constraints: {rod: (x^2 + y^2 - l^2)/2}
 // `export --fmu` (docs/fmu.md): an FMU with the description and the binary in it, `--c` beside
 // it; usage mistakes exit 2 with the reason and write nothing.
 TEST(Cli, ExportFmu) {
-  const fs::path fmu = scratch("pendulum.fmu"), c_dir = scratch("pendulum_c");
+  const fs::path fmu = scratch("pendulum.fmu"), c_dir = fmu.parent_path() / "pendulum_c";
+  fs::remove_all(c_dir);
   const Result ok = run("export " + example("pendulum.yaml") + " --fmu " + fmu.string() +
                         " --fmi-type cs --c " + c_dir.string());
   ASSERT_EQ(ok.code, 0) << ok.output;

@@ -272,6 +272,15 @@ TEST(ExportFmu, MisuseIsAnErrorWithAMessage) {
   EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a fixed parameter after initialisation
   EXPECT_EQ(f.do_step(c2, 0.0, 0.1, fmi2True), fmi2Error);
   f.free_instance(c2);
+  // A massless bob: M = 0 is singular, which initialisation reports instead of dividing by it.
+  fmi2Component c3 = f.make(fmi2CoSimulation, log);
+  ASSERT_EQ(f.set(c3, "m", 0.0), fmi2OK);
+  ASSERT_EQ(f.enter_init(c3), fmi2OK);
+  EXPECT_EQ(f.exit_init(c3), fmi2Error);
+  EXPECT_NE(log.messages.back().find("singular mass matrix"), std::string::npos)
+      << log.messages.back();
+  EXPECT_EQ(f.do_step(c3, 0.0, 0.1, fmi2True), fmi2Error);
+  f.free_instance(c3);
 }
 
 // Two instances in one process, stepped in turn, give what each gives alone; fmi2GetFMUstate and

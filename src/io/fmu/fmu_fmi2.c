@@ -23,6 +23,15 @@ static int lg_in_phase(Instance* c, int allowed, const char* fn) {
 #define LG_SETUP (LG_BIT(LG_INSTANTIATED) | LG_BIT(LG_INITIALIZATION))
 #define LG_RUNNING (LG_BIT(LG_EVENT) | LG_BIT(LG_CONTINUOUS) | LG_BIT(LG_STEPPING))
 
+/* Moves the instance from one of the phases in `from` (a bit mask) to `to`; an error otherwise. */
+static fmi2Status lg_transition(fmi2Component comp, int from, int to, const char* fn) {
+  Instance* c = (Instance*)comp;
+  LG_NOT_FAILED(c, fn);
+  if (!lg_in_phase(c, from, fn)) return fmi2Error;
+  c->phase = to;
+  return fmi2OK;
+}
+
 static void lg_defaults(Instance* c) {
   int i;
   c->t = 0.0;
@@ -112,12 +121,9 @@ fmi2Status fmi2SetupExperiment(fmi2Component comp, fmi2Boolean tolerance_defined
   return fmi2OK;
 }
 
-fmi2Status fmi2EnterInitializationMode(fmi2Component comp) {
-  Instance* c = (Instance*)comp;
-  LG_NOT_FAILED(c, "fmi2EnterInitializationMode");
-  if (!lg_in_phase(c, LG_BIT(LG_INSTANTIATED), "fmi2EnterInitializationMode")) return fmi2Error;
-  c->phase = LG_INITIALIZATION;
-  return fmi2OK;
+fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
+  return lg_transition(c, LG_BIT(LG_INSTANTIATED), LG_INITIALIZATION,
+                       "fmi2EnterInitializationMode");
 }
 
 /* The initial state made consistent as `lagrange simulate` makes it (docs/theory.md §4.3):
@@ -389,13 +395,8 @@ fmi2Status fmi2CancelStep(fmi2Component c) {
 
 /* ---- Model Exchange ---- */
 
-fmi2Status fmi2EnterEventMode(fmi2Component comp) {
-  Instance* c = (Instance*)comp;
-  LG_NOT_FAILED(c, "fmi2EnterEventMode");
-  if (!lg_in_phase(c, LG_BIT(LG_EVENT) | LG_BIT(LG_CONTINUOUS), "fmi2EnterEventMode"))
-    return fmi2Error;
-  c->phase = LG_EVENT;
-  return fmi2OK;
+fmi2Status fmi2EnterEventMode(fmi2Component c) {
+  return lg_transition(c, LG_BIT(LG_EVENT) | LG_BIT(LG_CONTINUOUS), LG_EVENT, "fmi2EnterEventMode");
 }
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component comp, fmi2EventInfo* info) {
@@ -411,12 +412,8 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component comp, fmi2EventInfo* info) {
   return fmi2OK;
 }
 
-fmi2Status fmi2EnterContinuousTimeMode(fmi2Component comp) {
-  Instance* c = (Instance*)comp;
-  LG_NOT_FAILED(c, "fmi2EnterContinuousTimeMode");
-  if (!lg_in_phase(c, LG_BIT(LG_EVENT), "fmi2EnterContinuousTimeMode")) return fmi2Error;
-  c->phase = LG_CONTINUOUS;
-  return fmi2OK;
+fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) {
+  return lg_transition(c, LG_BIT(LG_EVENT), LG_CONTINUOUS, "fmi2EnterContinuousTimeMode");
 }
 
 fmi2Status fmi2CompletedIntegratorStep(fmi2Component comp, fmi2Boolean no_set_prior,
