@@ -3,6 +3,8 @@
 // modelDescription.xml and the generated C (lagrange_fmu_model.h), so the two cannot disagree.
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "lagrange/compiled_model.hpp"
 
@@ -11,7 +13,7 @@ namespace lagrange::fmu {
 /// Consecutive blocks: q, v, q̇, a, parameters, inputs, multipliers λ, observables (kinetic,
 /// potential, energy, the model's outputs), then the FMU's own Baumgarte α, rtol and atol.
 struct Layout {
-  size_t q = 0, v, dq, a, p, u, lambda, obs, alpha, rtol, atol, count;
+  size_t q = 0, v, dq, a, p, u, lambda, obs, alpha, rtol, atol;
   size_t observables;  ///< 3 + the model's outputs
   explicit Layout(const CompiledModel& cm)
       : v(cm.nq),
@@ -24,7 +26,6 @@ struct Layout {
         alpha(obs + 3 + cm.output_names.size()),
         rtol(alpha + 1),
         atol(rtol + 1),
-        count(atol + 1),
         observables(3 + cm.output_names.size()) {}
 };
 
