@@ -12,6 +12,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib
   libopenmpi-dev openmpi-bin python3-distributed
   chromium
+  unzip  # the FMU tests unzip exported FMUs with Info-ZIP, a reader we did not write
 )
 # node and npm build the report front-end; any install of them will do (Debian's when absent).
 command -v node >/dev/null 2>&1 || packages+=(nodejs)

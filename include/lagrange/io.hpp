@@ -68,6 +68,28 @@ void export_c_jacobian(const DynamicsJacobian& jac, const std::string& dir);
 /// constrained model, free bodies, or D, C q̇, g depending on t or inputs.
 void export_manipulator_c(const Equations& eq, const std::string& dir);
 
+/// What `export --fmu` takes from the model besides its compiled form (docs/fmu.md).
+struct FmuOptions {
+  std::string fmi_type = "both";     ///< cs | me | both: the interfaces the FMU offers
+  std::string model_name;            ///< modelName; its C identifier is the modelIdentifier
+  double alpha = kDefaultBaumgarte;  ///< Baumgarte rate (the FMU parameter fmu.baumgarte_alpha)
+  bool project = true;  ///< Co-Simulation keeps the constraints and rotations by projection
+  double rtol = 1e-8, atol = 1e-10;         ///< fmi2DoStep's tolerances (fmu.rtol, fmu.atol)
+  double t_end = 10.0, output_step = 0.01;  ///< the DefaultExperiment
+  std::string equations;                    ///< documentation/equations.txt (derive's text)
+  std::string compiler;  ///< empty: $LAGRANGE_CC, $CC or cc (lagrange/machine_code.hpp)
+};
+
+/// FmuOptions from a model file's settings: its name, `stabilization:` (α when set, else
+/// kDefaultBaumgarte; projection) and `simulate:` (rtol, atol, t_end, output_step).
+FmuOptions fmu_options(const Model& model);
+
+/// An FMI 2.0 FMU at `path` (docs/fmu.md): modelDescription.xml, sources/ (export_c's C, the
+/// FMU's C and the FMI headers), binaries/linux64/<id>.so compiled now by the system C compiler,
+/// documentation/. std::invalid_argument for a bad fmi_type, std::runtime_error naming the cause
+/// when the compiler fails; nothing is written at `path` then.
+void export_fmu(const CompiledModel& model, const FmuOptions& options, const std::string& path);
+
 /// Creates the directories above `path` that do not exist yet (std::runtime_error naming the
 /// directory when that fails).
 void create_parent_directories(const std::string& path);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "cli/initial_state.hpp"
@@ -23,6 +24,8 @@
 #include "lagrange/sweep.hpp"
 
 namespace lagrange::cli {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -101,7 +104,42 @@ int run_derive(const Options& opt) {
   return 0;
 }
 
+namespace {
+
+// export --fmu: the forward dynamics of `eq` as an FMI 2.0 FMU (docs/fmu.md).
+void write_fmu(const Model& model, const Equations& eq, const CompiledModel& cm,
+               const Options& opt) {
+  FmuOptions fo = fmu_options(model);
+  fo.fmi_type = opt.fmi_type;
+  fo.equations = eq.recursive ? format_recursive(eq, "text") : format_equations(eq, "text");
+  export_fmu(cm, fo, opt.fmu);
+  fmt::print("wrote {} (FMI 2.0 {}, {} states, {} parameters, {} inputs)\n", opt.fmu,
+             opt.fmi_type == "both" ? "Co-Simulation and Model Exchange"
+             : opt.fmi_type == "cs" ? "Co-Simulation"
+                                    : "Model Exchange",
+             cm.nq + cm.nv, cm.np, cm.k);
+}
+
+// The usage errors of export's outputs, before any work.
+void check_export_outputs(const Options& opt) {
+  if (opt.c_dir.empty() && opt.fmu.empty())
+    throw UsageError("export: give --c DIR (C source), --fmu FILE.fmu (an FMU), or both");
+  if (opt.fmu.empty() && opt.fmi_type != "both")
+    throw UsageError("--fmi-type chooses the interfaces of --fmu; give --fmu FILE.fmu too");
+  if (opt.fmu.empty()) return;
+  if (opt.form == "manipulator" || opt.jacobian)
+    throw UsageError(fmt::format("--fmu exports the forward dynamics; drop {}",
+                                 opt.jacobian ? "--jacobian" : "--form manipulator"));
+  if (fs::path(opt.fmu).extension() != ".fmu")
+    throw UsageError(fmt::format("--fmu {}: expected a file name ending in .fmu", opt.fmu));
+  if (!opt.c_dir.empty() && fs::path(opt.c_dir) == fs::path(opt.fmu))
+    throw UsageError("--c and --fmu name the same path");
+}
+
+}  // namespace
+
 int run_export(const Options& opt) {
+  check_export_outputs(opt);
   const Model model = read_model_file(opt.model);
   if (opt.form == "manipulator") {
     if (opt.dynamics == "recursive")
@@ -130,11 +168,15 @@ int run_export(const Options& opt) {
     return 0;
   }
   const Formulation form = formulation(model, opt.dynamics);
-  const auto cm = compile(derive(model, form));
-  export_c(*cm, opt.c_dir);
-  fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions, {2})\n",
-             opt.c_dir, cm->dynamics.num_instructions(),
-             form == Formulation::Recursive ? "recursive" : "lagrangian");
+  const Equations eq = derive(model, form);
+  const auto cm = compile(eq);
+  if (!opt.c_dir.empty()) {
+    export_c(*cm, opt.c_dir);
+    fmt::print("wrote {0}/lagrange_model.h and {0}/lagrange_model.c ({1} tape instructions, {2})\n",
+               opt.c_dir, cm->dynamics.num_instructions(),
+               form == Formulation::Recursive ? "recursive" : "lagrangian");
+  }
+  if (!opt.fmu.empty()) write_fmu(model, eq, *cm, opt);
   return 0;
 }
 

@@ -27,8 +27,10 @@ struct Options {
   std::string dynamics =
       "auto";  ///< simulate, export, check --dynamics: auto | lagrangian | recursive
   std::string csv, plot, c_dir;
-  std::string report;      ///< simulate --report, report -o: the HTML report to write
-  std::string trajectory;  ///< report: the saved trajectory CSV
+  std::string fmu;                ///< export --fmu: the FMU file to write
+  std::string fmi_type = "both";  ///< export --fmi-type: cs | me | both
+  std::string report;             ///< simulate --report, report -o: the HTML report to write
+  std::string trajectory;         ///< report: the saved trajectory CSV
   std::vector<std::string> plot_columns, sets;
   std::vector<std::string> initial;    ///< --initial NAME=VALUE (coordinates, NAME_dot rates)
   std::vector<std::string> tau;        ///< eval --tau NAME=VALUE (joint forces)

@@ -78,7 +78,13 @@ int main(int argc, char** argv) {
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");
   exp->add_option("model", opt.model, "model file (YAML)")->required();
-  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->required();
+  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c");
+  exp->add_option("--fmu", opt.fmu,
+                  "FMI 2.0 FMU to write (FILE.fmu): the C of --c, an integrator, "
+                  "modelDescription.xml and a linux64 binary built with cc (docs/fmu.md)");
+  exp->add_option("--fmi-type", opt.fmi_type,
+                  "both (default): Co-Simulation and Model Exchange | cs | me")
+      ->check(CLI::IsMember({"cs", "me", "both"}));
   exp->add_option("--form", opt.form,
                   "lagrange (default): forward dynamics | manipulator: D, C q_dot, g, inverse "
                   "and forward dynamics")

@@ -13,11 +13,8 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <signal.h>
-#include <spawn.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -27,11 +24,9 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
-#include <thread>
 
+#include "compile/c_compiler.hpp"
 #include "compile/sha256.hpp"
-
-extern char** environ;
 
 namespace lagrange {
 
@@ -57,25 +52,6 @@ std::string cache_directory(const MachineCodeOptions& options) {
   if (std::string d = env("XDG_CACHE_HOME"); !d.empty()) return d + "/lagrange";
   if (std::string d = env("HOME"); !d.empty()) return d + "/.cache/lagrange";
   throw MachineCodeError("no cache directory: set LAGRANGE_CACHE_DIR (HOME is not set)");
-}
-
-/// The compiler's full path: as given when it names a path, else the first match on PATH.
-std::string resolve_compiler(const MachineCodeOptions& options) {
-  std::string name = options.compiler;
-  if (name.empty()) name = env("LAGRANGE_CC");
-  if (name.empty()) name = env("CC");
-  if (name.empty()) name = "cc";
-  if (name.find('/') != std::string::npos) {
-    if (::access(name.c_str(), X_OK) == 0) return name;
-    throw MachineCodeError(fmt::format("the C compiler '{}' is not an executable file", name));
-  }
-  std::stringstream path(env("PATH"));
-  for (std::string dir; std::getline(path, dir, ':');) {
-    const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
-  }
-  throw MachineCodeError(
-      fmt::format("no C compiler: '{}' is not on PATH (install one, or set LAGRANGE_CC)", name));
 }
 
 /// 64-bit FNV-1a, folded over several strings.
@@ -119,7 +95,7 @@ Plan plan(const std::vector<const Tape*>& tapes, const MachineCodeOptions& optio
     p.source += options.constants_at.empty()
                     ? tapes[i]->to_native_c(function_name(i))
                     : tapes[i]->to_shared_c(function_name(i), options.constants_at[i]);
-  p.compiler = resolve_compiler(options);
+  p.compiler = resolve_c_compiler(options.compiler);
   p.dir = cache_directory(options);
   struct stat st {};
   if (::stat(p.compiler.c_str(), &st) != 0)
@@ -178,56 +154,12 @@ void write_file(const std::string& path, const std::string& text) {
   }
 }
 
-/// The first lines of a compiler log, for the error message.
-std::string log_head(const std::string& path) {
-  std::ifstream in(path);
-  std::string text, line;
-  for (int n = 0; n < 6 && std::getline(in, line); ++n) text += "\n  " + line;
-  return text;
-}
-
-/// Runs the compiler on `c_file` into `so_file`, its output going to `log_file`. Polls the
-/// cancel flag every 10 ms and kills the compiler when it is set.
+/// Runs the compiler with kFlags on `c_file` into `so_file`, its output going to `log_file`.
 void run_compiler(const Plan& p, const std::string& c_file, const std::string& so_file,
                   const std::string& log_file, const std::atomic<bool>* cancel) {
-  std::vector<std::string> args{p.compiler};
-  for (const char* f : kFlags) args.emplace_back(f);
+  std::vector<std::string> args(std::begin(kFlags), std::end(kFlags));
   args.insert(args.end(), {"-o", so_file, c_file, "-lm"});
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0600);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, p.compiler.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0)
-    throw MachineCodeError(
-        fmt::format("cannot start the C compiler '{}': {}", p.compiler, std::strerror(rc)));
-  int status = 0;
-  for (;;) {
-    const pid_t w = ::waitpid(pid, &status, WNOHANG);
-    if (w == pid) break;
-    if (w < 0 && errno != EINTR)
-      throw MachineCodeError(fmt::format("lost the C compiler: {}", std::strerror(errno)));
-    if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) {
-      ::kill(pid, SIGKILL);
-      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      throw MachineCodeError("compilation cancelled");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw MachineCodeError(fmt::format("the C compiler '{}' failed ({}):{}", p.compiler,
-                                       WIFEXITED(status)
-                                           ? fmt::format("exit {}", WEXITSTATUS(status))
-                                           : fmt::format("signal {}", WTERMSIG(status)),
-                                       log_head(log_file)));
+  run_c_compiler(p.compiler, args, log_file, cancel);
 }
 
 }  // namespace

@@ -18,9 +18,9 @@ struct ShellResult {
   std::string output;
 };
 
-/// Runs `lagrange` (LAGRANGE_BINARY) with `args`, a shell-quoted argument string.
-inline ShellResult run_shell(const std::string& args) {
-  const std::string cmd = std::string(LAGRANGE_BINARY) + " " + args + " 2>&1";
+/// Runs the shell command `command`, stdout and stderr together.
+inline ShellResult run_shell_command(const std::string& command) {
+  const std::string cmd = command + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf{};
@@ -28,6 +28,11 @@ inline ShellResult run_shell(const std::string& args) {
   while ((got = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), got);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// Runs `lagrange` (LAGRANGE_BINARY) with `args`, a shell-quoted argument string.
+inline ShellResult run_shell(const std::string& args) {
+  return run_shell_command(std::string(LAGRANGE_BINARY) + " " + args);
 }
 
 }  // namespace lagrange::testing

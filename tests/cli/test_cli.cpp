@@ -265,3 +265,31 @@ constraints: {rod: (x^2 + y^2 - l^2)/2}
 }
 
 }  // namespace
+
+// `export --fmu` (docs/fmu.md): an FMU with the description and the binary in it, `--c` beside
+// it; usage mistakes exit 2 with the reason and write nothing.
+TEST(Cli, ExportFmu) {
+  const fs::path fmu = scratch("pendulum.fmu"), c_dir = fmu.parent_path() / "pendulum_c";
+  fs::remove_all(c_dir);
+  const Result ok = run("export " + example("pendulum.yaml") + " --fmu " + fmu.string() +
+                        " --fmi-type cs --c " + c_dir.string());
+  ASSERT_EQ(ok.code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("FMI 2.0 Co-Simulation, 2 states"), std::string::npos) << ok.output;
+  EXPECT_TRUE(fs::exists(c_dir / "lagrange_model.c"));
+  const Result listing = lagrange::testing::run_shell_command("unzip -l " + fmu.string());
+  EXPECT_NE(listing.output.find("modelDescription.xml"), std::string::npos) << listing.output;
+  EXPECT_NE(listing.output.find("binaries/linux64/pendulum.so"), std::string::npos);
+  const fs::path bad = scratch("pendulum.zip");
+  const std::vector<std::pair<std::string, std::string>> mistakes{
+      {"", "give --c DIR"},
+      {" --fmu " + bad.string(), "ending in .fmu"},
+      {" --c " + c_dir.string() + " --fmi-type me", "give --fmu FILE.fmu too"},
+      {" --fmu " + fmu.string() + " --jacobian", "drop --jacobian"},
+      {" --fmu " + fmu.string() + " --fmi-type cosim", "--fmi-type"}};
+  for (const auto& [args, reason] : mistakes) {
+    const Result r = run("export " + example("pendulum.yaml") + args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(reason), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(bad));
+}

@@ -1,0 +1,102 @@
+// The system C compiler: found as MachineCodeOptions::compiler documents, run without a shell.
+
+#include "compile/c_compiler.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "lagrange/machine_code.hpp"
+
+extern char** environ;
+
+namespace lagrange {
+
+namespace {
+
+std::string env(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr ? std::string(v) : std::string();
+}
+
+/// The first lines of a compiler log, for the error message.
+std::string log_head(const std::string& path) {
+  std::ifstream in(path);
+  std::string text, line;
+  for (int n = 0; n < 6 && std::getline(in, line); ++n) text += "\n  " + line;
+  return text;
+}
+
+}  // namespace
+
+std::string resolve_c_compiler(const std::string& preferred) {
+  std::string name = preferred;
+  if (name.empty()) name = env("LAGRANGE_CC");
+  if (name.empty()) name = env("CC");
+  if (name.empty()) name = "cc";
+  if (name.find('/') != std::string::npos) {
+    if (::access(name.c_str(), X_OK) == 0) return name;
+    throw MachineCodeError(fmt::format("the C compiler '{}' is not an executable file", name));
+  }
+  std::stringstream path(env("PATH"));
+  for (std::string dir; std::getline(path, dir, ':');) {
+    const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  throw MachineCodeError(
+      fmt::format("no C compiler: '{}' is not on PATH (install one, or set LAGRANGE_CC)", name));
+}
+
+void run_c_compiler(const std::string& compiler, const std::vector<std::string>& arguments,
+                    const std::string& log_file, const std::atomic<bool>* cancel) {
+  std::vector<std::string> args{compiler};
+  args.insert(args.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0600);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, compiler.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0)
+    throw MachineCodeError(
+        fmt::format("cannot start the C compiler '{}': {}", compiler, std::strerror(rc)));
+  int status = 0;
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (w < 0 && errno != EINTR)
+      throw MachineCodeError(fmt::format("lost the C compiler: {}", std::strerror(errno)));
+    if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) {
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      throw MachineCodeError("compilation cancelled");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw MachineCodeError(fmt::format("the C compiler '{}' failed ({}):{}", compiler,
+                                       WIFEXITED(status)
+                                           ? fmt::format("exit {}", WEXITSTATUS(status))
+                                           : fmt::format("signal {}", WTERMSIG(status)),
+                                       log_head(log_file)));
+}
+
+}  // namespace lagrange

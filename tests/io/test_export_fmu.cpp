@@ -1,0 +1,369 @@
+// `export --fmu` (docs/fmu.md) driven by a small FMI 2.0 importer (fmu_importer.hpp): Co-Simulation
+// against `lagrange simulate`, closed forms and energy conservation; Model Exchange derivatives
+// against Dynamics::forward; parameters, inputs, misuse and the binary's dependencies.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "fmu_importer.hpp"
+#include "lagrange/io.hpp"
+#include "lagrange/reader.hpp"
+#include "support/harness.hpp"
+
+namespace lagrange {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FmuImporter;
+using testing::FmuLog;
+
+// A model, its FMU and the importer over it, made once per model and process, in a directory of
+// this process's own (ctest runs the tests as parallel processes) removed at exit.
+struct Exported {
+  testing::Loaded sys;
+  FmuOptions options;
+  fs::path dir;
+  std::unique_ptr<FmuImporter> fmu;
+  ~Exported() {
+    fmu.reset();  // dlclose before the binary's directory goes
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+  }
+};
+
+Exported& exported(const std::string& label, testing::Loaded (*load)()) {
+  static std::map<std::string, std::unique_ptr<Exported>> cache;
+  auto& slot = cache[label];
+  if (!slot) {
+    slot = std::make_unique<Exported>();
+    slot->sys = load();
+    slot->options = fmu_options(*slot->sys.model);
+    slot->options.equations = "(equations)";
+    slot->dir = fs::temp_directory_path() /
+                ("lagrange_fmu_test_" + label + "_" + std::to_string(::getpid()));
+    fs::remove_all(slot->dir);
+    fs::create_directories(slot->dir);
+    export_fmu(*slot->sys.compiled, slot->options, (slot->dir / "model.fmu").string());
+    slot->fmu = std::make_unique<FmuImporter>(slot->dir / "model.fmu", slot->dir / "unzipped");
+  }
+  return *slot;
+}
+
+Exported& pendulum() {
+  return exported("pendulum", [] { return testing::load_example("pendulum.yaml"); });
+}
+Exported& cartesian() {
+  return exported("cartesian", [] { return testing::load_example("cartesian_pendulum.yaml"); });
+}
+// A mass on a spring pushed by an external force F: x = F/k + (x0 − F/k) cos(√(k/m) t) while F
+// is held.
+Exported& driven() {
+  return exported("driven", [] {
+    return testing::load_string(
+        "name: driven mass\nparameters: {m: 2.0, k: 8.0}\n"
+        "coordinates:\n  x: {initial: 0.1, rate: 0.0}\n"
+        "inputs:\n  F: {value: 0.5, external: true}\n"
+        "points:\n  p: [x, 0, 0]\nparticles:\n  - {point: p, mass: m}\n"
+        "potential: k/2*x^2\ngeneralized_forces: {x: F}\n"
+        "simulate: {t_end: 2, output_step: 0.01, rtol: 1e-10, atol: 1e-12}\n");
+  });
+}
+
+// An initialised Co-Simulation instance at t = 0 (parameters set before initialisation).
+fmi2Component start_cs(FmuImporter& f, FmuLog& log,
+                       const std::map<std::string, double>& parameters = {}) {
+  fmi2Component c = f.make(fmi2CoSimulation, log);
+  EXPECT_NE(c, nullptr);
+  EXPECT_EQ(f.setup(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
+  for (const auto& [name, value] : parameters) EXPECT_EQ(f.set(c, name, value), fmi2OK) << name;
+  EXPECT_EQ(f.enter_init(c), fmi2OK);
+  EXPECT_EQ(f.exit_init(c), fmi2OK);
+  return c;
+}
+
+// Steps of `h` up to `t_end`, recording `columns` after each (row r at t = (r + 1) h).
+std::vector<std::vector<double>> run_cs(FmuImporter& f, fmi2Component c, double h, int steps,
+                                        const std::vector<std::string>& columns) {
+  std::vector<std::vector<double>> rows;
+  for (int i = 0; i < steps; ++i) {
+    EXPECT_EQ(f.do_step(c, i * h, h, fmi2True), fmi2OK) << "step " << i;
+    std::vector<double> row;
+    for (const auto& name : columns) row.push_back(f.get(c, name));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The FMU's Co-Simulation against `lagrange simulate` (dop853, the model's tolerances) on the
+// output grid of 0.01 up to `steps`, and T + U conserved.
+void expect_matches_simulate(Exported& e, const std::vector<std::string>& columns, double tol,
+                             int steps = 200) {
+  SimulationOptions so = e.sys.options();
+  so.t_end = 0.01 * steps;
+  so.output_step = 0.01;
+  const Trajectory tr = e.sys.run(so);
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  std::vector<std::string> all = columns;
+  all.push_back("energy");
+  const auto rows = run_cs(*e.fmu, c, 0.01, steps, all);
+  const double e0 = tr.at(0, "energy");
+  for (size_t r = 0; r < rows.size(); ++r) {
+    for (size_t j = 0; j < columns.size(); ++j)
+      ASSERT_NEAR(rows[r][j], tr.at(r + 1, columns[j]), tol)
+          << columns[j] << " at t = " << tr.at(r + 1, "t");
+    ASSERT_NEAR(rows[r].back(), e0, 1e-8 * (1.0 + std::abs(e0))) << "energy at row " << r;
+  }
+  e.fmu->free_instance(c);
+  EXPECT_TRUE(log.messages.empty()) << log.messages.front();
+}
+
+TEST(ExportFmu, PendulumCoSimulationMatchesSimulate) {
+  expect_matches_simulate(pendulum(), {"theta", "theta_dot", "x", "y"}, 1e-7);
+}
+
+// The constrained Cartesian pendulum: positions and the rod's multiplier as simulate gives them.
+// With Baumgarte's term off, a loose rtol and long communication steps, only the projection after
+// each step keeps C = (x² + y² − l²)/2 within its threshold max(1e-11, atol) (without it, with
+// `stabilization: {project: false}`, max |C| is 1e-5 here).
+TEST(ExportFmu, CartesianPendulumStaysOnItsConstraint) {
+  Exported& e = cartesian();
+  expect_matches_simulate(e, {"x", "y", "x_dot", "rod"}, 1e-6);
+  FmuLog log;
+  fmi2Component c = start_cs(
+      *e.fmu, log, {{"fmu.baumgarte_alpha", 0.0}, {"fmu.rtol", 1e-4}, {"fmu.atol", 1e-12}});
+  for (const auto& row : run_cs(*e.fmu, c, 0.5, 8, {"x", "y"}))
+    EXPECT_LE(std::abs((row[0] * row[0] + row[1] * row[1] - 1.0) / 2), 2e-11);
+  e.fmu->free_instance(c);
+}
+
+// The heavy top, a free body in SO(3) held at a pivot: the FMU's projection (all of q, then R's
+// polar factor) ends where the engine's (tangent coordinates) does, within the tolerances; R stays
+// orthonormal and the pivot at the origin.
+TEST(ExportFmu, HeavyTopKeepsItsRotationAndPivot) {
+  Exported& e = exported("heavy_top", [] { return testing::load_example("heavy_top.yaml"); });
+  expect_matches_simulate(e, {"top.x", "top.R13", "axis.z", "top.wz", "pivot.z"}, 1e-6, 30);
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  ASSERT_EQ(e.fmu->do_step(c, 0.0, 0.3, fmi2True), fmi2OK);
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      R(i, j) = e.fmu->get(c, "top.R" + std::to_string(i + 1) + std::to_string(j + 1));
+  EXPECT_LE((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 2e-11);
+  const Eigen::Vector3d r{e.fmu->get(c, "top.x"), e.fmu->get(c, "top.y"), e.fmu->get(c, "top.z")};
+  EXPECT_LE((r + R * Eigen::Vector3d(0, 0, -0.1)).norm(), 2e-11);  // C = r + R p
+  e.fmu->free_instance(c);
+}
+
+// Model Exchange: fmi2GetDerivatives at a perturbed state equals Dynamics::forward with the FMU's
+// Baumgarte rate, to 1e-12 of the largest value (two implementations of the same KKT solve).
+void expect_derivatives_match(Exported& e, double t) {
+  const CompiledModel& cm = *e.sys.compiled;
+  std::vector<double> x(cm.q0);
+  x.insert(x.end(), cm.v0.begin(), cm.v0.end());
+  for (size_t i = 0; i < x.size(); ++i) x[i] += 0.05 * std::sin(1.0 + static_cast<double>(i));
+  std::vector<double> want(x.size()), lambda(cm.m);
+  e.sys.dynamics->set_baumgarte(e.options.alpha);
+  e.sys.dynamics->forward(t, x.data(), x.data() + cm.nq, want.data(), want.data() + cm.nq,
+                          lambda.data());
+  FmuImporter& f = *e.fmu;
+  FmuLog log;
+  fmi2Component c = f.make(fmi2ModelExchange, log);
+  ASSERT_NE(c, nullptr);
+  ASSERT_EQ(f.setup(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
+  ASSERT_EQ(f.enter_init(c), fmi2OK);
+  ASSERT_EQ(f.exit_init(c), fmi2OK);
+  fmi2EventInfo info{};
+  ASSERT_EQ(f.new_discrete_states(c, &info), fmi2OK);
+  ASSERT_EQ(f.enter_continuous(c), fmi2OK);
+  ASSERT_EQ(f.set_time(c, t), fmi2OK);
+  ASSERT_EQ(f.set_states(c, x.data(), x.size()), fmi2OK);
+  std::vector<double> got(x.size());
+  ASSERT_EQ(f.get_derivatives(c, got.data(), got.size()), fmi2OK);
+  double scale = 1.0, worst = 0.0;
+  for (size_t i = 0; i < got.size(); ++i) {
+    scale = std::max(scale, std::abs(want[i]));
+    worst = std::max(worst, std::abs(got[i] - want[i]));
+  }
+  EXPECT_LE(worst, 1e-12 * scale);
+  for (size_t r = 0; r < cm.m; ++r)
+    EXPECT_NEAR(f.get(c, cm.constraint_names[r]), lambda[r], 1e-12 * (1 + std::abs(lambda[r])));
+  f.free_instance(c);
+}
+
+TEST(ExportFmu, ModelExchangeDerivativesMatchTheEngine) {
+  expect_derivatives_match(cartesian(), 0.3);
+  expect_derivatives_match(exported("crane", [] { return testing::load_example("crane.yaml"); }),
+                           1.3);
+  expect_derivatives_match(
+      exported("heavy_top", [] { return testing::load_example("heavy_top.yaml"); }), 0.2);
+}
+
+// fmi2SetReal of a parameter before initialisation gives the run `--set` gives.
+TEST(ExportFmu, ParameterSetLikeSet) {
+  Exported& e = pendulum();
+  const CompiledModel& cm = *e.sys.compiled;
+  std::vector<double> p = cm.parameter_defaults;
+  const size_t l =
+      static_cast<size_t>(std::find(cm.parameter_names.begin(), cm.parameter_names.end(), "l") -
+                          cm.parameter_names.begin());
+  ASSERT_LT(l, p.size());
+  p[l] = 2.0;
+  Dynamics longer(e.sys.compiled, p);
+  SimulationOptions so = e.sys.options();
+  so.t_end = 1.0;
+  so.output_step = 0.1;
+  const Trajectory tr = simulate(longer, so, cm.q0, cm.v0);
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log, {{"l", 2.0}});
+  const auto rows = run_cs(*e.fmu, c, 0.1, 10, {"theta", "y"});
+  EXPECT_NEAR(rows.back()[0], tr.at(10, "theta"), 1e-7);
+  EXPECT_NEAR(rows.back()[1], tr.at(10, "y"), 1e-7);
+  e.fmu->free_instance(c);
+}
+
+// An external input follows its declared value until set, then is held between steps.
+TEST(ExportFmu, ExternalInputHeldBetweenSteps) {
+  Exported& e = driven();
+  FmuImporter& f = *e.fmu;
+  EXPECT_EQ(f.variables.at("F").causality, "input");
+  EXPECT_EQ(f.variables.at("F").start, 0.5);
+  FmuLog log;
+  fmi2Component c = start_cs(f, log);
+  const double w = 2.0;  // √(k/m)
+  auto x_at = [&](double t, double x0, double v0, double F) {
+    return F / 8.0 + (x0 - F / 8.0) * std::cos(w * t) + v0 / w * std::sin(w * t);
+  };
+  const auto first = run_cs(f, c, 0.1, 5, {"x", "x_dot"});
+  EXPECT_NEAR(first.back()[0], x_at(0.5, 0.1, 0.0, 0.5), 1e-8);
+  ASSERT_EQ(f.set(c, "F", 1.5), fmi2OK);
+  EXPECT_EQ(f.get(c, "F"), 1.5);
+  double x = first.back()[0], v = first.back()[1];
+  for (int i = 5; i < 10; ++i) ASSERT_EQ(f.do_step(c, i * 0.1, 0.1, fmi2True), fmi2OK);
+  EXPECT_NEAR(f.get(c, "x"), x_at(0.5, x, v, 1.5), 1e-8);
+  // A NaN input is refused with a message, and the instance then refuses to step.
+  EXPECT_EQ(f.set(c, "F", NAN), fmi2Error);
+  ASSERT_FALSE(log.messages.empty());
+  EXPECT_NE(log.messages.back().find("finite"), std::string::npos) << log.messages.back();
+  EXPECT_EQ(f.do_step(c, 1.0, 0.1, fmi2True), fmi2Error);
+  EXPECT_NE(log.messages.back().find("earlier call failed"), std::string::npos);
+  EXPECT_EQ(f.reset(c), fmi2OK);
+  f.free_instance(c);
+}
+
+// Calls out of order and a foreign GUID are refused with a message, never a crash.
+TEST(ExportFmu, MisuseIsAnErrorWithAMessage) {
+  FmuImporter& f = *pendulum().fmu;
+  FmuLog log;
+  EXPECT_EQ(f.make(fmi2CoSimulation, log, "x", "{not-the-guid}"), nullptr);
+  ASSERT_EQ(log.messages.size(), 1u);
+  EXPECT_NE(log.messages[0].find("GUID"), std::string::npos);
+  fmi2Component c = f.make(fmi2CoSimulation, log);
+  EXPECT_EQ(f.do_step(c, 0.0, 0.1, fmi2True), fmi2Error);
+  EXPECT_NE(log.messages.back().find("not allowed in instantiated"), std::string::npos)
+      << log.messages.back();
+  EXPECT_EQ(f.reset(c), fmi2OK);
+  const fmi2ValueReference unknown = 99999;
+  const double one = 1.0;
+  EXPECT_EQ(f.set_real(c, &unknown, 1, &one), fmi2Error);
+  EXPECT_NE(log.messages.back().find("99999"), std::string::npos) << log.messages.back();
+  f.free_instance(c);
+  fmi2Component c2 = start_cs(f, log);
+  EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a fixed parameter after initialisation
+  EXPECT_EQ(f.do_step(c2, 0.0, 0.1, fmi2True), fmi2Error);
+  f.free_instance(c2);
+  // A massless bob: M = 0 is singular, which initialisation reports instead of dividing by it.
+  fmi2Component c3 = f.make(fmi2CoSimulation, log);
+  ASSERT_EQ(f.set(c3, "m", 0.0), fmi2OK);
+  ASSERT_EQ(f.enter_init(c3), fmi2OK);
+  EXPECT_EQ(f.exit_init(c3), fmi2Error);
+  EXPECT_NE(log.messages.back().find("singular mass matrix"), std::string::npos)
+      << log.messages.back();
+  EXPECT_EQ(f.do_step(c3, 0.0, 0.1, fmi2True), fmi2Error);
+  f.free_instance(c3);
+}
+
+// Two instances in one process, stepped in turn, give what each gives alone; fmi2GetFMUstate and
+// fmi2SetFMUstate replay a step bit for bit.
+TEST(ExportFmu, InstancesAreIndependentAndStatesRestore) {
+  FmuImporter& f = *pendulum().fmu;
+  FmuLog log;
+  fmi2Component alone = start_cs(f, log, {{"l", 2.0}});
+  const auto want = run_cs(f, alone, 0.1, 10, {"theta"});
+  f.free_instance(alone);
+  fmi2Component a = start_cs(f, log), b = start_cs(f, log, {{"l", 2.0}});
+  for (int i = 0; i < 10; ++i) {
+    ASSERT_EQ(f.do_step(a, i * 0.1, 0.1, fmi2True), fmi2OK);
+    ASSERT_EQ(f.do_step(b, i * 0.1, 0.1, fmi2True), fmi2OK);
+    EXPECT_EQ(f.get(b, "theta"), want[i][0]);
+    EXPECT_NE(f.get(a, "theta"), want[i][0]);
+  }
+  fmi2FMUstate saved = nullptr;
+  ASSERT_EQ(f.get_state(a, &saved), fmi2OK);
+  ASSERT_EQ(f.do_step(a, 1.0, 0.5, fmi2True), fmi2OK);
+  const double once = f.get(a, "theta");
+  ASSERT_EQ(f.set_state(a, saved), fmi2OK);
+  ASSERT_EQ(f.do_step(a, 1.0, 0.5, fmi2True), fmi2OK);
+  EXPECT_EQ(f.get(a, "theta"), once);
+  EXPECT_EQ(f.free_state(a, &saved), fmi2OK);
+  f.free_instance(a);
+  f.free_instance(b);
+  EXPECT_TRUE(log.messages.empty());
+}
+
+// The description an importer reads: states with their derivatives, the model's parameters with
+// values, outputs listed in the model structure.
+TEST(ExportFmu, DescriptionListsStatesParametersAndOutputs) {
+  Exported& e = cartesian();
+  const FmuImporter& f = *e.fmu;
+  EXPECT_EQ(f.identifier, "cartesian_pendulum");
+  EXPECT_EQ(f.structure.at("Derivatives").size(), 4u);
+  EXPECT_EQ(f.order[f.structure.at("Derivatives")[0] - 1], "der(x)");
+  EXPECT_EQ(f.variables.at("g").causality, "parameter");
+  EXPECT_EQ(f.variables.at("g").start, 9.81);
+  EXPECT_EQ(f.variables.at("x").start, e.sys.compiled->q0[0]);
+  std::set<std::string> outputs;
+  for (unsigned i : f.structure.at("Outputs")) outputs.insert(f.order[i - 1]);
+  EXPECT_EQ(outputs, (std::set<std::string>{"x", "y", "x_dot", "y_dot", "rod", "kinetic",
+                                            "potential", "energy"}));
+}
+
+// The binary needs only libc and libm (and the loader) at run time.
+TEST(ExportFmu, BinaryIsSelfContained) {
+  const std::string cmd = "readelf -d '" + pendulum().fmu->library + "'";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::set<std::string> needed;
+  char line[512];
+  while (std::fgets(line, sizeof line, pipe)) {
+    const std::string s(line);
+    if (s.find("(NEEDED)") == std::string::npos) continue;
+    needed.insert(s.substr(s.find('[') + 1, s.find(']') - s.find('[') - 1));
+  }
+  ASSERT_EQ(pclose(pipe), 0);
+  EXPECT_FALSE(needed.empty());
+  for (const std::string& lib : needed)
+    EXPECT_TRUE(lib == "libc.so.6" || lib == "libm.so.6" || lib.rfind("ld-linux", 0) == 0) << lib;
+}
+
+TEST(ExportFmu, BadFmiTypeIsRefused) {
+  const testing::Loaded sys = testing::load_example("pendulum.yaml");
+  FmuOptions o = fmu_options(*sys.model);
+  o.fmi_type = "cosim";
+  const fs::path out =
+      fs::temp_directory_path() / ("lagrange_fmu_bad_type_" + std::to_string(::getpid()) + ".fmu");
+  fs::remove(out);
+  EXPECT_THROW(export_fmu(*sys.compiled, o, out.string()), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace lagrange
