@@ -7,10 +7,12 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
@@ -18,6 +20,26 @@
 #include "lagrange/analysis.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/integrator.hpp"
+#include "lagrange/sweep.hpp"
+
+namespace {
+
+/// A whole number from 0 to `max` in decimal digits (no sign, no exponent): CLI11 reads "-1"
+/// into an unsigned option as 2^64 − 1, and clamps 2^64 to it (issue 37 item 3).
+CLI::Validator whole_number(std::uint64_t max) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (text.empty() || error != std::errc() || stop != end || value > max)
+          return fmt::format("expected a whole number from 0 to {}, got '{}'", max, text);
+        return "";
+      },
+      fmt::format("UINT<={}", max));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lagrange::cli;
@@ -181,8 +203,10 @@ int main(int argc, char** argv) {
   sweep->add_option("--random", opt.random,
                     "random parameter NAME=normal(MU,SIGMA) | uniform(LOW,HIGH) | "
                     "lognormal(MU,SIGMA) (repeatable; --samples draws per grid point)");
-  sweep->add_option("--samples", opt.samples, "draws of the --random parameters");
-  sweep->add_option("--seed", opt.seed, "seed of the random draws (default 1)");
+  sweep->add_option("--samples", opt.samples, "draws of the --random parameters")
+      ->check(whole_number(lagrange::sweep::kMaxStudyCases));
+  sweep->add_option("--seed", opt.seed, "seed of the random draws (default 1)")
+      ->check(whole_number(std::numeric_limits<std::uint64_t>::max()));
   sweep->add_option(
       "--metric", opt.metrics,
       "NAME=AGG(COLUMN[, WINDOW]) with AGG max | min | mean | final | initial | drift, "
@@ -190,7 +214,8 @@ int main(int argc, char** argv) {
       "(repeatable)");
   sweep->add_option("-o,--output", opt.study, "study directory: summary.csv (and case_N.csv)")
       ->required();
-  sweep->add_option("-j,--jobs", opt.jobs, "workers (default: every core)");
+  sweep->add_option("-j,--jobs", opt.jobs, "workers (default 0: every core)")
+      ->check(whole_number(kMaxJobs));
   sweep->add_flag("--resume", opt.resume,
                   "finish an interrupted study: cases already in summary.csv are not run again");
   sweep->add_flag("--keep-trajectories", opt.keep_trajectories,

@@ -20,6 +20,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
+#include "cli/study_lock.hpp"
 #include "cli/study_record.hpp"
 #include "cli/sweep_inputs.hpp"
 #include "lagrange/dynamics.hpp"
@@ -209,12 +210,21 @@ class CaseRunner {
 };
 #endif
 
-// The study directory's summary; a UsageError when it cannot be made, holds another study, or
-// --resume is given for a study started with other options.
-std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s) {
+// The study directory's summary, with `lock` taken on the directory; a UsageError when it cannot
+// be made, another study runs there or holds it, or --resume is given for a study started with
+// other options or whose study.txt is gone.
+std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s,
+                                                 std::unique_ptr<StudyLock>& lock) {
   const fs::path about = fs::path(opt.study) / "study.txt";
   const std::string text = study_record(opt, *s.prepared.compiled, s.plan.metrics);
   try {
+    fs::create_directories(opt.study);
+    lock = std::make_unique<StudyLock>(opt.study);
+    if (opt.resume && !fs::exists(about) && fs::exists(fs::path(opt.study) / "summary.csv"))
+      throw UsageError(
+          fmt::format("--resume: {} has a summary.csv but no study.txt, which says "
+                      "which study it holds; it cannot be finished",
+                      opt.study));
     if (opt.resume && fs::exists(about)) {
       std::ifstream in(about, std::ios::binary);
       std::stringstream was;
@@ -225,7 +235,6 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
             "with --resume finishes it, over the same model file. What differs:\n{}",
             opt.study, record_changes(was.str(), text)));
     }
-    fs::create_directories(opt.study);
     // study.txt, then the summary's header, are written when the first row is (while the first
     // cases run), or at once when resuming.
     return std::make_unique<sweep::SummaryFile>(
@@ -346,9 +355,10 @@ int run_sweep_mpi(const Options& opt) {
   }
   Study s;
   set_up(opt, s);
+  std::unique_ptr<StudyLock> lock;
   std::unique_ptr<sweep::SummaryFile> summary;
   try {
-    summary = open_summary(opt, s);
+    summary = open_summary(opt, s, lock);
     choose_evaluation(opt, s, true);
   } catch (const UsageError&) {
     mpi_hand_out(mpi, {}, opt.interrupt, {}, {});  // the workers stop at once
@@ -399,7 +409,8 @@ int run_sweep(const Options& opt) {
 #endif
   Study s;
   set_up(opt, s);
-  const auto summary = open_summary(opt, s);
+  std::unique_ptr<StudyLock> lock;
+  const auto summary = open_summary(opt, s, lock);
   choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);

@@ -44,6 +44,25 @@ std::string directory_of(const std::string& path) {
   return parent.empty() ? "." : parent.string();
 }
 
+/// What a file system entry of type `mode` is, for a message ("a directory", "a FIFO", …).
+const char* entry_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+/// Throws unless `path` is absent or a regular file (links followed): the rename that publishes a
+/// file would replace a device node, a FIFO or a socket by a regular file (issue 37 item 1).
+void require_regular_or_absent(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
+  throw std::runtime_error("cannot write '" + path + "': it exists and is " +
+                           entry_kind(st.st_mode) + ", not a regular file");
+}
+
 /// Removes NAME.<pid>.<suffix>.part left beside `path` by processes that no longer run (a
 /// writer killed with SIGKILL cannot remove its own), and the NAME.part of earlier versions.
 void remove_stale_parts(const std::string& path) {
@@ -165,15 +184,14 @@ void create_parent_directories(const std::string& path) {
 }
 
 void check_writable(const std::string& path) {
+  require_regular_or_absent(path);
   create_parent_directories(path);
-  std::error_code ec;
-  if (fs::is_directory(path, ec))
-    throw std::runtime_error("cannot write '" + path + "': it is a directory");
   const HoldSigint hold;
   StagedFile probe(path, "");  // removed unpublished: the location takes a new file
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
+  require_regular_or_absent(path);
   create_parent_directories(path);
   remove_stale_parts(path);
   const HoldSigint hold;
@@ -184,8 +202,10 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 
 void write_file_with_sidecar(const std::string& path, const std::string& text,
                              const std::string& sidecar_text) {
-  create_parent_directories(path);
   const std::string sidecar = path + ".json";
+  require_regular_or_absent(path);
+  require_regular_or_absent(sidecar);
+  create_parent_directories(path);
   remove_stale_parts(path);
   remove_stale_parts(sidecar);
   const HoldSigint hold;

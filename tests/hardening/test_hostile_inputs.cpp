@@ -6,7 +6,9 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -261,6 +263,80 @@ TEST(Interruption, ARunBetweenFarSamplesKeepsItsRows) {
     EXPECT_EQ(side.at("status"), "interrupted");
     EXPECT_EQ(side.at("rows"), 1);  // the start
   }
+}
+
+/// `text` with every `{key}` replaced by its value.
+std::string expand(std::string text, const std::map<std::string, std::string>& values) {
+  for (const auto& [key, value] : values)
+    for (size_t at; (at = text.find("{" + key + "}")) != std::string::npos;)
+      text.replace(at, key.size() + 2, value);
+  return text;
+}
+
+/// `text` without the spaces at its ends.
+std::string trimmed(const std::string& text) {
+  const size_t first = text.find_first_not_of(' '), last = text.find_last_not_of(' ');
+  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
+}
+
+// The hostile command lines of issue 37 (tests/hardening/data/hostile_commands.txt): each exits
+// with its code and message, quickly, and writes nothing.
+TEST(HostileCommands, EachGivesItsExitCodeAndMessageAndWritesNothing) {
+  ScratchDir dir("hostile-commands");
+  const std::string source = LAGRANGE_SOURCE_DIR;
+  const std::map<std::string, std::string> values{
+      {"pendulum", source + "/examples/pendulum.yaml"},
+      {"double_pendulum", source + "/examples/double_pendulum.yaml"},
+      {"dir", dir.path().string()}};
+  std::istringstream table(slurp(source + "/tests/hardening/data/hostile_commands.txt"));
+  size_t cases = 0;
+  for (std::string line; std::getline(table, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t bar1 = line.find(" | "), bar2 = line.find(" | ", bar1 + 3);
+    ASSERT_NE(bar2, std::string::npos) << "malformed line: " << line;
+    const int exit_code = std::stoi(line.substr(0, bar1));
+    const std::string fragment = trimmed(line.substr(bar1 + 3, bar2 - bar1 - 3));
+    std::vector<std::string> args;
+    std::istringstream words(expand(line.substr(bar2 + 3), values));
+    for (std::string word; words >> word;) args.push_back(word);
+    SCOPED_TRACE(line);
+    const RunResult r = run_lagrange(dir.path(), args, std::chrono::seconds(60));
+    EXPECT_EQ(r.exit_code, exit_code) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{});
+    ++cases;
+  }
+  EXPECT_GE(cases, 20u);
+}
+
+// A model file's metric named like a column of the summary (a parameter, `status`, `case`) would
+// overwrite that column (issue 37 item 7): `simulate` and `check` (item 17) refuse it, located.
+TEST(HostileCommands, AMetricCannotShadowASummaryColumn) {
+  for (const std::string name : {"m", "status", "case"}) {
+    const std::string yaml = kPendulum + "metrics:\n  " + name + ": final(theta)\n";
+    expect_model_error({"metric named like a column", yaml, "is named like"}, "metric-" + name);
+    ScratchDir dir("metric-check-" + name);
+    spit(dir.path() / "bad.yaml", yaml);
+    const RunResult r = run_lagrange(dir.path(), {"check", (dir.path() / "bad.yaml").string()});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(std::regex_search(
+        r.err, std::regex("bad\\.yaml:10:[0-9]+: error: metric '" + name + "' is named like")))
+        << r.err;
+  }
+}
+
+// linearize --at-trim far out (θ = 2π·10⁸, where trim's tolerance is its rounding floor, 5·10⁻⁶)
+// says "equilibrium found" and then does not contradict it with "not an equilibrium" (issue 37
+// item 4).
+TEST(HostileCommands, LinearizeAtTrimNeverContradictsTheTrim) {
+  ScratchDir dir("at-trim-far");
+  const RunResult r = run_lagrange(
+      dir.path(), {"linearize", std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml",
+                   "--at-trim", "--at", "theta=628318530.7"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("equilibrium found"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("not an equilibrium"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <sys/mount.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "hardening/cli_runner.hpp"
@@ -116,6 +120,75 @@ TEST(OutputFiles, UnwritableLocationFailsBeforeTheRun) {
     EXPECT_NE(r.err.find(csv.filename().string()), std::string::npos) << r.err;
     EXPECT_LT(r.seconds, 5.0);
   }
+}
+
+/// The type of the entry at `path` (links not followed).
+fs::file_type type_of(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type();
+}
+
+// An output path that exists and is not a regular file (issue 37 item 1): a FIFO, a socket, a
+// directory and, as root, a device node made here are refused before the run, exit 2 naming the
+// option and what the entry is, for -o, its .json sidecar, --report and `report -o`; each entry
+// is left as it was and nothing is written. Before, the CSV was renamed over it (as root,
+// `simulate -o /dev/null` replaced the system's /dev/null by a regular file). /dev/null itself
+// is only looked at: still a character device after the refused runs.
+TEST(OutputFiles, AnEntryThatIsNotARegularFileIsRefusedAndKept) {
+  ScratchDir dir("special-entries");
+  const fs::path& d = dir.path();
+  std::vector<std::pair<std::string, std::string>> entries{
+      {"fifo", "a FIFO"}, {"folder", "a directory"}, {"socket", "a socket"}};
+  ASSERT_EQ(mkfifo((d / "fifo.csv").c_str(), 0644), 0);
+  ASSERT_EQ(mkfifo((d / "fifo.html").c_str(), 0644), 0);
+  ASSERT_EQ(mkfifo((d / "plain.csv.json").c_str(), 0644), 0);
+  fs::create_directory(d / "folder.csv");
+  fs::create_directory(d / "folder.html");
+  for (const char* name : {"socket.csv", "socket.html"}) {
+    const int s = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string path = (d / name).string();
+    ASSERT_LT(path.size(), sizeof address.sun_path);
+    std::copy(path.begin(), path.end(), address.sun_path);
+    ASSERT_EQ(bind(s, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0) << path;
+    close(s);  // the entry stays
+  }
+  // A private null device, where the container lets root make one (never /dev/null itself).
+  if (geteuid() == 0 && mknod((d / "device.csv").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0 &&
+      mknod((d / "device.html").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0)
+    entries.emplace_back("device", "a character device");
+  const std::vector<std::string> before = dir.files();
+  std::map<std::string, fs::file_type> types;
+  for (const auto& name : before) types[name] = type_of(d / name);
+
+  const auto refused = [&](std::vector<std::string> args, const std::string& option,
+                           const fs::path& entry, const std::string& kind) {
+    SCOPED_TRACE(entry.string());
+    const RunResult r = run_lagrange(d, args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("lagrange: " + option + ": cannot write '" + entry.string() +
+                         "': it exists and is " + kind + ", not a regular file"),
+              std::string::npos)
+        << r.err;
+    EXPECT_LT(r.seconds, 5.0);  // before the long run
+    EXPECT_EQ(dir.files(), before);
+    for (const auto& [name, type] : types) EXPECT_EQ(type_of(d / name), type) << name;
+  };
+  for (const auto& [stem, kind] : entries) {
+    const fs::path csv = d / (stem + ".csv"), html = d / (stem + ".html");
+    refused(simulate(csv, "2000", "0.0002"), "-o", csv, kind);
+    std::vector<std::string> report = simulate(d / "plain.csv", "2000", "0.0002");
+    report[3] = html.string();  // the -o value becomes --report's
+    report[2] = "--report";
+    refused(report, "--report", html, kind);
+    refused({"report", kPendulum, (d / "missing.csv").string(), "-o", html.string()}, "-o", html,
+            kind);
+  }
+  refused(simulate(d / "plain.csv", "2000", "0.0002"), "-o", d / "plain.csv.json", "a FIFO");
+  struct stat null_device {};
+  ASSERT_EQ(stat("/dev/null", &null_device), 0);
+  EXPECT_TRUE(S_ISCHR(null_device.st_mode)) << "/dev/null is no longer a character device";
 }
 
 TEST(OutputFiles, FullDiskSaysSoAndKeepsTheOldPair) {
