@@ -39,6 +39,13 @@ CLI::Validator whole_number(std::uint64_t max) {
       fmt::format("UINT<={}", max));
 }
 
+/// A path that is not empty: `-o ""` once ran and wrote nothing, silently.
+const CLI::Validator kFileName(
+    [](std::string& text) -> std::string {
+      return text.empty() ? "expected a file or directory name, got ''" : "";
+    },
+    "PATH");
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,12 +74,15 @@ int main(int argc, char** argv) {
   sim->add_option("model", opt.model, "model file (YAML)")->required();
   sim->add_option("--t-end", opt.t_end, "end time (overrides simulate.t_end)");
   sim->add_option("--output-step", opt.output_step, "output grid step");
-  sim->add_option("-o,--output", opt.csv, "CSV file to write (default: print a summary only)");
-  sim->add_option("--plot", opt.plot, "plot of the coordinates, .svg or .png (through gnuplot)");
+  sim->add_option("-o,--output", opt.csv, "CSV file to write (default: print a summary only)")
+      ->check(kFileName);
+  sim->add_option("--plot", opt.plot, "plot of the coordinates, .svg or .png (through gnuplot)")
+      ->check(kFileName);
   sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
       ->delimiter(',');
   sim->add_option("--report", opt.report,
-                  "self-contained HTML report: 3-D animation, plots, equations (.html)");
+                  "self-contained HTML report: 3-D animation, plots, equations (.html)")
+      ->check(kFileName);
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
   sim->add_option("--initial", opt.initial,
                   "initial value of a coordinate or a rate NAME_dot, NAME=VALUE (repeatable, or "
@@ -100,7 +110,9 @@ int main(int argc, char** argv) {
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");
   exp->add_option("model", opt.model, "model file (YAML)")->required();
-  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->required();
+  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")
+      ->required()
+      ->check(kFileName);
   exp->add_option("--form", opt.form,
                   "lagrange (default): forward dynamics | manipulator: D, C q_dot, g, inverse "
                   "and forward dynamics")
@@ -143,7 +155,7 @@ int main(int argc, char** argv) {
   report->add_option("model", opt.model, "model file (YAML)")->required();
   report->add_option("trajectory", opt.trajectory, "trajectory CSV written by simulate -o")
       ->required();
-  report->add_option("-o,--output", opt.report, "HTML file to write")->required();
+  report->add_option("-o,--output", opt.report, "HTML file to write")->required()->check(kFileName);
   report->add_option("--set", opt.sets, "parameter value the run used, NAME=VALUE (repeatable)");
   report->add_flag("-q,--quiet", opt.quiet, "no summary line");
 
@@ -213,7 +225,8 @@ int main(int argc, char** argv) {
       "COLUMN a trajectory column or abs(COLUMN), WINDOW like 't > 60' "
       "(repeatable)");
   sweep->add_option("-o,--output", opt.study, "study directory: summary.csv (and case_N.csv)")
-      ->required();
+      ->required()
+      ->check(kFileName);
   sweep->add_option("-j,--jobs", opt.jobs, "workers (default 0: every core)")
       ->check(whole_number(kMaxJobs));
   sweep->add_flag("--resume", opt.resume,

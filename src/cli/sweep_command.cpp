@@ -107,6 +107,12 @@ struct Study {
 
 void set_up(const Options& opt, Study& s) {
   s.plan = plan(opt);
+  const ParameterOverrides sets = parse_sets(opt.sets);
+  for (const auto& [name, value] : s.plan.cases.front().values)
+    if (sets.count(name))
+      throw UsageError(fmt::format("--set {}: the parameter is varied (--vary or --random), which "
+                                   "would override the value set; give one or the other",
+                                   name));
   s.prepared = prepare(opt.model, opt.sets, {}, "--initial", opt.dynamics);
   const Prepared& p = s.prepared;
   for (const auto& [name, value] : s.plan.cases.front().values)

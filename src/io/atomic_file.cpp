@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "lagrange/io.hpp"
 
@@ -185,9 +186,26 @@ void create_parent_directories(const std::string& path) {
 
 void check_writable(const std::string& path) {
   require_regular_or_absent(path);
-  create_parent_directories(path);
-  const HoldSigint hold;
-  StagedFile probe(path, "");  // removed unpublished: the location takes a new file
+  // The directories the probe needs are made for it and removed after it, deepest first: a run
+  // that fails later leaves none behind (issue 37 item 19); the write makes them again.
+  std::vector<fs::path> made;
+  std::error_code ec;
+  for (fs::path dir = fs::path(path).parent_path(); !dir.empty() && !fs::exists(dir, ec);
+       dir = dir.parent_path())
+    made.push_back(dir);
+  const auto remove_made = [&made] {
+    std::error_code ignored;
+    for (const fs::path& dir : made) fs::remove(dir, ignored);  // only while empty
+  };
+  try {
+    create_parent_directories(path);
+    const HoldSigint hold;
+    StagedFile probe(path, "");  // removed unpublished: the location takes a new file
+  } catch (...) {
+    remove_made();
+    throw;
+  }
+  remove_made();
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {

@@ -298,7 +298,7 @@ TEST(HostileCommands, EachGivesItsExitCodeAndMessageAndWritesNothing) {
     const std::string fragment = trimmed(line.substr(bar1 + 3, bar2 - bar1 - 3));
     std::vector<std::string> args;
     std::istringstream words(expand(line.substr(bar2 + 3), values));
-    for (std::string word; words >> word;) args.push_back(word);
+    for (std::string word; words >> word;) args.push_back(word == "''" ? "" : word);
     SCOPED_TRACE(line);
     const RunResult r = run_lagrange(dir.path(), args, std::chrono::seconds(60));
     EXPECT_EQ(r.exit_code, exit_code) << r.err;
@@ -323,6 +323,25 @@ TEST(HostileCommands, AMetricCannotShadowASummaryColumn) {
     EXPECT_TRUE(std::regex_search(
         r.err, std::regex("bad\\.yaml:10:[0-9]+: error: metric '" + name + "' is named like")))
         << r.err;
+  }
+}
+
+// A saved trajectory with a value that is not a finite number (`report` reads what simulate, which
+// writes finite values, never wrote): refused at its line (exit 2) instead of laying out a scene
+// of infinite extent (issue 37, the double-to-integer audit: log10 of it was cast to int).
+TEST(HostileCommands, AReportOfANonFiniteTrajectoryIsRefused) {
+  ScratchDir dir("report-inf");
+  spit(dir.path() / "model.yaml", kPendulum);
+  for (const std::string value : {"inf", "-1e999", "nan"}) {
+    spit(dir.path() / "traj.csv", "t,theta,theta_dot\n0,1,0\n0.01," + value + ",0\n");
+    const RunResult r = run_lagrange(
+        dir.path(), {"report", (dir.path() / "model.yaml").string(),
+                     (dir.path() / "traj.csv").string(), "-o", (dir.path() / "r.html").string()});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("traj.csv:3: expected a finite number, got '" + value + "'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "r.html"));
   }
 }
 

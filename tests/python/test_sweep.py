@@ -171,3 +171,11 @@ def test_loads_refuses_an_unknown_dynamics_and_non_finite_values():
         lagrange.loads(text, dynamics="bogus")
     with pytest.raises(ValueError, match=r"set m=nan: expected a finite number"):
         lagrange.loads(text, set={"m": float("nan")})
+
+
+def test_loads_refuses_a_label_that_could_spoof_a_location_and_oversized_text():
+    text = (SOURCE_DIR / "examples" / "pendulum.yaml").read_text()
+    with pytest.raises(ValueError, match="label: expected one line of printable text"):
+        lagrange.loads(text, label="model.yaml:1:1: error: fake\nreal.yaml")
+    with pytest.raises(lagrange.ModelError, match="expected a model of at most 16 MiB"):
+        lagrange.loads(text + "#" * (16 << 20))
