@@ -233,7 +233,8 @@ class SummaryFile {
  public:
   /// Opens `path` for the columns `header`. Without `resume` the file must not exist (a
   /// std::runtime_error says so); with it, the rows already there are kept (a different header
-  /// is a std::runtime_error) and their case numbers are returned by done(). A new file is
+  /// is a std::runtime_error, as is a row without a case number or repeating one) and their case
+  /// numbers are returned by done(). A new file is
   /// written by the first append() or finish() (with worker processes, while the first cases
   /// run), after `before_first_write` (the study's record, say), which an existing file runs at
   /// once.

@@ -110,9 +110,10 @@ void set_up(const Options& opt, Study& s) {
   const ParameterOverrides sets = parse_sets(opt.sets);
   for (const auto& [name, value] : s.plan.cases.front().values)
     if (sets.count(name))
-      throw UsageError(fmt::format("--set {}: the parameter is varied (--vary or --random), which "
-                                   "would override the value set; give one or the other",
-                                   name));
+      throw UsageError(
+          fmt::format("--set {}: the parameter is varied (--vary or --random), which "
+                      "would override the value set; give one or the other",
+                      name));
   s.prepared = prepare(opt.model, opt.sets, {}, "--initial", opt.dynamics);
   const Prepared& p = s.prepared;
   for (const auto& [name, value] : s.plan.cases.front().values)
@@ -243,9 +244,16 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
     }
     // study.txt, then the summary's header, are written when the first row is (while the first
     // cases run), or at once when resuming.
-    return std::make_unique<sweep::SummaryFile>(
+    auto summary = std::make_unique<sweep::SummaryFile>(
         (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume,
         [about, text] { write_file_atomically(about.string(), text); });
+    for (const size_t index : summary->done())
+      if (index >= s.plan.cases.size())
+        throw UsageError(
+            fmt::format("--resume: {}/summary.csv has a row of case {}, beyond this "
+                        "study's {} cases (edited by hand?)",
+                        opt.study, index, s.plan.cases.size()));
+    return summary;
   } catch (const UsageError&) {
     throw;
   } catch (const std::exception& e) {

@@ -84,8 +84,14 @@ SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> heade
     for (size_t at = head.size(); at < text.size();) {
       const auto nl = text.find('\n', at);
       if (nl == std::string::npos) break;
+      // A row this study did not write (edited by hand, issue 37 item 2) is refused, not mixed in.
       const long index = row_case(text.substr(at, nl - at));
-      if (index >= 0) done_.insert(static_cast<size_t>(index));
+      if (index < 0 || !done_.insert(static_cast<size_t>(index)).second)
+        throw std::runtime_error(
+            fmt::format("{}: row {} {}; --resume finishes a summary only as the study wrote it",
+                        path_, done_.size() + 1,
+                        index < 0 ? "does not start with a case number"
+                                  : fmt::format("repeats case {}", index)));
       at = end = nl + 1;
     }
     if (end < text.size() && ::truncate(path_.c_str(), static_cast<off_t>(end)) != 0)

@@ -355,6 +355,32 @@ TEST(SweepCommand, TwoStudiesCannotShareADirectory) {
       << resumed.err;
 }
 
+// A summary edited by hand (issue 37 item 2): a row without a case number, a case twice or one
+// beyond the study's cases is refused by --resume (exit 2), the summary left as it was.
+TEST(SweepCommand, AResumeOfAnEditedSummaryIsRefused) {
+  ScratchDir dir("sweep-edited");
+  const fs::path study = dir.path() / "study";
+  const std::vector<std::string> args{"sweep", kModel, "--vary", "l2=0.5,1.5",  "--t-end",
+                                      "0.5",   "-q",   "-o",     study.string()};
+  ASSERT_EQ(run_lagrange(dir.path(), args).exit_code, 0);
+  const std::string whole = slurp(study / "summary.csv");
+  const std::string first_row =
+      whole.substr(whole.find('\n') + 1, whole.find('\n', whole.find('\n') + 1) - whole.find('\n'));
+  std::vector<std::string> resume = args;
+  resume.push_back("--resume");
+  for (const auto& [extra, fragment] : std::vector<std::pair<std::string, std::string>>{
+           {"total,1,2\n", "row 3 does not start with a case number"},
+           {first_row, "row 3 repeats case 0"},
+           {"99" + first_row.substr(first_row.find(',')),
+            "has a row of case 99, beyond this study's 2 cases"}}) {
+    spit(study / "summary.csv", whole + extra);
+    const RunResult r = run_lagrange(dir.path(), resume);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(study / "summary.csv"), whole + extra);
+  }
+}
+
 // --resume over a study whose model file (its metrics: section here), random draws or grid
 // changed since it started: refused (exit 2) naming what differs, the summary left as it was;
 // the unchanged study resumes.
