@@ -345,6 +345,21 @@ TEST(HostileCommands, AReportOfANonFiniteTrajectoryIsRefused) {
   }
 }
 
+// A stop condition that is NaN at every sample never fires (issue 37 item 20): the run ends as
+// before (exit 0, every row) and says so once.
+TEST(HostileCommands, AStopConditionThatIsNeverANumberIsWarnedOnce) {
+  ScratchDir dir("stop-nan");
+  spit(dir.path() / "model.yaml", kPendulum + "stop_when:\n  never: sqrt(theta - 100) > 1\n");
+  const RunResult r = run_lagrange(
+      dir.path(), {"simulate", (dir.path() / "model.yaml").string(), "--compile", "off", "-q"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string warning =
+      "warning: stop condition never: sqrt(theta - 100) > 1 was not a "
+      "number at every sample (";
+  ASSERT_NE(r.err.find(warning), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, r.err.find(warning) + 1), std::string::npos) << r.err;
+}
+
 // linearize --at-trim far out (θ = 2π·10⁸, where trim's tolerance is its rounding floor, 5·10⁻⁶)
 // says "equilibrium found" and then does not contradict it with "not an equilibrium" (issue 37
 // item 4).
