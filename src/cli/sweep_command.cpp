@@ -410,10 +410,12 @@ int end_process(int code) {
 }  // namespace
 
 int run_sweep(const Options& opt) {
-  const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
   sweep::keep_freed_memory();
 #ifdef LAGRANGE_HAVE_MPI
-  if (started_by_mpirun()) return run_sweep_mpi(opt);
+  if (started_by_mpirun()) {
+    const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
+    return run_sweep_mpi(opt);
+  }
 #else
   if (started_by_mpirun())
     throw UsageError(
@@ -426,6 +428,10 @@ int run_sweep(const Options& opt) {
   std::unique_ptr<StudyLock> lock;
   const auto summary = open_summary(opt, s, lock);
   choose_evaluation(opt, s, true);
+  // From here an interrupted study keeps its finished cases; before, while it derives and
+  // compiles, Ctrl-C ends it at once with 130, as simulate (no row is written yet; issue 37
+  // item 10).
+  const KeepWorkOnInterrupt keep;
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);
   Reading reading;       // counted as rows reach the summary

@@ -227,21 +227,40 @@ TEST(Interruption, AReadBlockedOnAFifoEndsAt130) {
   EXPECT_NE(r.err.find("lagrange: interrupted"), std::string::npos) << r.err;
 }
 
-TEST(Interruption, ASlowCheckEndsAt130) {
-  // A 40-link planar chain: check derives it in the Lagrangian form, asked for, for seconds
-  std::string yaml = "gravity: [0, -9.81, 0]\nlinks:\n";
+/// A 40-link planar chain with a parameter k (its first link's mass): derived in the Lagrangian
+/// form, asked for, it takes seconds.
+std::string slow_chain() {
+  std::string yaml = "parameters: {k: 1}\ngravity: [0, -9.81, 0]\nlinks:\n";
   for (int i = 0; i < 40; ++i) {
     yaml += "  l" + std::to_string(i) + ":\n";
     if (i > 0) yaml += "    parent: l" + std::to_string(i - 1) + "\n";
     yaml += "    joint: {name: q" + std::to_string(i) +
-            ", type: revolute, origin: {xyz: [1, 0, 0]}, initial: 0.1}\n"
-            "    mass: 1\n    com: [0.5, 0, 0]\n    inertia: [0, 0, 0.1]\n";
+            ", type: revolute, origin: {xyz: [1, 0, 0]}, initial: 0.1}\n" +
+            (i == 0 ? "    mass: k\n" : "    mass: 1\n") +
+            "    com: [0.5, 0, 0]\n    inertia: [0, 0, 0.1]\n";
   }
+  return yaml;
+}
+
+TEST(Interruption, ASlowCheckEndsAt130) {
   ScratchDir dir("sigint-check");
-  spit(dir.path() / "chain.yaml", yaml);
+  spit(dir.path() / "chain.yaml", slow_chain());
   (void)interrupt_after(dir.path(),
                         {"check", (dir.path() / "chain.yaml").string(), "--dynamics", "lagrangian"},
                         std::chrono::milliseconds(1500), 5.0);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"chain.yaml"});
+}
+
+// The same while a sweep derives (issue 37 item 10): once ignored for 20 s and more; now it ends
+// at once, as `check` and `simulate` do, with nothing written.
+TEST(Interruption, ASweepThatIsStillDerivingEndsAt130) {
+  ScratchDir dir("sigint-sweep");
+  spit(dir.path() / "chain.yaml", slow_chain());
+  (void)interrupt_after(
+      dir.path(),
+      {"sweep", (dir.path() / "chain.yaml").string(), "--vary", "k=1,2", "--dynamics", "lagrangian",
+       "--compile", "off", "-q", "-o", (dir.path() / "study").string()},
+      std::chrono::milliseconds(1500), 5.0);
   EXPECT_EQ(dir.files(), std::vector<std::string>{"chain.yaml"});
 }
 
