@@ -12,7 +12,7 @@ namespace lagrange::sweep {
 
 namespace {
 
-/// "3 × 4 values × 10 draws": how the number of cases comes about, for a message.
+/// "3 m × 4 l × 10 draws": how the number of cases comes about, for a message.
 std::string study_shape(const std::vector<Axis>& axes, const std::vector<RandomParameter>& random,
                         size_t draws) {
   std::string text;
