@@ -120,9 +120,16 @@ void SummaryFile::append(size_t index, const std::vector<std::string>& fields) {
   if (fd_ < 0) open_for_appending();
   const std::string line = join(fields);
   // One write of the whole row to an O_APPEND descriptor: a row is there whole or not at all
-  // (a crash mid-write leaves a row without its line end, cut off on resume).
-  const ssize_t written = ::write(fd_, line.data(), line.size());
-  if (written != static_cast<ssize_t>(line.size())) fail(path_, "cannot append a row");
+  // (a crash mid-write leaves a row without its line end, cut off on resume). A short write (the
+  // disk filling up within the row) is continued, so that the error is the next write's own
+  // errno, not a stale one (issue 37 item 16).
+  for (size_t done = 0; done < line.size();) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n == 0) errno = ENOSPC;
+    if (n <= 0) fail(path_, "cannot append a row");
+    done += static_cast<size_t>(n);
+  }
   done_.insert(index);
 }
 

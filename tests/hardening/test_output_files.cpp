@@ -191,16 +191,31 @@ TEST(OutputFiles, AnEntryThatIsNotARegularFileIsRefusedAndKept) {
   EXPECT_TRUE(S_ISCHR(null_device.st_mode)) << "/dev/null is no longer a character device";
 }
 
+/// A 64 KiB tmpfs at `at` (made), unmounted by the destructor; mounted() is false where the
+/// machine does not let this process mount one (not root, or no CAP_SYS_ADMIN).
+class SmallDisk {
+ public:
+  explicit SmallDisk(const fs::path& at) : at_(at) {
+    fs::create_directory(at_);
+    mounted_ = mount("tmpfs", at_.c_str(), "tmpfs", 0, "size=64k") == 0;
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  ~SmallDisk() {
+    if (mounted_) umount2(at_.c_str(), MNT_DETACH);
+  }
+  bool mounted() const { return mounted_; }
+
+ private:
+  fs::path at_;
+  bool mounted_ = false;
+};
+
 TEST(OutputFiles, FullDiskSaysSoAndKeepsTheOldPair) {
   ScratchDir dir("full-disk");
   const fs::path mnt = dir.path() / "small";
-  fs::create_directory(mnt);
-  if (mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=64k") != 0)
-    GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
-  struct Unmount {
-    fs::path at;
-    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
-  } unmount{mnt};
+  const SmallDisk disk(mnt);
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
   const fs::path csv = mnt / "out.csv";
   ASSERT_EQ(run_lagrange(dir.path(), simulate(csv, "1")).exit_code, 0);
   const std::string old_csv = slurp(csv), old_sidecar = slurp(csv.string() + ".json");
@@ -215,6 +230,20 @@ TEST(OutputFiles, FullDiskSaysSoAndKeepsTheOldPair) {
   for (const auto& e : fs::directory_iterator(mnt)) left.push_back(e.path().filename().string());
   std::sort(left.begin(), left.end());
   EXPECT_EQ(left, (std::vector<std::string>{"out.csv", "out.csv.json"}));
+}
+
+// A study's summary filling the disk (issue 37 item 16): the row cut short by the full disk is
+// reported with the reason, not with a stale errno ("cannot append a row: No such file or
+// directory").
+TEST(OutputFiles, AStudyOnAFullDiskSaysSo) {
+  ScratchDir dir("full-disk-study");
+  const SmallDisk disk(dir.path() / "small");
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
+  const RunResult r = run_lagrange(
+      dir.path(), {"sweep", kPendulum, "--vary", "m=1:2:3000", "--t-end", "0.01", "--compile",
+                   "off", "-j", "1", "-q", "-o", (dir.path() / "small" / "study").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
 }
 
 }  // namespace
