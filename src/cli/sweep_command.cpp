@@ -426,12 +426,12 @@ int run_sweep(const Options& opt) {
   Study s;
   set_up(opt, s);
   std::unique_ptr<StudyLock> lock;
+  // From here an interrupted study keeps its finished cases, and a compile under way finishes
+  // (a compiler killed by _exit would stay behind, with its source in the cache); before, while
+  // the study derives, Ctrl-C ends it at once with 130, as simulate (issue 37 item 10).
+  const KeepWorkOnInterrupt keep;
   const auto summary = open_summary(opt, s, lock);
   choose_evaluation(opt, s, true);
-  // From here an interrupted study keeps its finished cases; before, while it derives and
-  // compiles, Ctrl-C ends it at once with 130, as simulate (no row is written yet; issue 37
-  // item 10).
-  const KeepWorkOnInterrupt keep;
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);
   Reading reading;       // counted as rows reach the summary
