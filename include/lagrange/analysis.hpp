@@ -163,6 +163,8 @@ LinearModel linearize(const DynamicsJacobian& jac, Dynamics& dyn, double t, cons
                       const double* v, const std::vector<std::string>& outputs = {});
 
 /// Zero-order-hold discretisation: exp([A B; 0 0] dt) = [A_d B_d; 0 1] (docs/theory.md §5.4).
+/// std::invalid_argument unless dt is positive and finite; AnalysisError naming dt when the
+/// exponential overflows a double (a model that grows by more than 10³⁰⁸ over one step).
 LinearModel discretize(const LinearModel& continuous, double dt);
 
 /// One eigenvalue of A (one per complex-conjugate pair, Im ≥ 0) and what it means physically.

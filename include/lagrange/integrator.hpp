@@ -54,13 +54,17 @@ struct DaeProblem {
 /// projection onto constraints) and returns true when it did, so the method continues from there.
 using StepHook = std::function<bool(double t, double* y)>;
 
+/// The most intervals an output grid may have, (t_end − t0) / output step: 10⁸ samples, each a
+/// row of the trajectory kept in memory (8 bytes per column); a finer grid is refused up front.
+constexpr double kMaxOutputIntervals = 1e8;
+
 struct IntegratorOptions {
   std::string method = "dop853";  ///< one of integrator_methods() (ODE); ida (DAE)
   double rtol = 1e-8;
   double atol = 1e-10;
   double step = 0.0;  ///< rk4 / midpoint step (0: output step / 10); dop853, arkode: > 0 fixes
                       ///< the step (no error control)
-  long max_steps = 1000000;  ///< per output interval (adaptive methods)
+  long max_steps = 1000000;  ///< per output interval (adaptive methods; fixed steps at most)
   /// Highest BDF order of cvode, cvode:jacobian (also within auto), ida and ida:jacobian: 1 to 5
   /// (docs/theory.md §5.8).
   int max_order = 5;

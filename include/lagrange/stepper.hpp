@@ -49,7 +49,9 @@ class Stepper {
   void set_input_law(Dynamics::InputLaw law);
   /// Advances to time() + dt (dt > 0). Throws SimulationError (with the time it failed at) when
   /// the integration fails; then time() and state() are still those before the call, and the
-  /// next call starts the integrator afresh from them.
+  /// next call starts the integrator afresh from them. step(), set_input() and set_input_law()
+  /// called while a step runs (from the input law, or another thread) throw std::runtime_error
+  /// "stepper in use" and change nothing.
   void step(double dt);
   /// The states so far as simulate() rows (t0 and every step's target), with the integrator's
   /// statistics.

@@ -27,13 +27,18 @@ struct StudyError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// The most cases a study may have (docs/sweeps.md): its case list and summary are kept in memory,
+/// a few hundred bytes a case; a larger grid or sample is refused before anything is allocated.
+constexpr size_t kMaxStudyCases = 1000000;
+
 /// One `--vary` axis: a parameter and the values it takes.
 struct Axis {
   std::string name;
   std::vector<double> values;
 };
 
-/// `NAME=A:B:N` (N values evenly spaced from A to B, both included) or `NAME=V1,V2,…`.
+/// `NAME=A:B:N` (N values evenly spaced from A to B, both included; N at most kMaxStudyCases) or
+/// `NAME=V1,V2,…`; StudyError when a value is not a finite number.
 Axis parse_axis(const std::string& spec);
 
 /// A distribution a random parameter is drawn from (docs/theory.md §9.1).
@@ -63,7 +68,8 @@ struct Case {
 
 /// Every combination of the axes (the last axis varying fastest), each combined with `samples`
 /// random draws when `random` is not empty (draws made in case order from one mt19937_64 seeded
-/// with `seed`). StudyError when nothing varies or a name is given twice.
+/// with `seed`). StudyError when nothing varies, a name is given twice, the study would have more
+/// than kMaxStudyCases cases, or a draw is not a finite number.
 std::vector<Case> make_cases(const std::vector<Axis>& axes,
                              const std::vector<RandomParameter>& random, size_t samples,
                              std::uint64_t seed);
@@ -227,7 +233,8 @@ class SummaryFile {
  public:
   /// Opens `path` for the columns `header`. Without `resume` the file must not exist (a
   /// std::runtime_error says so); with it, the rows already there are kept (a different header
-  /// is a std::runtime_error) and their case numbers are returned by done(). A new file is
+  /// is a std::runtime_error, as is a row without a case number or repeating one) and their case
+  /// numbers are returned by done(). A new file is
   /// written by the first append() or finish() (with worker processes, while the first cases
   /// run), after `before_first_write` (the study's record, say), which an existing file runs at
   /// once.

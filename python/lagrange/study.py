@@ -6,9 +6,29 @@ The cases run on the engine ``lagrange sweep`` uses, so each row holds the numbe
 
 import hashlib
 import itertools
+import math
 import pickle
 
 _models = {}  # pickled model -> the model loaded from it, once per worker process
+MAX_CASES = 1_000_000  # as `lagrange sweep` (lagrange::sweep::kMaxStudyCases, docs/sweeps.md)
+
+
+def _value(name, value):
+    """A parameter's value as a finite float; ValueError naming the parameter otherwise."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"sweep: expected a number for '{name}', got {value!r}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"sweep: expected a finite number for '{name}', got {value!r}")
+    return number
+
+
+def _values(name, values):
+    """A grid axis's values: a sequence of numbers (a string is not one, though iterable)."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ValueError(f"sweep: expected a sequence of numbers for '{name}', got {values!r}")
+    return [_value(name, v) for v in values]
 
 
 def _cases(grid_or_samples):
@@ -16,11 +36,15 @@ def _cases(grid_or_samples):
     a sequence of dicts is a list of cases (random samples, or any other set)."""
     if isinstance(grid_or_samples, dict):
         names = list(grid_or_samples)
-        values = [list(grid_or_samples[n]) for n in names]
+        values = [_values(n, grid_or_samples[n]) for n in names]
         if not names or any(len(v) == 0 for v in values):
             raise ValueError("sweep: the grid needs at least one parameter with values")
-        return [dict(zip(names, map(float, combo))) for combo in itertools.product(*values)]
-    cases = [{k: float(v) for k, v in case.items()} for case in grid_or_samples]
+        size = math.prod(len(v) for v in values)
+        if size > MAX_CASES:
+            raise ValueError(f"sweep: the grid has {size} cases, more than the {MAX_CASES} a "
+                             "study may have (docs/sweeps.md)")
+        return [dict(zip(names, combo)) for combo in itertools.product(*values)]
+    cases = [{k: _value(k, v) for k, v in case.items()} for case in grid_or_samples]
     if not cases:
         raise ValueError("sweep: no cases")
     return cases
@@ -61,6 +85,8 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
     """
     import pandas
 
+    if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1):
+        raise ValueError(f"sweep: chunk must be a whole number of cases, 1 or more, got {chunk!r}")
     cases = _cases(grid_or_samples)
     specs = _metric_specs(metrics)
     settings = dict(t_end=t_end, output_step=output_step, integrator=integrator, rtol=rtol,
@@ -69,7 +95,7 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
     if executor is None:
         rows, reads = model._run_cases(cases, specs, **settings)
     else:
-        size = chunk or max(1, len(cases) // 32)
+        size = chunk if chunk is not None else max(1, len(cases) // 32)
         state = pickle.dumps(model)
         futures = [executor.submit(_run_chunk, state, cases[i:i + size], specs, settings)
                    for i in range(0, len(cases), size)]

@@ -2,6 +2,7 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -326,6 +327,11 @@ void bind_model(py::module_& m) {
       "loads",
       [](const std::string& text, const ParameterOverrides& set, const py::dict& initial,
          const std::string& dynamics, const std::string& label) {
+        // A label is printed as the file of every error's location: a line end in it could
+        // make a message show another file and line (issue 37 item 20).
+        if (std::any_of(label.begin(), label.end(),
+                        [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
+          throw py::value_error("label: expected one line of printable text");
         return load_model(cli::ModelSource{label, text}, set, dynamics, initial_values(initial));
       },
       py::arg("text"), py::kw_only(), py::arg("set") = ParameterOverrides{},

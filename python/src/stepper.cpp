@@ -65,8 +65,9 @@ void set_law(PyStepper& s, py::object law) {
   const Dynamics& dyn = s.stepper->dynamics();
   const size_t nq = dyn.model().nq, nv = dyn.model().nv;
   const size_t k = s.stepper->external_inputs().size();
-  s.law = law;
-  PyObject* f = law.ptr();  // s.law keeps it alive
+  // s.law keeps f alive once set_input_law accepted it: refused during a step ("stepper in
+  // use"), the running law must stay referenced.
+  PyObject* f = law.ptr();
   s.stepper->set_input_law([f, nq, nv, k](double t, const double* q, const double* v, double* u) {
     py::gil_scoped_acquire gil;
     py::object values = py::reinterpret_borrow<py::object>(f)(
@@ -78,6 +79,7 @@ void set_law(PyStepper& s, py::object law) {
                             " values (one per external input), got " + std::to_string(list.size()));
     std::copy(list.begin(), list.end(), u);
   });
+  s.law = law;
 }
 
 // The model's outputs at t from the last recorded row.

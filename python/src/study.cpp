@@ -51,6 +51,8 @@ py::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, do
     for (const auto& [name, value] : c)
       if (p.model->parameter_index(name) < 0)
         throw py::value_error("sweep: no parameter '" + name + "' in " + m.source.path);
+  // Settings refused here (ValueError), not as a failed row per case (issue 37 item 6).
+  (void)cli::simulation_options(*p.model, settings);
   if (check_only) return py::make_tuple(py::list(), 0);
   // The cases' inputs as `lagrange sweep` has them (cli/sweep_inputs.hpp): replayed from one
   // traced read kept with the model for these parameters and settings, else each case's own

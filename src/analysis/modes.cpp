@@ -1,6 +1,8 @@
 // Eigenvalues, natural frequencies, damping ratios and mode shapes of a linear model, and its
 // zero-order-hold discretisation (docs/theory.md §5.4).
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,15 +13,36 @@
 
 namespace lagrange {
 
+namespace {
+
+/// max Re λ(A), 0 for an empty A, NaN when the eigenvalue solver fails.
+double fastest_growth(const Eigen::MatrixXd& A) {
+  if (A.rows() == 0) return 0.0;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A, false);
+  if (es.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
+  return es.eigenvalues().real().maxCoeff();
+}
+
+}  // namespace
+
 LinearModel discretize(const LinearModel& continuous, double dt) {
-  if (!(dt > 0)) throw std::invalid_argument("the sampling time must be positive");
+  if (!(dt > 0 && std::isfinite(dt)))
+    throw std::invalid_argument(
+        fmt::format("the sampling time must be positive and finite, got {}", dt));
   if (continuous.dt > 0) throw std::invalid_argument("the model is already discrete");
   const long n = continuous.A.rows(), k = continuous.B.cols();
   // exp([A B; 0 0] dt) = [A_d B_d; 0 1]: the state transition and the held input's effect.
   Eigen::MatrixXd aug = Eigen::MatrixXd::Zero(n + k, n + k);
   aug.topLeftCorner(n, n) = continuous.A * dt;
   aug.topRightCorner(n, k) = continuous.B * dt;
+  // Eigen's exp() scales and squares (Higham 2005); what overflows a double is refused, never
+  // printed as NaN (issue 37 item 5).
   const Eigen::MatrixXd E = aug.exp();
+  if (!E.allFinite())
+    throw AnalysisError(fmt::format(
+        "the zero-order hold over the sampling time dt = {} overflows a double (|A dt| = {:.3g}, "
+        "fastest growth Re λ = {:.3g}/s): give a shorter step",
+        dt, aug.topLeftCorner(n, n).cwiseAbs().maxCoeff(), fastest_growth(continuous.A)));
   LinearModel d = continuous;
   d.A = E.topLeftCorner(n, n);
   d.B = E.topRightCorner(n, k);

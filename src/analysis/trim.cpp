@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dynamics/rounding_floor.hpp"
 #include "lagrange/analysis.hpp"
@@ -151,6 +152,10 @@ Unknowns unknowns_of(const DynamicsJacobian& jac, const TrimOptions& options,
   return u;
 }
 
+/// The largest rounding floor trim accepts, relative to the accelerations' change per unit
+/// coordinate (docs/theory.md §5.5, "Tolerance").
+constexpr double kFloorCap = 1e-6;
+
 // What one iteration needs at the current state: the accelerations' Jacobian by the unknowns
 // (Af, n × nu) and Z, an orthonormal basis of the directions along the constraint manifold.
 struct Linearised {
@@ -173,6 +178,18 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
   Linearised L;
   L.floor = 4 * (rounding_level(J.a_q, Eigen::Map<const Eigen::VectorXd>(q.data(), J.a_q.cols())) +
                  rounding_level(J.a_v, Eigen::Map<const Eigen::VectorXd>(v.data(), J.a_v.cols())));
+  // docs/theory.md §5.5, "Tolerance": the floor may lift the tolerance to kFloorCap of the
+  // accelerations' change per unit coordinate, ε|x| ≈ 10⁻⁶; beyond, x is too far out for its
+  // rounding to leave any acceleration meaningful, and no state there is called an equilibrium.
+  const double scale = (rounding_level(J.a_q, Eigen::VectorXd::Ones(J.a_q.cols())) +
+                        rounding_level(J.a_v, Eigen::VectorXd::Ones(J.a_v.cols()))) /
+                       std::numeric_limits<double>::epsilon();
+  if (L.floor > kFloorCap * scale)
+    throw AnalysisError(fmt::format(
+        "trim: the state is too far out for double precision: at {} the rounding of the "
+        "coordinates alone moves the accelerations by {:.3g}, more than {:g} of their change per "
+        "unit coordinate ({:.3g}); no state there can be told to be an equilibrium",
+        describe(cm, q, v), L.floor, kFloorCap, scale));
   L.Af.resize(n, nu);
   for (long k = 0; k < np; ++k) L.Af.col(k) = Ax.col(unknowns.positions[static_cast<size_t>(k)]);
   const long nr = np + static_cast<long>(unknowns.rates.size());
@@ -459,6 +476,9 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
                         static_cast<long>(i)) == unknowns.positions.end();
   const bool held_rates = std::find(steady.begin(), steady.end(), true) != steady.end();
   const char* what = held_rates ? "steady state" : "equilibrium";
+  if (!(options.tol > 0 && std::isfinite(options.tol)))
+    throw std::invalid_argument(
+        fmt::format("trim: the tolerance must be positive and finite, got {}", options.tol));
 
   TrimResult start;
   start.q = q0;
@@ -469,8 +489,13 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
   const Residual r0 = residual_at(dyn, t, start.q, start.v, held);
   TrimResult result = start;
   Residual r = r0;
-  const std::string failed =
-      levenberg_marquardt(jac, dyn, t, unknowns, held, options, what, result, r);
+  std::string failed;
+  try {
+    failed = levenberg_marquardt(jac, dyn, t, unknowns, held, options, what, result, r);
+  } catch (const AnalysisError&) {
+    set_inputs(dyn, unknowns, start.inputs);  // on failure the start values are restored
+    throw;
+  }
   if (!failed.empty()) {
     const std::string where =
         fmt::format("{}; stopped at {} with max |acceleration| = {:.3g}", failed,
@@ -480,7 +505,13 @@ TrimResult trim(const DynamicsJacobian& jac, Dynamics& dyn, double t, const std:
       throw AnalysisError(where);
     TrimResult relaxed = start;
     Residual rr = r0;
-    const std::string why = pseudo_transient(jac, dyn, t, unknowns, held, options, relaxed, rr);
+    std::string why;
+    try {
+      why = pseudo_transient(jac, dyn, t, unknowns, held, options, relaxed, rr);
+    } catch (const AnalysisError&) {
+      set_inputs(dyn, unknowns, start.inputs);
+      throw;
+    }
     if (!why.empty())
       throw AnalysisError(fmt::format(
           "{}; pseudo-transient continuation from the start failed too ({}), stopped at {}", where,

@@ -185,6 +185,7 @@ int run_check(const Options& opt) {
   // articulated-body equations, which grow linearly with the links.
   const Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const CompiledModel& cm = *p.compiled;
+  (void)sweep::study_metrics(*p.model, cm, {});  // `metrics:`, as simulate checks them (issue 37)
   // prepare() evaluated the dynamics at the initial state last; the recursive form never forms M.
   if (p.equations.recursive) require_positive_pivots(*p.model, p.equations, *p.dynamics);
   fmt::print("{}: {} coordinates, {} constraints, {} parameters, {} inputs — model ok\n",
@@ -206,12 +207,8 @@ int run_simulate(const Options& opt) {
   for (const auto& [path, option] : {std::pair{opt.csv, "-o"}, std::pair{opt.plot, "--plot"},
                                      std::pair{opt.report, "--report"}}) {
     if (path.empty()) continue;
-    try {
-      check_writable(path);
-      if (std::string(option) == "-o") check_writable(path + ".json");
-    } catch (const std::runtime_error& e) {
-      throw UsageError(fmt::format("{}: {}", option, e.what()));
-    }
+    check_output(path, option);
+    if (std::string(option) == "-o") check_output(path + ".json", option);
   }
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--initial", opt.dynamics);
   const Model& model = *p.model;

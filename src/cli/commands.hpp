@@ -15,6 +15,9 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The most workers `sweep -j` starts (each one a process; docs/sweeps.md).
+constexpr std::uint64_t kMaxJobs = 1024;
+
 /// Everything the command line can set; unset optionals leave the model file's values.
 struct Options {
   std::string model;

@@ -98,7 +98,8 @@ std::string format_text(const Prepared& p, const LinearModel& lin, const std::ve
   if (trimmed.steady)
     out +=
         "note: a steady motion (held rates): A, B describe perturbations of the state about it\n";
-  else if (lin.equilibrium_residual > 1e-8)
+  else if (lin.equilibrium_residual >  // held to trim's own tolerance when trim found the point
+           (trimmed.result ? std::max(1e-8, trimmed.result->tolerance) : 1e-8))
     out += fmt::format(
         "note: not an equilibrium (max |q_dot|, |acceleration| = {:.3g}): a first-order Taylor "
         "approximation; `lagrange trim` finds an equilibrium\n",

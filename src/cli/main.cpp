@@ -7,10 +7,12 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
@@ -18,6 +20,33 @@
 #include "lagrange/analysis.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/integrator.hpp"
+#include "lagrange/sweep.hpp"
+
+namespace {
+
+/// A whole number from 0 to `max` in decimal digits (no sign, no exponent): CLI11 reads "-1"
+/// into an unsigned option as 2^64 − 1, and clamps 2^64 to it (issue 37 item 3).
+CLI::Validator whole_number(std::uint64_t max) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (text.empty() || error != std::errc() || stop != end || value > max)
+          return fmt::format("expected a whole number from 0 to {}, got '{}'", max, text);
+        return "";
+      },
+      fmt::format("UINT<={}", max));
+}
+
+/// A path that is not empty: `-o ""` once ran and wrote nothing, silently.
+const CLI::Validator kFileName(
+    [](std::string& text) -> std::string {
+      return text.empty() ? "expected a file or directory name, got ''" : "";
+    },
+    "PATH");
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lagrange::cli;
@@ -45,12 +74,15 @@ int main(int argc, char** argv) {
   sim->add_option("model", opt.model, "model file (YAML)")->required();
   sim->add_option("--t-end", opt.t_end, "end time (overrides simulate.t_end)");
   sim->add_option("--output-step", opt.output_step, "output grid step");
-  sim->add_option("-o,--output", opt.csv, "CSV file to write (default: print a summary only)");
-  sim->add_option("--plot", opt.plot, "plot of the coordinates, .svg or .png (through gnuplot)");
+  sim->add_option("-o,--output", opt.csv, "CSV file to write (default: print a summary only)")
+      ->check(kFileName);
+  sim->add_option("--plot", opt.plot, "plot of the coordinates, .svg or .png (through gnuplot)")
+      ->check(kFileName);
   sim->add_option("--plot-columns", opt.plot_columns, "columns to plot (default: coordinates)")
       ->delimiter(',');
   sim->add_option("--report", opt.report,
-                  "self-contained HTML report: 3-D animation, plots, equations (.html)");
+                  "self-contained HTML report: 3-D animation, plots, equations (.html)")
+      ->check(kFileName);
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
   sim->add_option("--initial", opt.initial,
                   "initial value of a coordinate or a rate NAME_dot, NAME=VALUE (repeatable, or "
@@ -78,10 +110,11 @@ int main(int argc, char** argv) {
 
   auto* exp = app.add_subcommand("export", "write standalone C99 source of the dynamics");
   exp->add_option("model", opt.model, "model file (YAML)")->required();
-  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c");
+  exp->add_option("--c", opt.c_dir, "directory for lagrange_model.h/.c")->check(kFileName);
   exp->add_option("--fmu", opt.fmu,
                   "FMI 2.0 FMU to write (FILE.fmu): the C of --c, an integrator, "
-                  "modelDescription.xml and a linux64 binary built with cc (docs/fmu.md)");
+                  "modelDescription.xml and a linux64 binary built with cc (docs/fmu.md)")
+      ->check(kFileName);
   exp->add_option("--fmi-type", opt.fmi_type,
                   "both (default): Co-Simulation and Model Exchange | cs | me")
       ->check(CLI::IsMember({"cs", "me", "both"}));
@@ -127,7 +160,7 @@ int main(int argc, char** argv) {
   report->add_option("model", opt.model, "model file (YAML)")->required();
   report->add_option("trajectory", opt.trajectory, "trajectory CSV written by simulate -o")
       ->required();
-  report->add_option("-o,--output", opt.report, "HTML file to write")->required();
+  report->add_option("-o,--output", opt.report, "HTML file to write")->required()->check(kFileName);
   report->add_option("--set", opt.sets, "parameter value the run used, NAME=VALUE (repeatable)");
   report->add_flag("-q,--quiet", opt.quiet, "no summary line");
 
@@ -187,16 +220,20 @@ int main(int argc, char** argv) {
   sweep->add_option("--random", opt.random,
                     "random parameter NAME=normal(MU,SIGMA) | uniform(LOW,HIGH) | "
                     "lognormal(MU,SIGMA) (repeatable; --samples draws per grid point)");
-  sweep->add_option("--samples", opt.samples, "draws of the --random parameters");
-  sweep->add_option("--seed", opt.seed, "seed of the random draws (default 1)");
+  sweep->add_option("--samples", opt.samples, "draws of the --random parameters")
+      ->check(whole_number(lagrange::sweep::kMaxStudyCases));
+  sweep->add_option("--seed", opt.seed, "seed of the random draws (default 1)")
+      ->check(whole_number(std::numeric_limits<std::uint64_t>::max()));
   sweep->add_option(
       "--metric", opt.metrics,
       "NAME=AGG(COLUMN[, WINDOW]) with AGG max | min | mean | final | initial | drift, "
       "COLUMN a trajectory column or abs(COLUMN), WINDOW like 't > 60' "
       "(repeatable)");
   sweep->add_option("-o,--output", opt.study, "study directory: summary.csv (and case_N.csv)")
-      ->required();
-  sweep->add_option("-j,--jobs", opt.jobs, "workers (default: every core)");
+      ->required()
+      ->check(kFileName);
+  sweep->add_option("-j,--jobs", opt.jobs, "workers (default 0: every core)")
+      ->check(whole_number(kMaxJobs));
   sweep->add_flag("--resume", opt.resume,
                   "finish an interrupted study: cases already in summary.csv are not run again");
   sweep->add_flag("--keep-trajectories", opt.keep_trajectories,

@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/initial_state.hpp"
 #include "lagrange/error.hpp"
+#include "lagrange/io.hpp"
 
 namespace lagrange::cli {
 
@@ -121,6 +122,9 @@ Prepared prepare_checked(const ModelSource& source, const ParameterOverrides& ov
 
 // The formulation `--dynamics` asks for (docs/theory.md §4.9).
 Formulation formulation(const Model& model, const std::string& dynamics) {
+  if (dynamics != "auto" && dynamics != "lagrangian" && dynamics != "recursive")
+    throw UsageError(
+        fmt::format("dynamics: expected auto, lagrangian or recursive, got '{}'", dynamics));
   if (dynamics == "lagrangian") return Formulation::Lagrangian;
   const std::string why = recursive_unsuitable(model);
   if (dynamics == "recursive") {
@@ -175,9 +179,23 @@ Prepared prepare_source(const ModelSource& source, const ParameterOverrides& ove
                         const std::string& dynamics,
                         const std::vector<std::pair<std::string, double>>& initial) {
   std::string given;
-  for (const auto& [name, value] : overrides)
+  for (const auto& [name, value] : overrides) {
+    if (!std::isfinite(value))  // else a later check blames another parameter (issue 37 item 14)
+      throw UsageError(fmt::format("set {}={}: expected a finite number", name, value));
     given += fmt::format("{}{}={}", given.empty() ? "set " : ", ", name, value);
+  }
+  for (const auto& [name, value] : initial)
+    if (!std::isfinite(value))
+      throw UsageError(fmt::format("initial {}={}: expected a finite number", name, value));
   return prepare_checked(source, overrides, GivenState{initial, "initial"}, dynamics, "set", given);
+}
+
+void check_output(const std::string& path, const std::string& option) {
+  try {
+    check_writable(path);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(fmt::format("{}: {}", option, e.what()));
+  }
 }
 
 Model ModelSource::read(const ParameterOverrides& overrides) const {
@@ -196,6 +214,20 @@ SimulationOptions simulation_options(const Model& model, const RunSettings& give
   so.project = model.stabilization.project;
   if (!(so.t_end > 0)) throw UsageError("--t-end must be positive");
   if (!(so.output_step > 0)) throw UsageError("--output-step must be positive");
+  // Counts checked before anything is allocated (issue 37 item 3): the grid's samples, and the
+  // fixed steps in one output interval.
+  const double intervals = (so.t_end - so.t0) / so.output_step;
+  if (!(intervals <= kMaxOutputIntervals))
+    throw UsageError(fmt::format(
+        "--output-step {:g} gives {:.3g} samples up to t_end = {:g}, more than the {:.0e} a run "
+        "may keep; give a larger --output-step or a shorter --t-end",
+        so.output_step, intervals + 1, so.t_end, kMaxOutputIntervals));
+  const double fixed_steps = so.output_step / so.integrator.step;
+  if (so.integrator.step > 0 && !(fixed_steps <= static_cast<double>(so.integrator.max_steps)))
+    throw UsageError(fmt::format(
+        "--step {:g} makes {:.3g} steps per output interval of {:g}, more than {}; give a larger "
+        "--step",
+        so.integrator.step, fixed_steps, so.output_step, so.integrator.max_steps));
   if (!(so.integrator.rtol > 0) || !(so.integrator.atol > 0))
     throw UsageError("tolerances must be positive");
   if (so.integrator.max_order < 1 || so.integrator.max_order > 5)

@@ -53,6 +53,11 @@ struct ModelSource {
   Model read(const ParameterOverrides& overrides) const;
 };
 
+/// check_writable(path) as a command-line mistake: UsageError "OPTION: cannot write …" (exit 2)
+/// unless a new file can be created at `path` (an existing device, FIFO, socket or directory
+/// cannot).
+void check_output(const std::string& path, const std::string& option);
+
 /// `--set NAME=VALUE` arguments as overrides; UsageError for a missing '=' or a value that is
 /// not a finite number.
 ParameterOverrides parse_sets(const std::vector<std::string>& sets);
@@ -72,7 +77,7 @@ std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<
 /// UsageError saying why when the model cannot take it) or "auto" (recursive where it applies:
 /// faster to derive and per call at every size measured, docs/benchmarks.md).
 /// The formulation `--dynamics` names for `model` ("lagrangian", "recursive" or "auto", as for
-/// prepare); a UsageError saying why when "recursive" does not apply.
+/// prepare); a UsageError saying why when "recursive" does not apply, or naming another word.
 Formulation formulation(const Model& model, const std::string& dynamics);
 
 Prepared prepare(const std::string& path, const std::vector<std::string>& sets,

@@ -41,6 +41,7 @@ void write_run_report(const Prepared& p, const Trajectory& traj, const std::stri
 }
 
 int run_report(const Options& opt) {
+  check_output(opt.report, "-o");  // before the model is read (issue 37 item 1)
   const Prepared p = prepare(opt.model, opt.sets);
   check_report(opt.report, *p.model);
   Trajectory traj;

@@ -20,6 +20,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/prepare.hpp"
+#include "cli/study_lock.hpp"
 #include "cli/study_record.hpp"
 #include "cli/sweep_inputs.hpp"
 #include "lagrange/dynamics.hpp"
@@ -106,6 +107,13 @@ struct Study {
 
 void set_up(const Options& opt, Study& s) {
   s.plan = plan(opt);
+  const ParameterOverrides sets = parse_sets(opt.sets);
+  for (const auto& [name, value] : s.plan.cases.front().values)
+    if (sets.count(name))
+      throw UsageError(
+          fmt::format("--set {}: the parameter is varied (--vary or --random), which "
+                      "would override the value set; give one or the other",
+                      name));
   s.prepared = prepare(opt.model, opt.sets, {}, "--initial", opt.dynamics);
   const Prepared& p = s.prepared;
   for (const auto& [name, value] : s.plan.cases.front().values)
@@ -209,12 +217,21 @@ class CaseRunner {
 };
 #endif
 
-// The study directory's summary; a UsageError when it cannot be made, holds another study, or
-// --resume is given for a study started with other options.
-std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s) {
+// The study directory's summary, with `lock` taken on the directory; a UsageError when it cannot
+// be made, another study runs there or holds it, or --resume is given for a study started with
+// other options or whose study.txt is gone.
+std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study& s,
+                                                 std::unique_ptr<StudyLock>& lock) {
   const fs::path about = fs::path(opt.study) / "study.txt";
   const std::string text = study_record(opt, *s.prepared.compiled, s.plan.metrics);
   try {
+    fs::create_directories(opt.study);
+    lock = std::make_unique<StudyLock>(opt.study);
+    if (opt.resume && !fs::exists(about) && fs::exists(fs::path(opt.study) / "summary.csv"))
+      throw UsageError(
+          fmt::format("--resume: {} has a summary.csv but no study.txt, which says "
+                      "which study it holds; it cannot be finished",
+                      opt.study));
     if (opt.resume && fs::exists(about)) {
       std::ifstream in(about, std::ios::binary);
       std::stringstream was;
@@ -225,12 +242,18 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
             "with --resume finishes it, over the same model file. What differs:\n{}",
             opt.study, record_changes(was.str(), text)));
     }
-    fs::create_directories(opt.study);
     // study.txt, then the summary's header, are written when the first row is (while the first
     // cases run), or at once when resuming.
-    return std::make_unique<sweep::SummaryFile>(
+    auto summary = std::make_unique<sweep::SummaryFile>(
         (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume,
         [about, text] { write_file_atomically(about.string(), text); });
+    for (const size_t index : summary->done())
+      if (index >= s.plan.cases.size())
+        throw UsageError(
+            fmt::format("--resume: {}/summary.csv has a row of case {}, beyond this "
+                        "study's {} cases (edited by hand?)",
+                        opt.study, index, s.plan.cases.size()));
+    return summary;
   } catch (const UsageError&) {
     throw;
   } catch (const std::exception& e) {
@@ -346,9 +369,10 @@ int run_sweep_mpi(const Options& opt) {
   }
   Study s;
   set_up(opt, s);
+  std::unique_ptr<StudyLock> lock;
   std::unique_ptr<sweep::SummaryFile> summary;
   try {
-    summary = open_summary(opt, s);
+    summary = open_summary(opt, s, lock);
     choose_evaluation(opt, s, true);
   } catch (const UsageError&) {
     mpi_hand_out(mpi, {}, opt.interrupt, {}, {});  // the workers stop at once
@@ -386,10 +410,12 @@ int end_process(int code) {
 }  // namespace
 
 int run_sweep(const Options& opt) {
-  const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
   sweep::keep_freed_memory();
 #ifdef LAGRANGE_HAVE_MPI
-  if (started_by_mpirun()) return run_sweep_mpi(opt);
+  if (started_by_mpirun()) {
+    const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
+    return run_sweep_mpi(opt);
+  }
 #else
   if (started_by_mpirun())
     throw UsageError(
@@ -399,7 +425,12 @@ int run_sweep(const Options& opt) {
 #endif
   Study s;
   set_up(opt, s);
-  const auto summary = open_summary(opt, s);
+  std::unique_ptr<StudyLock> lock;
+  // From here an interrupted study keeps its finished cases, and a compile under way finishes
+  // (a compiler killed by _exit would stay behind, with its source in the cache); before, while
+  // the study derives, Ctrl-C ends it at once with 130, as simulate (issue 37 item 10).
+  const KeepWorkOnInterrupt keep;
+  const auto summary = open_summary(opt, s, lock);
   choose_evaluation(opt, s, true);
   const size_t already = summary->done().size();
   Progress progress(opt, s.plan.cases.size(), already);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace lagrange::cli {
 
@@ -36,7 +37,8 @@ std::vector<std::string> trim_inputs(const CompiledModel& cm, const Options& opt
 TrimOptions trim_options(const CompiledModel& cm, const std::vector<double>& q,
                          const std::vector<double>& v, const Options& opt,
                          const std::vector<std::string>& inputs) {
-  if (!(opt.tol > 0)) throw UsageError(fmt::format("--tol must be positive, got {}", opt.tol));
+  if (!(opt.tol > 0 && std::isfinite(opt.tol)))
+    throw UsageError(fmt::format("--tol must be positive and finite, got {}", opt.tol));
   const TangentChart chart = tangent_chart(cm, q.data(), v.data());
   const std::vector<std::string> plain_rates(cm.velocity_names.begin(),
                                              cm.velocity_names.begin() + cm.plain);

@@ -79,6 +79,21 @@ bool read_all(int fd, std::string& out) {
   }
 }
 
+/// The bytes of the regular file at `path` (links not followed): Absent when it cannot be opened,
+/// NotRegular for a FIFO, socket or device, which are never read (a FIFO's open() or read()
+/// would block for ever; issue 37 item 11), Unreadable when a read fails.
+enum class CacheRead { Read, Absent, NotRegular, Unreadable };
+CacheRead read_regular(const std::string& path, std::string& bytes) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+  if (fd < 0) return CacheRead::Absent;
+  struct stat st {};
+  CacheRead result = CacheRead::NotRegular;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode))
+    result = read_all(fd, bytes) ? CacheRead::Read : CacheRead::Unreadable;
+  ::close(fd);
+  return result;
+}
+
 struct Plan {
   std::string source, compiler, dir, path;
   std::string origin;  ///< SHA-256 of everything the library is built from (the key's inputs)
@@ -171,12 +186,18 @@ MachineCode::~MachineCode() {
 
 std::shared_ptr<MachineCode> MachineCode::load(const std::string& path, const std::string& origin,
                                                size_t count, std::string* rejected) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-  if (fd < 0) return nullptr;
-  std::string bytes, record;
-  const bool read = read_all(fd, bytes);
-  ::close(fd);
-  std::ifstream(path + ".sha256") >> record;  // "<library digest>:<origin digest>"
+  std::string bytes, record_text;
+  const CacheRead library = read_regular(path, bytes);
+  if (library == CacheRead::Absent) return nullptr;
+  const CacheRead recorded = read_regular(path + ".sha256", record_text);
+  if (library == CacheRead::NotRegular || recorded == CacheRead::NotRegular) {
+    if (rejected != nullptr)
+      *rejected = fmt::format("the cached '{}' or its '.sha256' is not a regular file", path);
+    return nullptr;
+  }
+  // "<library digest>:<origin digest>", then a line end
+  const std::string record = record_text.substr(0, record_text.find_first_of(" \t\r\n"));
+  const bool read = library == CacheRead::Read;
   const std::string want = (read ? sha256_hex(bytes) : std::string("unreadable")) + ":" + origin;
   if (record != want) {
     if (rejected != nullptr)

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lagrange/integrator.hpp"
+
 namespace lagrange::integration {
 
 OutputGrid::OutputGrid(double t0, double t_end, double dt) : t0_(t0), t_end_(t_end), dt_(dt) {
@@ -21,6 +23,11 @@ OutputGrid::OutputGrid(double t0, double t_end, double dt) : t0_(t0), t_end_(t_e
         fmt::format("output grid: expected t_end >= t0, got t0 = {}, t_end = {}", t0, t_end));
   }
   const double ratio = (t_end - t0) / dt;
+  if (!(ratio <= kMaxOutputIntervals))  // also keeps the casts below in range
+    throw std::invalid_argument(
+        fmt::format("output grid: (t_end - t0) / dt = {:.3g} intervals, more than the {:.0e} a "
+                    "run may keep (t0 = {}, t_end = {}, dt = {})",
+                    ratio, kMaxOutputIntervals, t0, t_end, dt));
   const double nearest = std::round(ratio);
   if (std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio)) {
     intervals_ = static_cast<size_t>(nearest);

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "lagrange/io.hpp"
 
@@ -42,6 +43,25 @@ std::string reason(int err) {
 std::string directory_of(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   return parent.empty() ? "." : parent.string();
+}
+
+/// What a file system entry of type `mode` is, for a message ("a directory", "a FIFO", …).
+const char* entry_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+/// Throws unless `path` is absent or a regular file (links followed): the rename that publishes a
+/// file would replace a device node, a FIFO or a socket by a regular file (issue 37 item 1).
+void require_regular_or_absent(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
+  throw std::runtime_error("cannot write '" + path + "': it exists and is " +
+                           entry_kind(st.st_mode) + ", not a regular file");
 }
 
 /// Removes NAME.<pid>.<suffix>.part left beside `path` by processes that no longer run (a
@@ -165,15 +185,31 @@ void create_parent_directories(const std::string& path) {
 }
 
 void check_writable(const std::string& path) {
-  create_parent_directories(path);
+  require_regular_or_absent(path);
+  // The directories the probe needs are made for it and removed after it, deepest first: a run
+  // that fails later leaves none behind (issue 37 item 19); the write makes them again.
+  std::vector<fs::path> made;
   std::error_code ec;
-  if (fs::is_directory(path, ec))
-    throw std::runtime_error("cannot write '" + path + "': it is a directory");
-  const HoldSigint hold;
-  StagedFile probe(path, "");  // removed unpublished: the location takes a new file
+  for (fs::path dir = fs::path(path).parent_path(); !dir.empty() && !fs::exists(dir, ec);
+       dir = dir.parent_path())
+    made.push_back(dir);
+  const auto remove_made = [&made] {
+    std::error_code ignored;
+    for (const fs::path& dir : made) fs::remove(dir, ignored);  // only while empty
+  };
+  try {
+    create_parent_directories(path);
+    const HoldSigint hold;
+    StagedFile probe(path, "");  // removed unpublished: the location takes a new file
+  } catch (...) {
+    remove_made();
+    throw;
+  }
+  remove_made();
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
+  require_regular_or_absent(path);
   create_parent_directories(path);
   remove_stale_parts(path);
   const HoldSigint hold;
@@ -184,8 +220,10 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 
 void write_file_with_sidecar(const std::string& path, const std::string& text,
                              const std::string& sidecar_text) {
-  create_parent_directories(path);
   const std::string sidecar = path + ".json";
+  require_regular_or_absent(path);
+  require_regular_or_absent(sidecar);
+  create_parent_directories(path);
   remove_stale_parts(path);
   remove_stale_parts(sidecar);
   const HoldSigint hold;

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -64,9 +65,9 @@ Trajectory read_trajectory_csv(const std::string& path) {
     for (const auto& cell : cells) {
       char* end = nullptr;
       const double x = std::strtod(cell.c_str(), &end);
-      if (cell.empty() || *end != '\0')
+      if (cell.empty() || *end != '\0' || !std::isfinite(x))  // simulate writes finite values
         throw std::runtime_error(
-            fmt::format("{}:{}: expected a number, got '{}'", path, number, cell));
+            fmt::format("{}:{}: expected a finite number, got '{}'", path, number, cell));
       traj.data.push_back(x);
     }
   }

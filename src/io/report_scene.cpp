@@ -454,7 +454,9 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
   else if (flat == 2)
     up = Eigen::Vector3d(0, 1, 0);
 
-  const int decimals = 4 - static_cast<int>(std::floor(std::log10(extent)));
+  // extent > 1e-9 but may overflow to inf (points near ±1e308): the cast's range is checked.
+  const int decimals =
+      4 - static_cast<int>(std::clamp(std::floor(std::log10(extent)), -10.0, 308.0));
   nlohmann::json j;
   j["name"] = model.name;
   j["extent"] = extent;

@@ -108,6 +108,10 @@ Model ModelReader::read(const YAML::Node& root) {
 
 Model read_model_string(const std::string& yaml_text, const std::string& file_label,
                         const ParameterOverrides& overrides, ReadTrace* trace) {
+  if (yaml_text.size() > model::kMaxModelBytes)  // a file is cut off at read; text given whole
+    throw ModelError(SourceLoc{file_label},
+                     fmt::format("expected a model of at most {} MiB, got {}",
+                                 model::kMaxModelBytes >> 20, yaml_text.size()));
   std::string text = yaml_text.rfind("\xEF\xBB\xBF", 0) == 0 ? yaml_text.substr(3) : yaml_text;
   model::SourceText src(std::move(text), file_label);
   model::check_yaml_text(src);

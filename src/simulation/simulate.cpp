@@ -225,6 +225,7 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
   const StopConditions stop(cm), guards(cm, StopConditions::Kind::Fail);
   StopWatch watch(stop.size(), n), guard_watch(guards.size(), n);
   std::vector<double> stop_row, stop_g(stop.size()), guard_g(guards.size());
+  std::vector<bool> stop_was_number(stop.size(), false);  // NaN at every sample: warned after
   const auto values_of = [&](const StopConditions& conditions) -> StopWatch::Evaluate {
     return [&](double t, const double* yy, double* g) {
       stop_row.clear();
@@ -295,6 +296,8 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     if (!stop.empty()) {  // the conditions read the row just written
       stop.evaluate(traj.data.data() + traj.data.size() - width, dyn.parameters().data(),
                     stop_g.data());
+      for (size_t k = 0; k < stop.size(); ++k)
+        if (!std::isnan(stop_g[k])) stop_was_number[k] = true;
       if (watch.fired(t, yy, stop_g.data(), stop_values, advance)) {
         traj.data.resize(traj.data.size() - width);  // the sample lies past the stop
         const double* y = watch.state.data();
@@ -357,6 +360,13 @@ Trajectory simulate(Dynamics& dyn, const SimulationOptions& opt, std::vector<dou
     if (last.valid && !last.reported) traj.message += "; " + last.describe(cm);
     traj.failure_time = e.time();
   }
+  // A condition that was NaN at every sample could never fire (issue 37 item 20): said once.
+  for (size_t k = 0; k < stop.size() && traj.rows() > 0; ++k)
+    if (!stop_was_number[k])
+      traj.warnings.push_back(
+          fmt::format("stop condition {}: {} was not a number at every sample ({}), so it never "
+                      "fired",
+                      stop.spec(k).name, stop.spec(k).text, stop.spec(k).loc.str()));
   return traj;
 }
 

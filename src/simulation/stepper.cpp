@@ -18,6 +18,25 @@
 
 namespace lagrange {
 
+// One call that changes the stepper, refusing another while it runs: an input law that calls
+// step() or set_input() on its own stepper, or a second thread, would corrupt the integration
+// (issue 37 item 8). The refused call changes nothing.
+class InUse {
+ public:
+  explicit InUse(std::atomic<bool>& busy) : busy_(busy) {
+    if (busy_.exchange(true))
+      throw std::runtime_error(
+          "stepper in use: a step of this stepper is running (called from its input law, or "
+          "from another thread)");
+  }
+  InUse(const InUse&) = delete;
+  InUse& operator=(const InUse&) = delete;
+  ~InUse() { busy_ = false; }
+
+ private:
+  std::atomic<bool>& busy_;
+};
+
 // The stepper's state lives on the heap: the integrator and the drift correction keep references
 // to the workspace, the options, the problem and y.
 struct Stepper::State {
@@ -56,6 +75,7 @@ struct Stepper::State {
   std::vector<std::string> external_names;
   std::vector<size_t> external_index;  // into input_names
   std::vector<double> held;            // per input: the value set (NaN: not set)
+  std::atomic<bool> busy{false};       // a step() is running (its input law may call back)
 
   // The row of a target as simulate() records its samples: the state checked finite,
   // drift-corrected (the row only), recorded and checked (docs/theory.md §8.2).
@@ -194,6 +214,7 @@ Dynamics& Stepper::dynamics() {
 
 void Stepper::set_input(const std::string& name, double value) {
   State& s = *s_;
+  const InUse in_use(s.busy);
   const std::vector<std::string>& names = s.dyn.model().input_names;
   const auto it = std::find(names.begin(), names.end(), name);
   std::string list = s.external_names.empty() ? "none" : "";
@@ -214,12 +235,14 @@ void Stepper::set_input(const std::string& name, double value) {
 
 void Stepper::set_input_law(Dynamics::InputLaw law) {
   State& s = *s_;
+  const InUse in_use(s.busy);
   s.dyn.set_input_law(s.external_index, std::move(law));
   s.changed = true;
 }
 
 void Stepper::step(double dt) {
   State& s = *s_;
+  const InUse in_use(s.busy);
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::invalid_argument(fmt::format("stepper: expected a step dt > 0, got {}", dt));
   if (dt != s.spacing) {

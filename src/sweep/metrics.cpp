@@ -4,14 +4,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "dynamics/row_expression.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/sweep.hpp"
 #include "model/expression_parser.hpp"
-#include "dynamics/row_expression.hpp"
 #include "sweep/spec_text.hpp"
 
 namespace lagrange::sweep {
@@ -56,6 +57,11 @@ bool in_window(const Metric& m, double t) {
   if (m.before && !(m.before_inclusive ? t <= *m.before : t < *m.before)) return false;
   return true;
 }
+
+/// The summary's columns besides the parameters and the metrics (src/cli/sweep_command.cpp, the
+/// Python study's frame).
+const std::array<std::string, 5> kSummaryColumns{"case", "status", "reason", "failure_time",
+                                                 "wall_s"};
 
 }  // namespace
 
@@ -144,6 +150,21 @@ std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
         throw StudyError(
             fmt::format("metric '{}' is given twice{}", metrics[i].name,
                         j < where.size() ? " (in the model file and by --metric)" : ""));
+  // A metric is a column of the summary beside the case number, the parameters and the status
+  // columns: one named like them would shadow that column (issue 37 item 7).
+  for (size_t i = 0; i < metrics.size(); ++i) {
+    const std::string& name = metrics[i].name;
+    std::string clash;
+    if (std::count(kSummaryColumns.begin(), kSummaryColumns.end(), name))
+      clash = "a column every summary has (case, status, reason, failure_time, wall_s)";
+    else if (std::count(cm.parameter_names.begin(), cm.parameter_names.end(), name))
+      clash = "a parameter, whose column in the summary it would shadow";
+    if (clash.empty()) continue;
+    const std::string what =
+        fmt::format("metric '{}' is named like {}; give it another name", name, clash);
+    if (i < where.size()) throw ModelError(where[i], what);
+    throw StudyError(what);
+  }
   const std::vector<std::string> columns = trajectory_columns(cm);
   for (size_t i = 0; i < metrics.size(); ++i) {
     std::vector<Metric> one{metrics[i]};

@@ -7,6 +7,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -196,6 +197,7 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
   std::vector<Worker> workers;
   std::string error;  // the first: a worker's exception, a worker's death, or `done`'s
   // n − 1 worker processes; this one is the n-th, taking their results between its cases.
+  const pid_t parent = ::getpid();
   for (size_t i = 1; i < n && error.empty(); ++i) {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {
@@ -204,6 +206,9 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
     }
     const pid_t pid = ::fork();
     if (pid == 0) {
+      // A worker ends with this process, even one killed by SIGKILL, instead of running its
+      // case on as a child of init (issue 37 item 9); getppid() catches a death before prctl.
+      if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) _exit(1);
       ::close(fds[0]);
       for (const Worker& w : workers) ::close(w.fd);
       work(model, inputs, pending, metrics, options, *shared, fds[1]);

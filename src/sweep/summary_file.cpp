@@ -84,8 +84,14 @@ SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> heade
     for (size_t at = head.size(); at < text.size();) {
       const auto nl = text.find('\n', at);
       if (nl == std::string::npos) break;
+      // A row this study did not write (edited by hand, issue 37 item 2) is refused, not mixed in.
       const long index = row_case(text.substr(at, nl - at));
-      if (index >= 0) done_.insert(static_cast<size_t>(index));
+      if (index < 0 || !done_.insert(static_cast<size_t>(index)).second)
+        throw std::runtime_error(
+            fmt::format("{}: row {} {}; --resume finishes a summary only as the study wrote it",
+                        path_, done_.size() + 1,
+                        index < 0 ? "does not start with a case number"
+                                  : fmt::format("repeats case {}", index)));
       at = end = nl + 1;
     }
     if (end < text.size() && ::truncate(path_.c_str(), static_cast<off_t>(end)) != 0)
@@ -114,9 +120,16 @@ void SummaryFile::append(size_t index, const std::vector<std::string>& fields) {
   if (fd_ < 0) open_for_appending();
   const std::string line = join(fields);
   // One write of the whole row to an O_APPEND descriptor: a row is there whole or not at all
-  // (a crash mid-write leaves a row without its line end, cut off on resume).
-  const ssize_t written = ::write(fd_, line.data(), line.size());
-  if (written != static_cast<ssize_t>(line.size())) fail(path_, "cannot append a row");
+  // (a crash mid-write leaves a row without its line end, cut off on resume). A short write (the
+  // disk filling up within the row) is continued, so that the error is the next write's own
+  // errno, not a stale one (issue 37 item 16).
+  for (size_t done = 0; done < line.size();) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n == 0) errno = ENOSPC;
+    if (n <= 0) fail(path_, "cannot append a row");
+    done += static_cast<size_t>(n);
+  }
   done_.insert(index);
 }
 

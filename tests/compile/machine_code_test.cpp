@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -160,6 +161,27 @@ TEST_F(MachineCodeTest, TruncatedEntryIsRecompiledSayingSo) {
       << again->note();
   EXPECT_EQ(plus_one(*again, 2.0), 3.0);
   EXPECT_TRUE(MachineCode::build({&t}, options_)->from_cache());  // the entry was replaced
+}
+
+// A FIFO in place of the cached library or of its record (issue 37 item 11): once open() blocked
+// for ever; now the entry is rejected at once, saying why, and replaced by a new build.
+TEST_F(MachineCodeTest, AFifoInTheCacheIsRejectedNotOpened) {
+  GiNaC::symbol x("x");
+  const Tape t = Tape::compile({x + 1}, {x});
+  const std::string path = MachineCode::build({&t}, options_)->path();
+  for (const std::string& entry : {path, path + ".sha256"}) {
+    SCOPED_TRACE(entry);
+    fs::remove(entry);
+    ASSERT_EQ(::mkfifo(entry.c_str(), 0600), 0);
+    std::string rejected;
+    EXPECT_EQ(MachineCode::cached({&t}, options_, &rejected), nullptr);
+    EXPECT_NE(rejected.find("or its '.sha256' is not a regular file"), std::string::npos)
+        << rejected;
+    const auto again = MachineCode::build({&t}, options_);
+    EXPECT_FALSE(again->from_cache());
+    EXPECT_EQ(plus_one(*again, 2.0), 3.0);
+    EXPECT_TRUE(fs::is_regular_file(entry));
+  }
 }
 
 TEST_F(MachineCodeTest, ForeignEntryIsRecompiledSayingSo) {

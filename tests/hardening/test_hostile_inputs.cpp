@@ -6,7 +6,9 @@
 #include <sys/stat.h>
 
 #include <chrono>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -226,21 +228,40 @@ TEST(Interruption, AReadBlockedOnAFifoEndsAt130) {
   EXPECT_NE(r.err.find("lagrange: interrupted"), std::string::npos) << r.err;
 }
 
-TEST(Interruption, ASlowCheckEndsAt130) {
-  // A 40-link planar chain: check derives it in the Lagrangian form, asked for, for seconds
-  std::string yaml = "gravity: [0, -9.81, 0]\nlinks:\n";
+/// A 40-link planar chain with a parameter k (its first link's mass): derived in the Lagrangian
+/// form, asked for, it takes seconds.
+std::string slow_chain() {
+  std::string yaml = "parameters: {k: 1}\ngravity: [0, -9.81, 0]\nlinks:\n";
   for (int i = 0; i < 40; ++i) {
     yaml += "  l" + std::to_string(i) + ":\n";
     if (i > 0) yaml += "    parent: l" + std::to_string(i - 1) + "\n";
     yaml += "    joint: {name: q" + std::to_string(i) +
-            ", type: revolute, origin: {xyz: [1, 0, 0]}, initial: 0.1}\n"
-            "    mass: 1\n    com: [0.5, 0, 0]\n    inertia: [0, 0, 0.1]\n";
+            ", type: revolute, origin: {xyz: [1, 0, 0]}, initial: 0.1}\n" +
+            (i == 0 ? "    mass: k\n" : "    mass: 1\n") +
+            "    com: [0.5, 0, 0]\n    inertia: [0, 0, 0.1]\n";
   }
+  return yaml;
+}
+
+TEST(Interruption, ASlowCheckEndsAt130) {
   ScratchDir dir("sigint-check");
-  spit(dir.path() / "chain.yaml", yaml);
+  spit(dir.path() / "chain.yaml", slow_chain());
   (void)interrupt_after(dir.path(),
                         {"check", (dir.path() / "chain.yaml").string(), "--dynamics", "lagrangian"},
                         std::chrono::milliseconds(1500), 5.0);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"chain.yaml"});
+}
+
+// The same while a sweep derives (issue 37 item 10): once ignored for 20 s and more; now it ends
+// at once, as `check` and `simulate` do, with nothing written.
+TEST(Interruption, ASweepThatIsStillDerivingEndsAt130) {
+  ScratchDir dir("sigint-sweep");
+  spit(dir.path() / "chain.yaml", slow_chain());
+  (void)interrupt_after(
+      dir.path(),
+      {"sweep", (dir.path() / "chain.yaml").string(), "--vary", "k=1,2", "--dynamics", "lagrangian",
+       "--compile", "off", "-q", "-o", (dir.path() / "study").string()},
+      std::chrono::milliseconds(1500), 5.0);
   EXPECT_EQ(dir.files(), std::vector<std::string>{"chain.yaml"});
 }
 
@@ -262,6 +283,114 @@ TEST(Interruption, ARunBetweenFarSamplesKeepsItsRows) {
     EXPECT_EQ(side.at("status"), "interrupted");
     EXPECT_EQ(side.at("rows"), 1);  // the start
   }
+}
+
+/// `text` with every `{key}` replaced by its value.
+std::string expand(std::string text, const std::map<std::string, std::string>& values) {
+  for (const auto& [key, value] : values)
+    for (size_t at; (at = text.find("{" + key + "}")) != std::string::npos;)
+      text.replace(at, key.size() + 2, value);
+  return text;
+}
+
+/// `text` without the spaces at its ends.
+std::string trimmed(const std::string& text) {
+  const size_t first = text.find_first_not_of(' '), last = text.find_last_not_of(' ');
+  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
+}
+
+// The hostile command lines of issue 37 (tests/hardening/data/hostile_commands.txt): each exits
+// with its code and message, quickly, and writes nothing.
+TEST(HostileCommands, EachGivesItsExitCodeAndMessageAndWritesNothing) {
+  ScratchDir dir("hostile-commands");
+  const std::string source = LAGRANGE_SOURCE_DIR;
+  const std::map<std::string, std::string> values{
+      {"pendulum", source + "/examples/pendulum.yaml"},
+      {"double_pendulum", source + "/examples/double_pendulum.yaml"},
+      {"dir", dir.path().string()}};
+  std::istringstream table(slurp(source + "/tests/hardening/data/hostile_commands.txt"));
+  size_t cases = 0;
+  for (std::string line; std::getline(table, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t bar1 = line.find(" | "), bar2 = line.find(" | ", bar1 + 3);
+    ASSERT_NE(bar2, std::string::npos) << "malformed line: " << line;
+    const int exit_code = std::stoi(line.substr(0, bar1));
+    const std::string fragment = trimmed(line.substr(bar1 + 3, bar2 - bar1 - 3));
+    std::vector<std::string> args;
+    std::istringstream words(expand(line.substr(bar2 + 3), values));
+    for (std::string word; words >> word;) args.push_back(word == "''" ? "" : word);
+    SCOPED_TRACE(line);
+    const RunResult r = run_lagrange(dir.path(), args, std::chrono::seconds(60));
+    EXPECT_EQ(r.exit_code, exit_code) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{});
+    ++cases;
+  }
+  EXPECT_GE(cases, 20u);
+}
+
+// A model file's metric named like a column of the summary (a parameter, `status`, `case`) would
+// overwrite that column (issue 37 item 7): `simulate` and `check` (item 17) refuse it, located.
+TEST(HostileCommands, AMetricCannotShadowASummaryColumn) {
+  for (const std::string name : {"m", "status", "case"}) {
+    const std::string yaml = kPendulum + "metrics:\n  " + name + ": final(theta)\n";
+    expect_model_error({"metric named like a column", yaml, "is named like"}, "metric-" + name);
+    ScratchDir dir("metric-check-" + name);
+    spit(dir.path() / "bad.yaml", yaml);
+    const RunResult r = run_lagrange(dir.path(), {"check", (dir.path() / "bad.yaml").string()});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(std::regex_search(
+        r.err, std::regex("bad\\.yaml:10:[0-9]+: error: metric '" + name + "' is named like")))
+        << r.err;
+  }
+}
+
+// A saved trajectory with a value that is not a finite number (`report` reads what simulate, which
+// writes finite values, never wrote): refused at its line (exit 2) instead of laying out a scene
+// of infinite extent (issue 37, the double-to-integer audit: log10 of it was cast to int).
+TEST(HostileCommands, AReportOfANonFiniteTrajectoryIsRefused) {
+  ScratchDir dir("report-inf");
+  spit(dir.path() / "model.yaml", kPendulum);
+  for (const std::string value : {"inf", "-1e999", "nan"}) {
+    spit(dir.path() / "traj.csv", "t,theta,theta_dot\n0,1,0\n0.01," + value + ",0\n");
+    const RunResult r = run_lagrange(
+        dir.path(), {"report", (dir.path() / "model.yaml").string(),
+                     (dir.path() / "traj.csv").string(), "-o", (dir.path() / "r.html").string()});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("traj.csv:3: expected a finite number, got '" + value + "'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "r.html"));
+  }
+}
+
+// A stop condition that is NaN at every sample never fires (issue 37 item 20): the run ends as
+// before (exit 0, every row) and says so once.
+TEST(HostileCommands, AStopConditionThatIsNeverANumberIsWarnedOnce) {
+  ScratchDir dir("stop-nan");
+  spit(dir.path() / "model.yaml", kPendulum + "stop_when:\n  never: sqrt(theta - 100) > 1\n");
+  const RunResult r = run_lagrange(
+      dir.path(), {"simulate", (dir.path() / "model.yaml").string(), "--compile", "off", "-q"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string warning =
+      "warning: stop condition never: sqrt(theta - 100) > 1 was not a "
+      "number at every sample (";
+  ASSERT_NE(r.err.find(warning), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, r.err.find(warning) + 1), std::string::npos) << r.err;
+}
+
+// linearize --at-trim far out (θ = 2π·10⁸, where trim's tolerance is its rounding floor, 5·10⁻⁶)
+// says "equilibrium found" and then does not contradict it with "not an equilibrium" (issue 37
+// item 4).
+TEST(HostileCommands, LinearizeAtTrimNeverContradictsTheTrim) {
+  ScratchDir dir("at-trim-far");
+  const RunResult r = run_lagrange(
+      dir.path(), {"linearize", std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml",
+                   "--at-trim", "--at", "theta=628318530.7"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("equilibrium found"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("not an equilibrium"), std::string::npos) << r.out;
 }
 
 }  // namespace

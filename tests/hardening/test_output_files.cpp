@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <sys/mount.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "support/test_paths.hpp"
@@ -119,16 +123,100 @@ TEST(OutputFiles, UnwritableLocationFailsBeforeTheRun) {
   }
 }
 
+/// The type of the entry at `path` (links not followed).
+fs::file_type type_of(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type();
+}
+
+// An output path that exists and is not a regular file (issue 37 item 1): a FIFO, a socket, a
+// directory and, as root, a device node made here are refused before the run, exit 2 naming the
+// option and what the entry is, for -o, its .json sidecar, --report and `report -o`; each entry
+// is left as it was and nothing is written. Before, the CSV was renamed over it (as root,
+// `simulate -o /dev/null` replaced the system's /dev/null by a regular file). /dev/null itself
+// is only looked at: still a character device after the refused runs.
+TEST(OutputFiles, AnEntryThatIsNotARegularFileIsRefusedAndKept) {
+  ScratchDir dir("special-entries");
+  const fs::path& d = dir.path();
+  std::vector<std::pair<std::string, std::string>> entries{
+      {"fifo", "a FIFO"}, {"folder", "a directory"}, {"socket", "a socket"}};
+  ASSERT_EQ(mkfifo((d / "fifo.csv").c_str(), 0644), 0);
+  ASSERT_EQ(mkfifo((d / "fifo.html").c_str(), 0644), 0);
+  ASSERT_EQ(mkfifo((d / "plain.csv.json").c_str(), 0644), 0);
+  fs::create_directory(d / "folder.csv");
+  fs::create_directory(d / "folder.html");
+  for (const char* name : {"socket.csv", "socket.html"}) {
+    const int s = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string path = (d / name).string();
+    ASSERT_LT(path.size(), sizeof address.sun_path);
+    std::copy(path.begin(), path.end(), address.sun_path);
+    ASSERT_EQ(bind(s, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0) << path;
+    close(s);  // the entry stays
+  }
+  // A private null device, where the container lets root make one (never /dev/null itself).
+  if (geteuid() == 0 && mknod((d / "device.csv").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0 &&
+      mknod((d / "device.html").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0)
+    entries.emplace_back("device", "a character device");
+  const std::vector<std::string> before = dir.files();
+  std::map<std::string, fs::file_type> types;
+  for (const auto& name : before) types[name] = type_of(d / name);
+
+  const auto refused = [&](std::vector<std::string> args, const std::string& option,
+                           const fs::path& entry, const std::string& kind) {
+    SCOPED_TRACE(entry.string());
+    const RunResult r = run_lagrange(d, args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("lagrange: " + option + ": cannot write '" + entry.string() +
+                         "': it exists and is " + kind + ", not a regular file"),
+              std::string::npos)
+        << r.err;
+    EXPECT_LT(r.seconds, 5.0);  // before the long run
+    EXPECT_EQ(dir.files(), before);
+    for (const auto& [name, type] : types) EXPECT_EQ(type_of(d / name), type) << name;
+  };
+  for (const auto& [stem, kind] : entries) {
+    const fs::path csv = d / (stem + ".csv"), html = d / (stem + ".html");
+    refused(simulate(csv, "2000", "0.0002"), "-o", csv, kind);
+    std::vector<std::string> report = simulate(d / "plain.csv", "2000", "0.0002");
+    report[3] = html.string();  // the -o value becomes --report's
+    report[2] = "--report";
+    refused(report, "--report", html, kind);
+    refused({"report", kPendulum, (d / "missing.csv").string(), "-o", html.string()}, "-o", html,
+            kind);
+  }
+  refused(simulate(d / "plain.csv", "2000", "0.0002"), "-o", d / "plain.csv.json", "a FIFO");
+  struct stat null_device {};
+  ASSERT_EQ(stat("/dev/null", &null_device), 0);
+  EXPECT_TRUE(S_ISCHR(null_device.st_mode)) << "/dev/null is no longer a character device";
+}
+
+/// A 64 KiB tmpfs at `at` (made), unmounted by the destructor; mounted() is false where the
+/// machine does not let this process mount one (not root, or no CAP_SYS_ADMIN).
+class SmallDisk {
+ public:
+  explicit SmallDisk(const fs::path& at) : at_(at) {
+    fs::create_directory(at_);
+    mounted_ = mount("tmpfs", at_.c_str(), "tmpfs", 0, "size=64k") == 0;
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  ~SmallDisk() {
+    if (mounted_) umount2(at_.c_str(), MNT_DETACH);
+  }
+  bool mounted() const { return mounted_; }
+
+ private:
+  fs::path at_;
+  bool mounted_ = false;
+};
+
 TEST(OutputFiles, FullDiskSaysSoAndKeepsTheOldPair) {
   ScratchDir dir("full-disk");
   const fs::path mnt = dir.path() / "small";
-  fs::create_directory(mnt);
-  if (mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=64k") != 0)
-    GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
-  struct Unmount {
-    fs::path at;
-    ~Unmount() { umount2(at.c_str(), MNT_DETACH); }
-  } unmount{mnt};
+  const SmallDisk disk(mnt);
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
   const fs::path csv = mnt / "out.csv";
   ASSERT_EQ(run_lagrange(dir.path(), simulate(csv, "1")).exit_code, 0);
   const std::string old_csv = slurp(csv), old_sidecar = slurp(csv.string() + ".json");
@@ -143,6 +231,20 @@ TEST(OutputFiles, FullDiskSaysSoAndKeepsTheOldPair) {
   for (const auto& e : fs::directory_iterator(mnt)) left.push_back(e.path().filename().string());
   std::sort(left.begin(), left.end());
   EXPECT_EQ(left, (std::vector<std::string>{"out.csv", "out.csv.json"}));
+}
+
+// A study's summary filling the disk (issue 37 item 16): the row cut short by the full disk is
+// reported with the reason, not with a stale errno ("cannot append a row: No such file or
+// directory").
+TEST(OutputFiles, AStudyOnAFullDiskSaysSo) {
+  ScratchDir dir("full-disk-study");
+  const SmallDisk disk(dir.path() / "small");
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
+  const RunResult r = run_lagrange(
+      dir.path(), {"sweep", kPendulum, "--vary", "m=1:2:3000", "--t-end", "0.01", "--compile",
+                   "off", "-j", "1", "-q", "-o", (dir.path() / "small" / "study").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
 }
 
 }  // namespace

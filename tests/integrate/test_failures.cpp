@@ -128,6 +128,18 @@ TEST(OdeArguments, BadSizesAndOptionsAreRejected) {
   }
   EXPECT_THROW(integrate(osc.problem(), options_for("rk4"), 0.0, {1.0, 0.0}, 1.0, 0.0, kContinue),
                std::invalid_argument);
+  // Counts beyond their bounds, before any step (issue 37 item 3): once a cast of 1e+99 to long
+  // (undefined) for the fixed steps, and a grid of 1e+100 samples.
+  for (const char* method : {"rk4", "midpoint"}) {
+    bad = options_for(method);
+    bad.step = 1e-100;
+    EXPECT_THROW(integrate(osc.problem(), bad, 0.0, {1.0, 0.0}, 1.0, 0.1, kContinue),
+                 std::invalid_argument)
+        << method;
+  }
+  EXPECT_THROW(
+      integrate(osc.problem(), options_for("dop853"), 0.0, {1.0, 0.0}, 1.0, 1e-100, kContinue),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -53,6 +53,10 @@ TEST(OutputGrid, RejectsBadInput) {
   EXPECT_THROW(OutputGrid(0.0, 1.0, -0.1), std::invalid_argument);
   EXPECT_THROW(OutputGrid(1.0, 0.0, 0.1), std::invalid_argument);
   EXPECT_THROW(OutputGrid(0.0, std::nan(""), 0.1), std::invalid_argument);
+  // More intervals than a run may keep (kMaxOutputIntervals): once cast to size_t past its range.
+  EXPECT_THROW(OutputGrid(0.0, 10.0, 1e-100), std::invalid_argument);
+  EXPECT_THROW(OutputGrid(0.0, 1e300, 1e-300), std::invalid_argument);
+  EXPECT_EQ(OutputGrid(0.0, 1.0, 1e-8).intervals(), 100000000u);  // the bound itself
 }
 
 }  // namespace

@@ -105,6 +105,33 @@ def test_errors_keep_the_state():
     assert len(s.trajectory().t) == 3
 
 
+@pytest.mark.parametrize("integrator", ["dop853", "rk4", "cvode"])
+def test_a_law_cannot_step_its_own_stepper(integrator):
+    # issue 37 item 8: once dop853 recorded times 0, 0.3, 0.1, -9.7, rk4 ran on to t = 12.6 and
+    # cvode looped forever; now the inner call is refused and the outer one changes nothing
+    s = elbow_external().stepper(integrator=integrator)
+    s.step(0.05)
+    t, (q, v) = s.t, s.state
+    calls = []
+
+    def reentrant(t, q, v):
+        calls.append(t)
+        s.step(0.1)
+        return [0.0, 0.0]
+
+    s.set_law(reentrant)
+    with pytest.raises(RuntimeError, match="stepper in use"):
+        s.step(0.05)
+    assert calls
+    assert s.t == t
+    assert np.array_equal(s.state[0], q) and np.array_equal(s.state[1], v)
+    assert len(s.trajectory().t) == 2
+    s.set_law(None)
+    s.step(0.05)
+    assert math.isclose(s.t, 0.1)
+    assert list(s.trajectory().t) == [0.0, 0.05, s.t]
+
+
 def test_outputs_at_the_state(examples_dir):
     m = lagrange.load(str(examples_dir / "figure_eight.yaml"))
     s = m.stepper(t_end=0.05)

@@ -143,3 +143,39 @@ def test_bad_input_raises_before_any_case_runs(grid, metrics, fragment):
     model = lagrange.load(MODEL)
     with pytest.raises(ValueError, match=fragment.replace("(", r"\(")):
         lagrange.sweep(model, grid, metrics)
+
+
+# issue 37 items 6, 7 and 14: each of these once returned a frame (empty, with failed rows, with
+# a case per character of "12", with a metric column overwriting a parameter's) or blamed another
+# parameter; now each raises ValueError naming the mistake before any case runs.
+@pytest.mark.parametrize("grid, metrics, options, fragment", [
+    (GRID, METRICS, {"chunk": -1, "executor": object()}, "chunk must be a whole number"),
+    (GRID, METRICS, {"chunk": 0, "executor": object()}, "chunk must be a whole number"),
+    (GRID, METRICS, {"t_end": -1}, "--t-end must be positive"),
+    ({"m2": "12"}, METRICS, {}, "expected a sequence of numbers for 'm2', got '12'"),
+    ({"m2": [1.0, float("nan")]}, METRICS, {}, "expected a finite number for 'm2'"),
+    ([{"m2": float("inf")}], METRICS, {}, "expected a finite number for 'm2'"),
+    (GRID, {"m2": "final(theta1)"}, {}, "metric 'm2' is named like a parameter"),
+    (GRID, {"status": "final(theta1)"}, {}, "metric 'status' is named like a column"),
+    (GRID, ["case=final(theta1)"], {}, "metric 'case' is named like a column"),
+])
+def test_hostile_study_arguments_raise(grid, metrics, options, fragment):
+    model = lagrange.load(MODEL)
+    with pytest.raises(ValueError, match=fragment.replace("(", r"\(").replace(")", r"\)")):
+        lagrange.sweep(model, grid, metrics, **options)
+
+
+def test_loads_refuses_an_unknown_dynamics_and_non_finite_values():
+    text = (SOURCE_DIR / "examples" / "pendulum.yaml").read_text()
+    with pytest.raises(ValueError, match="dynamics: expected auto, lagrangian or recursive, got 'bogus'"):
+        lagrange.loads(text, dynamics="bogus")
+    with pytest.raises(ValueError, match=r"set m=nan: expected a finite number"):
+        lagrange.loads(text, set={"m": float("nan")})
+
+
+def test_loads_refuses_a_label_that_could_spoof_a_location_and_oversized_text():
+    text = (SOURCE_DIR / "examples" / "pendulum.yaml").read_text()
+    with pytest.raises(ValueError, match="label: expected one line of printable text"):
+        lagrange.loads(text, label="model.yaml:1:1: error: fake\nreal.yaml")
+    with pytest.raises(lagrange.ModelError, match="expected a model of at most 16 MiB"):
+        lagrange.loads(text + "#" * (16 << 20))

@@ -286,6 +286,102 @@ TEST(SweepCommand, AKilledWorkerProcessLosesNoFinishedCase) {
   EXPECT_EQ(without_wall_time(stopped / "summary.csv"), without_wall_time(whole / "summary.csv"));
 }
 
+// Whether process `pid` has ended (gone, or a zombie waiting for init to reap it).
+bool ended(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const size_t close = line.rfind(')');
+  return close != std::string::npos && line.size() > close + 2 && line[close + 2] == 'Z';
+}
+
+// The study's process killed with SIGKILL (issue 37 item 9): its forked worker, in the middle of a
+// case that lasts minutes, ends with it (PR_SET_PDEATHSIG) instead of running on under init.
+TEST(SweepCommand, KillingTheStudyKillsItsWorkers) {
+  ScratchDir dir("sweep-killed-parent");
+  Child child(dir.path(),
+              {"sweep", kModel, "--vary", "l2=0.5,1.5", "--t-end", "100000", "--output-step", "10",
+               "--compile", "off", "-j", "2", "-q", "-o", (dir.path() / "study").string()});
+  const std::string task =
+      "/proc/" + std::to_string(child.pid()) + "/task/" + std::to_string(child.pid()) + "/children";
+  pid_t worker = 0;
+  for (int i = 0; i < 6000 && worker <= 0; ++i) {
+    std::ifstream(task) >> worker;
+    if (worker <= 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_GT(worker, 0) << "no worker process started";
+  child.signal(SIGKILL);
+  EXPECT_EQ(child.wait(std::chrono::seconds(10)).exit_code, 128 + SIGKILL);
+  for (int i = 0; i < 400 && !ended(worker); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const bool survived = !ended(worker);
+  if (survived) kill(worker, SIGKILL);
+  EXPECT_FALSE(survived) << "worker " << worker << " outlived the study's process";
+}
+
+// Two studies in one directory (issue 37 item 2): once both exited 0 and the summary mixed them.
+// The second is refused (exit 2) naming the first's process, and leaves the directory to it; a
+// study whose study.txt is gone cannot be resumed.
+TEST(SweepCommand, TwoStudiesCannotShareADirectory) {
+  ScratchDir dir("sweep-shared-dir");
+  const fs::path study = dir.path() / "study";
+  const auto args = [&](const char* t_end, std::vector<std::string> extra) {
+    std::vector<std::string> a{"sweep", kModel, "--vary",      "l2=0.5,1.5", "--t-end",
+                               t_end,   "-j",   "1",           "-q",         "--compile",
+                               "off",   "-o",   study.string()};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  fs::create_directories(dir.path() / "first");
+  Child first(dir.path() / "first", args("100000", {}));
+  for (int i = 0; i < 6000 && slurp(study / ".lock").empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(slurp(study / ".lock"), std::to_string(first.pid()) + "\n");
+  const RunResult second = run_lagrange(dir.path(), args("1", {}));
+  EXPECT_EQ(second.exit_code, 2) << second.err;
+  EXPECT_NE(second.err.find("another study is running in this directory (process " +
+                            std::to_string(first.pid()) + ")"),
+            std::string::npos)
+      << second.err;
+  EXPECT_FALSE(fs::exists(study / "summary.csv"));
+  first.signal(SIGKILL);
+  first.wait();
+  // The lock dies with its holder: a study runs there now, and without study.txt its summary
+  // cannot be resumed.
+  ASSERT_EQ(run_lagrange(dir.path(), args("1", {})).exit_code, 0);
+  fs::remove(study / "study.txt");
+  const RunResult resumed = run_lagrange(dir.path(), args("1", {"--resume"}));
+  EXPECT_EQ(resumed.exit_code, 2) << resumed.err;
+  EXPECT_NE(resumed.err.find("has a summary.csv but no study.txt"), std::string::npos)
+      << resumed.err;
+}
+
+// A summary edited by hand (issue 37 item 2): a row without a case number, a case twice or one
+// beyond the study's cases is refused by --resume (exit 2), the summary left as it was.
+TEST(SweepCommand, AResumeOfAnEditedSummaryIsRefused) {
+  ScratchDir dir("sweep-edited");
+  const fs::path study = dir.path() / "study";
+  const std::vector<std::string> args{"sweep", kModel, "--vary", "l2=0.5,1.5",  "--t-end",
+                                      "0.5",   "-q",   "-o",     study.string()};
+  ASSERT_EQ(run_lagrange(dir.path(), args).exit_code, 0);
+  const std::string whole = slurp(study / "summary.csv");
+  const std::string first_row =
+      whole.substr(whole.find('\n') + 1, whole.find('\n', whole.find('\n') + 1) - whole.find('\n'));
+  std::vector<std::string> resume = args;
+  resume.push_back("--resume");
+  for (const auto& [extra, fragment] : std::vector<std::pair<std::string, std::string>>{
+           {"total,1,2\n", "row 3 does not start with a case number"},
+           {first_row, "row 3 repeats case 0"},
+           {"99" + first_row.substr(first_row.find(',')),
+            "has a row of case 99, beyond this study's 2 cases"}}) {
+    spit(study / "summary.csv", whole + extra);
+    const RunResult r = run_lagrange(dir.path(), resume);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(study / "summary.csv"), whole + extra);
+  }
+}
+
 // --resume over a study whose model file (its metrics: section here), random draws or grid
 // changed since it started: refused (exit 2) naming what differs, the summary left as it was;
 // the unchanged study resumes.
