@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "support/test_paths.hpp"
+
 namespace lagrange::bench {
 
 /// A tethered balloon on an N-segment lumped tether (simple drag) in a logarithmic wind.
