@@ -45,9 +45,14 @@ bench: build
 # same build holds the libFuzzer targets (`make fuzz`), so the library is compiled once for both.
 # The build needs the sanitizer settings too: gtest_discover_tests runs each test binary to list it.
 ASAN_BUILD ?= build-asan
-SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+# symbolize=0: matching LeakSanitizer's CLN suppression by module name needs no symbolizer, and
+# starting llvm-symbolizer at every test's exit doubled the suite's cost. A test that fails is run
+# again with symbolize=1, so its report names functions and lines.
+ASAN_OPTS = detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
+SANITIZER_ENV = ASAN_OPTIONS=$(ASAN_OPTS):symbolize=0 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/.ci/lsan.supp:print_suppressions=0 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+SANITIZER_ENV_SYMBOLIZED = $(SANITIZER_ENV) ASAN_OPTIONS=$(ASAN_OPTS):symbolize=1
 # Left out of the sanitizer run (they run in the Release suite): the heaviest repetitions of paths
 # that lighter tests take under the sanitizers too — the Panda (the UR5 and the elbow arm cover the
 # same code), the longest chains of the scaling tests (the short ones run), the 300-link URDF (the
@@ -61,7 +66,9 @@ asan-configure:
 
 asan: asan-configure
 	@$(SANITIZER_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS)
-	@cd $(ASAN_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) -E '$(ASAN_SKIP)'
+	@cd $(ASAN_BUILD) && { $(SANITIZER_ENV) ctest -j $(JOBS) -E '$(ASAN_SKIP)' || \
+	  { echo "asan: the failed tests again, with symbolised reports:"; \
+	    $(SANITIZER_ENV_SYMBOLIZED) ctest --rerun-failed --output-on-failure; exit 1; }; }
 
 # libFuzzer targets of the model reader (fuzz/), in the sanitizer build; each runs FUZZ_SECONDS
 # (or exactly FUZZ_RUNS inputs from a fixed seed, reproducibly, as CI does) on its corpus (seeded
