@@ -1,0 +1,76 @@
+// Optimal control against closed forms (docs/theory.md §10): minimum energy and minimum time of
+// the double integrator, and the pendulum swing-up in two formulations.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "optimize/optimal_problem.hpp"
+
+namespace lagrange {
+namespace {
+
+// ∫u² with u constant on N intervals, rest to rest over 1 in T = 1: u_k = (6 − 12 t_k)/(1 − h²)
+// at the midpoints t_k, J = 12/(1 − h²), h = 1/N (Lagrange conditions of the finite problem;
+// N → ∞ gives the continuous u = 6 − 12t, J = 12). Radau of degree ≥ 2 integrates the piecewise
+// quadratic x exactly, so the collocated optimum is this one.
+TEST(OptimalControl, MinimumEnergyDoubleIntegratorMatchesTheClosedForm) {
+  testing::OptimalProblem p("double_integrator_min_energy.yaml");
+  for (int degree : {2, 3}) {
+    const int N = 10;
+    const OptimizeResult r = p.solve(N, degree);
+    ASSERT_TRUE(r.optimal) << r.status;
+    const double h = 1.0 / N;
+    EXPECT_NEAR(r.objective, 12.0 / (1 - h * h), 1e-7) << "degree " << degree;
+    for (int k = 0; k < N; ++k)
+      EXPECT_NEAR(r.controls[static_cast<size_t>(k)], (6 - 12 * (k + 0.5) * h) / (1 - h * h), 1e-5)
+          << "interval " << k;
+    EXPECT_LT(r.violation, 1e-8);
+  }
+}
+
+// |u| ≤ 1 over distance d: T = 2√d (bang-bang, switching at T/2, on the mesh for even N).
+TEST(OptimalControl, MinimumTimeDoubleIntegratorIsTwiceTheSquareRootOfTheDistance) {
+  for (double d : {1.0, 4.0}) {
+    testing::OptimalProblem p("double_integrator_min_time.yaml", {{"d", d}});
+    const OptimizeResult r = p.solve(10, 2);
+    ASSERT_TRUE(r.optimal) << r.status;
+    EXPECT_NEAR(r.horizon, 2 * std::sqrt(d), 1e-6) << "d = " << d;
+    EXPECT_NEAR(r.objective, r.horizon, 1e-12);
+    EXPECT_NEAR(r.controls.front(), 1.0, 1e-5);
+    EXPECT_NEAR(r.controls.back(), -1.0, 1e-5);
+  }
+}
+
+// The same swing-up in the polar angle and in Cartesian coordinates with the rod as a
+// constraint (collocated as an index-1 DAE with its multiplier): the same optimal cost, up to the
+// two discretisations' error, and the rod's tension at rest hanging, λ = m g / l (§4.3 oracle).
+TEST(OptimalControl, PendulumSwingUpCostsTheSameInPolarAndCartesianCoordinates) {
+  testing::OptimalProblem polar("pendulum_swing_up_polar.yaml");
+  testing::OptimalProblem cartesian("pendulum_swing_up_cartesian.yaml");
+  const OptimizeResult a = polar.solve(20, 3), b = cartesian.solve(20, 3);
+  ASSERT_TRUE(a.optimal) << a.status;
+  ASSERT_TRUE(b.optimal) << b.status;
+  EXPECT_NEAR(a.objective, b.objective, 1e-3 * a.objective);
+  EXPECT_NEAR(b.trajectory.at(0, "lambda_rod"), 9.81, 1e-9);
+  const size_t last = b.trajectory.rows() - 1;
+  EXPECT_NEAR(b.trajectory.at(last, "x"), 0.0, 1e-6);
+  EXPECT_NEAR(b.trajectory.at(last, "y_dot"), 0.0, 1e-6);
+}
+
+// Re-simulating the optimal piecewise controls lands where the collocation says.
+TEST(OptimalControl, VerifyFindsTheCollocatedFinalState) {
+  testing::OptimalProblem p("double_integrator_min_energy.yaml");
+  const OptimizeResult r = p.solve(10, 3);
+  ASSERT_TRUE(r.optimal);
+  SimulationOptions so;
+  so.integrator.rtol = 1e-11;
+  so.integrator.atol = 1e-13;
+  const VerifyResult v = verify(*p.dyn, p.spec(), r, so);
+  EXPECT_TRUE(v.message.empty()) << v.message;
+  EXPECT_LT(v.final_gap, 1e-8);
+  EXPECT_LT(v.largest_gap, 1e-8);
+}
+
+}  // namespace
+}  // namespace lagrange
