@@ -40,10 +40,12 @@ struct StateBound {
   Bounds bounds;
 };
 
-/// A boundary value: the state component fixed at the start or the end.
+/// A boundary condition on a state component at the start or the end: fixed (lower = upper)
+/// or bounded.
 struct BoundaryValue {
   StateRef state;
-  double value = 0.0;
+  Bounds bounds;
+  bool fixed() const { return bounds.lower == bounds.upper; }
 };
 
 /// lower ≤ expr(t, q, v, u, p) ≤ upper at every collocation point.
@@ -58,7 +60,7 @@ struct PathConstraintSpec {
 /// dynamics, bounds, path constraints and boundary values (docs/theory.md §10).
 struct OptimalControlSpec {
   std::vector<ControlSpec> controls;
-  double horizon = 1.0;         ///< T when fixed; the initial guess when free
+  double horizon = 1.0;                ///< T when fixed; the initial guess when free
   std::optional<Bounds> free_horizon;  ///< set: T is chosen within these bounds
   bool maximize = false;
   GiNaC::ex integrand = 0;  ///< L, the sum of the objective's integral terms with their factors
@@ -66,9 +68,14 @@ struct OptimalControlSpec {
   std::string objective_text;
   std::vector<StateBound> bounds;
   std::vector<PathConstraintSpec> path;
-  /// Unset: the model's initial state, all fixed; set: only the listed components are fixed.
+  /// Unset: the model's initial state, all fixed; set: only the listed components are fixed or
+  /// bounded.
   std::optional<std::vector<BoundaryValue>> initial;
   std::vector<BoundaryValue> final;
+  /// The starting point: "linear" interpolation between the boundary states, a "simulation" of
+  /// the model with the controls at their guesses, or "" (simulation for constrained models,
+  /// whose states a straight line would take off the constraints; linear otherwise).
+  std::string guess;
   int intervals = 50;  ///< collocation intervals N
   int degree = 3;      ///< Radau IIA collocation points per interval
   SourceLoc loc;

@@ -26,8 +26,8 @@ struct OptimizeOptions {
 
 /// What optimize() found.
 struct OptimizeResult {
-  bool optimal = false;  ///< Ipopt converged to a (locally) optimal point
-  std::string status;    ///< Ipopt's status in words
+  bool optimal = false;    ///< Ipopt converged to a (locally) optimal point
+  std::string status;      ///< Ipopt's status in words
   double objective = 0.0;  ///< J at the result, in the problem's own sign (maximised: J itself)
   double horizon = 0.0;    ///< T
   /// Largest violation of a constraint (dynamics, path, consistency) and which one and where.
@@ -47,10 +47,9 @@ struct OptimizeResult {
 /// Baumgarte rate) from the consistent initial state (q0, v0) (used where `spec` leaves the
 /// initial state to the model). std::invalid_argument for a problem the transcription cannot
 /// take (saying why); a failure of Ipopt is a result with optimal = false.
-OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
-                        Dynamics& dyn, const OptimalControlSpec& spec,
-                        const std::vector<double>& q0, const std::vector<double>& v0,
-                        const OptimizeOptions& options = {});
+OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
+                        const OptimalControlSpec& spec, const std::vector<double>& q0,
+                        const std::vector<double>& v0, const OptimizeOptions& options = {});
 
 /// Re-simulate the result's piecewise-constant controls from its initial state with `options`
 /// (the caller's integrator and tolerances): the largest difference of a state component at

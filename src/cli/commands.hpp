@@ -46,9 +46,9 @@ struct Options {
   std::string study;                               ///< sweep -o: the study directory
   size_t jobs = 0;                                 ///< sweep -j (0: every core)
   bool resume = false, keep_trajectories = false;  ///< sweep --resume, --keep-trajectories
-  int intervals = 0, degree = 0;        ///< optimize --intervals, --degree (0: the problem's)
-  bool verify = false;                  ///< optimize --verify
-  std::vector<std::string> ipopt;       ///< optimize --ipopt KEY=VALUE
+  int intervals = 0, degree = 0;   ///< optimize --intervals, --degree (0: the problem's)
+  bool verify = false;             ///< optimize --verify
+  std::vector<std::string> ipopt;  ///< optimize --ipopt KEY=VALUE
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;

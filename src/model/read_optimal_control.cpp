@@ -13,7 +13,9 @@ namespace lagrange::model {
 
 namespace {
 
-bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
 
 /// Offset of the ')' closing the '(' at `open`, or npos.
 size_t closing(const std::string& text, size_t open) {
@@ -48,8 +50,10 @@ Bounds ModelReader::read_bounds(const YAML::Node& node, const std::string& what,
   keys.insert(keys.end(), extra_keys.begin(), extra_keys.end());
   check_keys(node, keys, what);
   Bounds b;
-  if (node["lower"]) b.lower = number(node["lower"], kParams, fmt::format("lower bound of {}", what));
-  if (node["upper"]) b.upper = number(node["upper"], kParams, fmt::format("upper bound of {}", what));
+  if (node["lower"])
+    b.lower = number(node["lower"], kParams, fmt::format("lower bound of {}", what));
+  if (node["upper"])
+    b.upper = number(node["upper"], kParams, fmt::format("upper bound of {}", what));
   if (b.lower > b.upper)
     fail(node["lower"], fmt::format("expected the lower bound of {} at most its upper bound {:g}, "
                                     "got {:g}",
@@ -69,8 +73,7 @@ void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spe
   const std::string keyword = "integral";
   LocalNames placeholders;
   std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> integrals;
-  for (size_t at = outer.find(keyword); at != std::string::npos;
-       at = outer.find(keyword, at + 1)) {
+  for (size_t at = outer.find(keyword); at != std::string::npos; at = outer.find(keyword, at + 1)) {
     const size_t after = at + keyword.size();
     if ((at > 0 && name_char(outer[at - 1])) || after >= outer.size() || outer[after] != '(')
       continue;
@@ -97,8 +100,8 @@ void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spe
   spec.integrand = 0;
   for (size_t k = 0; k < integrals.size(); ++k) {
     const GiNaC::ex factor = v.scalar.diff(integrals[k].first);
-    if (!evaluate_unrecorded(factor) || factor.has(m_.t) ||
-        factor.has(integrals[k].first) || !evaluate_unrecorded(factor.subs(zero)))
+    if (!evaluate_unrecorded(factor) || factor.has(m_.t) || factor.has(integrals[k].first) ||
+        !evaluate_unrecorded(factor.subs(zero)))
       fail(node, fmt::format("expected integral terms added with constant factors in {} "
                              "(c*integral(L) + terminal terms), got integral {} inside "
                              "another function",
@@ -111,7 +114,7 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   expect_map(node, "optimal_control");
   check_keys(node,
              {"controls", "horizon", "minimize", "maximize", "bounds", "path", "initial", "final",
-              "intervals", "degree"},
+              "guess", "intervals", "degree"},
              "optimal_control");
   OptimalControlSpec spec;
   spec.loc = src_.at(node);
@@ -187,22 +190,38 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
     std::vector<BoundaryValue> out;
     const YAML::Node b = node[key];
     if (b.IsNull()) return out;
-    expect_map(b, fmt::format("{} (a map NAME: value, NAME a coordinate or NAME_dot)", key));
+    expect_map(b, fmt::format("{} (a map NAME: value or {{lower, upper}}, NAME a coordinate or "
+                              "NAME_dot)",
+                              key));
     for (const auto& kv : b) {
       const std::string what = fmt::format("the {} value of '{}'", key, kv.first.Scalar());
-      out.push_back({state_ref(kv.first, fmt::format("an {} value", key)),
-                     number(kv.second, kParams, what)});
+      BoundaryValue v{
+          state_ref(kv.first, std::string(key) == "initial" ? "an initial value" : "a final value"),
+          {}};
+      if (kv.second.IsMap()) {
+        v.bounds = read_bounds(kv.second, what);
+      } else {
+        v.bounds.lower = v.bounds.upper = number(kv.second, kParams, what);
+      }
+      out.push_back(v);
     }
     return out;
   };
   if (node["initial"]) spec.initial = boundary("initial");
   if (node["final"]) spec.final = boundary("final");
 
+  if (node["guess"]) {
+    spec.guess = scalar(node["guess"], "guess");
+    if (spec.guess != "linear" && spec.guess != "simulation")
+      fail(node["guess"],
+           fmt::format("expected guess linear or simulation, got '{}'", clip(spec.guess)));
+  }
   auto count = [&](const char* key, int& out, int lo, int hi) {
     if (!node[key]) return;
     const double n = number(node[key], kParams, key);
     if (n != std::floor(n) || n < lo || n > hi)
-      fail(node[key], fmt::format("expected {} an integer from {} to {}, got {:g}", key, lo, hi, n));
+      fail(node[key],
+           fmt::format("expected {} an integer from {} to {}, got {:g}", key, lo, hi, n));
     out = static_cast<int>(n);
   };
   count("intervals", spec.intervals, 1, 100000);

@@ -1,12 +1,13 @@
 #include "optimize/ipopt_adapter.hpp"
 
 #include <IpIpoptApplication.hpp>
+#include <IpSolveStatistics.hpp>
 #include <IpTNLP.hpp>
 #include <chrono>
 #include <cstdlib>
 #include <stdexcept>
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 namespace {
 
@@ -16,22 +17,38 @@ using Ipopt::Number;
 /// Ipopt's outcome in words.
 std::string words(Ipopt::SolverReturn s) {
   switch (s) {
-    case Ipopt::SUCCESS: return "optimal solution found";
-    case Ipopt::MAXITER_EXCEEDED: return "maximum number of iterations exceeded";
-    case Ipopt::CPUTIME_EXCEEDED: return "maximum CPU time exceeded";
-    case Ipopt::STOP_AT_TINY_STEP: return "stopped at a tiny step (no progress)";
-    case Ipopt::STOP_AT_ACCEPTABLE_POINT: return "solved to acceptable level only";
-    case Ipopt::LOCAL_INFEASIBILITY: return "converged to a point of local infeasibility";
-    case Ipopt::USER_REQUESTED_STOP: return "stopped on request";
-    case Ipopt::FEASIBLE_POINT_FOUND: return "feasible point found";
-    case Ipopt::DIVERGING_ITERATES: return "iterates diverging (problem unbounded?)";
-    case Ipopt::RESTORATION_FAILURE: return "restoration phase failed (problem infeasible?)";
-    case Ipopt::ERROR_IN_STEP_COMPUTATION: return "error in step computation";
-    case Ipopt::INVALID_NUMBER_DETECTED: return "invalid number (NaN or Inf) in a function";
-    case Ipopt::TOO_FEW_DEGREES_OF_FREEDOM: return "too few degrees of freedom";
-    case Ipopt::INVALID_OPTION: return "invalid option";
-    case Ipopt::OUT_OF_MEMORY: return "out of memory";
-    default: return "internal error of Ipopt";
+    case Ipopt::SUCCESS:
+      return "optimal solution found";
+    case Ipopt::MAXITER_EXCEEDED:
+      return "maximum number of iterations exceeded";
+    case Ipopt::CPUTIME_EXCEEDED:
+      return "maximum CPU time exceeded";
+    case Ipopt::STOP_AT_TINY_STEP:
+      return "stopped at a tiny step (no progress)";
+    case Ipopt::STOP_AT_ACCEPTABLE_POINT:
+      return "solved to acceptable level only";
+    case Ipopt::LOCAL_INFEASIBILITY:
+      return "converged to a point of local infeasibility";
+    case Ipopt::USER_REQUESTED_STOP:
+      return "stopped on request";
+    case Ipopt::FEASIBLE_POINT_FOUND:
+      return "feasible point found";
+    case Ipopt::DIVERGING_ITERATES:
+      return "iterates diverging (problem unbounded?)";
+    case Ipopt::RESTORATION_FAILURE:
+      return "restoration phase failed (problem infeasible?)";
+    case Ipopt::ERROR_IN_STEP_COMPUTATION:
+      return "error in step computation";
+    case Ipopt::INVALID_NUMBER_DETECTED:
+      return "invalid number (NaN or Inf) in a function";
+    case Ipopt::TOO_FEW_DEGREES_OF_FREEDOM:
+      return "too few degrees of freedom";
+    case Ipopt::INVALID_OPTION:
+      return "invalid option";
+    case Ipopt::OUT_OF_MEMORY:
+      return "out of memory";
+    default:
+      return "internal error of Ipopt";
   }
 }
 
@@ -56,7 +73,7 @@ class Adapter : public Ipopt::TNLP {
                           bool init_lambda, Number*) override {
     if (init_z || init_lambda) return false;
     if (init_x) {
-      const std::vector<double> g = nlp_.guess();
+      const std::vector<double>& g = nlp_.guess();
       std::copy(g.begin(), g.end(), x);
     }
     return n == static_cast<Index>(nlp_.variables());
@@ -149,4 +166,4 @@ IpoptOutcome solve_with_ipopt(Transcription& nlp,
   return out;
 }
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

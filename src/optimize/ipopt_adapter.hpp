@@ -7,7 +7,7 @@
 
 #include "optimize/transcription.hpp"
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 /// What Ipopt returned.
 struct IpoptOutcome {
@@ -25,4 +25,4 @@ IpoptOutcome solve_with_ipopt(Transcription& nlp,
                               const std::vector<std::pair<std::string, std::string>>& options,
                               bool verbose);
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

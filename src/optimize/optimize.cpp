@@ -19,7 +19,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 /// Rows t, q, v, controls, λ at t = 0 (λ from the forward dynamics) and every collocation point.
-Trajectory collocated(optimize::Transcription& nlp, Dynamics& dyn, const double* x,
+Trajectory collocated(collocation::Transcription& nlp, Dynamics& dyn, const double* x,
                       const std::vector<std::string>& controls) {
   const CompiledModel& cm = dyn.model();
   Trajectory traj;
@@ -52,20 +52,21 @@ Trajectory collocated(optimize::Transcription& nlp, Dynamics& dyn, const double*
 
 }  // namespace
 
-OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
-                        Dynamics& dyn, const OptimalControlSpec& spec,
-                        const std::vector<double>& q0, const std::vector<double>& v0,
-                        const OptimizeOptions& options) {
+OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
+                        const OptimalControlSpec& spec, const std::vector<double>& q0,
+                        const std::vector<double>& v0, const OptimizeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   OptimizeResult r;
   r.intervals = options.intervals > 0 ? options.intervals : spec.intervals;
   r.degree = options.degree > 0 ? options.degree : spec.degree;
-  for (const ControlSpec& c : spec.controls) r.control_names.push_back(eq.model->inputs[c.input].name);
-  optimize::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0);
+  for (const ControlSpec& c : spec.controls)
+    r.control_names.push_back(eq.model->inputs[c.input].name);
+  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0);
   r.setup_seconds = seconds_since(start);
 
   const auto solve_start = std::chrono::steady_clock::now();
-  optimize::IpoptOutcome out = optimize::solve_with_ipopt(nlp, options.ipopt, options.verbose);
+  collocation::IpoptOutcome out =
+      collocation::solve_with_ipopt(nlp, options.ipopt, options.verbose);
   r.solve_seconds = seconds_since(solve_start);
   r.function_seconds = out.function_seconds;
   r.optimal = out.optimal;
@@ -88,7 +89,8 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     }
   }
   for (int k = 0; k < r.intervals; ++k)
-    r.controls.insert(r.controls.end(), nlp.control(x, k), nlp.control(x, k) + spec.controls.size());
+    r.controls.insert(r.controls.end(), nlp.control(x, k),
+                      nlp.control(x, k) + spec.controls.size());
   r.trajectory = collocated(nlp, dyn, x, r.control_names);
   if (!r.optimal) {
     r.trajectory.status = Trajectory::Status::Failed;

@@ -1,6 +1,6 @@
 #include "optimize/point_functions.hpp"
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 PointFunctions::PointFunctions(const Equations& eq, const CompiledModel& cm,
                                const std::vector<GiNaC::ex>& fs,
@@ -27,4 +27,4 @@ void PointFunctions::eval(const std::vector<double>& in, std::vector<double>& ou
   tape_.eval(in.data(), out.data(), work_.data());
 }
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

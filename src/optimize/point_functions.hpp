@@ -9,7 +9,7 @@
 #include "lagrange/equations.hpp"
 #include "lagrange/tape.hpp"
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 /// f_i(t, q, v, u) for i < count, and their non-zero derivatives along the columns
 /// (t, q₁…q_nq, v₁…v_nv, the controls), differentiated symbolically (docs/theory.md §10).
@@ -32,4 +32,4 @@ class PointFunctions {
   mutable std::vector<double> work_;
 };
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

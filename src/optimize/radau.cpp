@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 namespace {
 
@@ -34,7 +34,8 @@ Radau radau(int d) {
   if (d < 1 || d > 5)
     throw std::invalid_argument("expected a collocation degree from 1 to 5, got " +
                                 std::to_string(d));
-  // Starting values (Hairer & Wanner, Table IV.5.5), refined by Newton on P_d − P_{d−1} in x = 2τ − 1.
+  // Starting values (Hairer & Wanner, Table IV.5.5), refined by Newton on P_d − P_{d−1} in x = 2τ
+  // − 1.
   static const double start[5][5] = {
       {1.0},
       {1.0 / 3.0, 1.0},
@@ -92,4 +93,4 @@ Radau radau(int d) {
   return r;
 }
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

@@ -2,9 +2,10 @@
 // Radau IIA collocation on [0, 1] (docs/theory.md §10, "Collocation"): points, the derivative
 // of the interpolating polynomial at them, and the quadrature weights.
 
+#include <cstddef>
 #include <vector>
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 /// The d collocation points τ₁ < … < τ_d = 1 (zeros of P_d(2τ−1) − P_{d−1}(2τ−1)) with τ₀ = 0
 /// in front (d + 1 nodes), D(j, l) = ℓ_l'(τ_j) for j = 1..d, l = 0..d (row-major, d × (d + 1)),
@@ -15,10 +16,12 @@ struct Radau {
   std::vector<double> tau;  ///< d + 1 nodes, tau[0] = 0
   std::vector<double> D;    ///< d × (d + 1)
   std::vector<double> b;    ///< d weights
-  double derivative(int j, int l) const { return D[static_cast<size_t>((j - 1) * (degree + 1) + l)]; }
+  double derivative(int j, int l) const {
+    return D[static_cast<std::size_t>((j - 1) * (degree + 1) + l)];
+  }
 };
 
 /// The scheme of degree 1 to 5 (std::invalid_argument otherwise).
 Radau radau(int degree);
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

@@ -7,7 +7,9 @@
 #include <map>
 #include <stdexcept>
 
-namespace lagrange::optimize {
+#include "optimize/simulated_guess.hpp"
+
+namespace lagrange::collocation {
 
 namespace {
 
@@ -24,7 +26,9 @@ std::vector<GiNaC::ex> point_functions(const OptimalControlSpec& spec) {
 }
 
 /// Index in x = (q, v) of a state reference (plain coordinates: q index = v index).
-size_t state_index(const StateRef& s, size_t nq) { return s.velocity ? nq + s.coordinate : s.coordinate; }
+size_t state_index(const StateRef& s, size_t nq) {
+  return s.velocity ? nq + s.coordinate : s.coordinate;
+}
 
 }  // namespace
 
@@ -37,11 +41,12 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       dyn_(dyn),
       spec_(spec),
       jac_(eq, cm, control_names(*eq.model, spec)),
-      fun_(eq, *cm, point_functions(spec), [&] {
-        std::vector<size_t> c;
-        for (const ControlSpec& s : spec.controls) c.push_back(s.input);
-        return c;
-      }()),
+      fun_(eq, *cm, point_functions(spec),
+           [&] {
+             std::vector<size_t> c;
+             for (const ControlSpec& s : spec.controls) c.push_back(s.input);
+             return c;
+           }()),
       rad_(radau(degree)),
       N_(intervals),
       d_(degree),
@@ -71,7 +76,10 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
           "a free horizon needs dynamics that do not depend on t explicitly (through an input's "
           "expression or the equations); fix the horizon or make that input a control");
   }
-  consistency_ = m_ > 0 && spec.initial.has_value() && spec.initial->size() < nx_;
+  size_t fixed = 0;
+  if (spec.initial)
+    for (const BoundaryValue& b : *spec.initial) fixed += b.fixed();
+  consistency_ = m_ > 0 && spec.initial.has_value() && fixed < nx_;
   block_ = static_cast<size_t>(d_) * (nx_ + m_) + nu_;
   first_ = free_T_ ? 1 : 0;
   n_ = first_ + static_cast<size_t>(N_) * block_ + nx_;
@@ -80,7 +88,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   in_.assign(cm->input_count(), 0.0);
   xp_.assign(nx_, 0.0);
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
-  const std::vector<double> x0 = guess();
+  guess_ = make_guess();
+  const std::vector<double>& x0 = guess_;
   std::map<std::pair<size_t, size_t>, size_t> where;
   walk_jacobian(x0.data(), [&](size_t r, size_t c, double) {
     auto [it, added] = where.emplace(std::make_pair(r, c), nz_.size());
@@ -127,12 +136,14 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
       xu[ui(k) + c] = finite(spec_.controls[c].bounds.upper);
     }
   auto fix = [&](size_t at, const BoundaryValue& b) {
-    xl[at + state_index(b.state, nq_)] = xu[at + state_index(b.state, nq_)] = b.value;
+    xl[at + state_index(b.state, nq_)] = finite(b.bounds.lower);
+    xu[at + state_index(b.state, nq_)] = finite(b.bounds.upper);
   };
   if (spec_.initial) {
     for (const BoundaryValue& b : *spec_.initial) fix(xi(0, 0), b);
   } else {
-    for (size_t i = 0; i < nx_; ++i) xl[i + first_] = xu[i + first_] = i < nq_ ? q0_[i] : v0_[i - nq_];
+    for (size_t i = 0; i < nx_; ++i)
+      xl[i + first_] = xu[i + first_] = i < nq_ ? q0_[i] : v0_[i - nq_];
   }
   for (const BoundaryValue& b : spec_.final) fix(xi(N_, 0), b);
   std::fill(gl, gl + rows_, 0.0);
@@ -144,24 +155,39 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
     }
 }
 
-std::vector<double> Transcription::guess() {
+std::vector<double> Transcription::make_guess() {
   std::vector<double> x(n_, 0.0), xl(n_), xu(n_), gl(rows_), gu(rows_);
   bounds(xl.data(), xu.data(), gl.data(), gu.data());
   if (free_T_) x[0] = T_;
   std::vector<double> start(nx_), end(nx_);
   for (size_t i = 0; i < nx_; ++i) start[i] = i < nq_ ? q0_[i] : v0_[i - nq_];
   if (spec_.initial)
-    for (const BoundaryValue& b : *spec_.initial) start[state_index(b.state, nq_)] = b.value;
-  end = start;
-  for (const BoundaryValue& b : spec_.final) end[state_index(b.state, nq_)] = b.value;
+    for (const BoundaryValue& b : *spec_.initial)
+      if (b.fixed()) start[state_index(b.state, nq_)] = b.bounds.lower;
+  end = start;  // free components keep their start value (clipped to the bounds below)
+  for (const BoundaryValue& b : spec_.final)
+    if (b.fixed()) end[state_index(b.state, nq_)] = b.bounds.lower;
   auto clamp = [&](size_t i, double v) { return std::min(std::max(v, xl[i]), xu[i]); };
+  std::vector<double> u0(nu_), times;
+  for (size_t c = 0; c < nu_; ++c) u0[c] = clamp(ui(0) + c, spec_.controls[c].guess.value_or(0.0));
+  for (int k = 0; k < N_; ++k)
+    for (int j = 0; j < d_; ++j) times.push_back(T_ * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
+  times.push_back(T_);
+  const bool simulated = spec_.guess == "simulation" || (spec_.guess.empty() && m_ > 0);
+  std::vector<std::vector<double>> states;
+  if (simulated)
+    states = simulated_states(
+        dyn_, controls_, u0,
+        std::vector<double>(start.begin(), start.begin() + static_cast<long>(nq_)),
+        std::vector<double>(start.begin() + static_cast<long>(nq_), start.end()), times);
   for (int k = 0; k < N_; ++k) {
-    for (size_t c = 0; c < nu_; ++c)
-      x[ui(k) + c] = clamp(ui(k) + c, spec_.controls[c].guess.value_or(0.0));
+    std::copy(u0.begin(), u0.end(), x.begin() + static_cast<long>(ui(k)));
     for (int j = 0; j <= d_; ++j) {
       const double s = (k + rad_.tau[static_cast<size_t>(j)]) / N_;
+      const size_t p = static_cast<size_t>(k * d_ + j);
       for (size_t i = 0; i < nx_; ++i)
-        x[xi(k, j) + i] = clamp(xi(k, j) + i, (1 - s) * start[i] + s * end[i]);
+        x[xi(k, j) + i] =
+            clamp(xi(k, j) + i, states.empty() ? (1 - s) * start[i] + s * end[i] : states[p][i]);
     }
   }
   // Multipliers from the forward dynamics at the guessed states (0 where it cannot solve).
@@ -186,7 +212,8 @@ const std::vector<double>& Transcription::load(double t, const double* x, const 
   const std::vector<double>& p = dyn_.parameters();
   std::copy(p.begin(), p.end(), in_.begin() + static_cast<long>(c.p_offset()));
   if (c.k > 0) {  // the other inputs follow their expressions u(t), u̇, ü
-    std::vector<double> sig(c.inputs.num_outputs()), work(std::max<size_t>(c.inputs.work_size(), 1));
+    std::vector<double> sig(c.inputs.num_outputs()),
+        work(std::max<size_t>(c.inputs.work_size(), 1));
     c.inputs.eval(in_.data(), sig.data(), work.data());
     std::copy(sig.begin(), sig.end(), in_.begin() + static_cast<long>(c.u_offset()));
   }
@@ -211,8 +238,8 @@ void Transcription::residual(const double* x, int k, int j, double* r) {
   const double* u = control(x, k);
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
   const double* X = state(x, k, j);
-  dyn_.dae_residual(time(x, k, j), X, X + nq_, xp_.data(), xp_.data() + nq_,
-                    multipliers(x, k, j), r);
+  dyn_.dae_residual(time(x, k, j), X, X + nq_, xp_.data(), xp_.data() + nq_, multipliers(x, k, j),
+                    r);
 }
 
 double Transcription::objective(const double* x) {
@@ -273,7 +300,8 @@ void Transcription::constraint_values(const double* x, double* g) {
       residual(x, k, j, g + p * nr);
       if (np_ == 0) continue;
       fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
-      std::copy(out_.begin() + 2, out_.begin() + 2 + static_cast<long>(np_), g + path_rows_ + p * np_);
+      std::copy(out_.begin() + 2, out_.begin() + 2 + static_cast<long>(np_),
+                g + path_rows_ + p * np_);
     }
   if (consistency_) {
     for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
@@ -386,4 +414,4 @@ std::string Transcription::describe(size_t row, const double* x) const {
                      row < m_ ? "" : "rate ");
 }
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

@@ -13,7 +13,7 @@
 #include "optimize/point_functions.hpp"
 #include "optimize/radau.hpp"
 
-namespace lagrange::optimize {
+namespace lagrange::collocation {
 
 /// Variables: [T when free], then per interval k < N the state X_{k,0…d−1} (x = (q, v)), the
 /// multipliers Λ_{k,1…d} and the controls U_k, then X_{N,0}; X_{k,d} is X_{k+1,0}.
@@ -28,9 +28,10 @@ class Transcription {
   size_t variables() const { return n_; }
   size_t constraints() const { return rows_; }
   void bounds(double* xl, double* xu, double* gl, double* gu) const;
-  /// Linear interpolation between the boundary states, controls at their guesses, multipliers
+  /// The starting point (docs/theory.md §10, "Initial guess"), made once: states interpolated
+  /// linearly between the boundary states or simulated, controls at their guesses, multipliers
   /// from the forward dynamics there.
-  std::vector<double> guess();
+  const std::vector<double>& guess() const { return guess_; }
 
   double objective(const double* x);  ///< ±J, minimised
   void gradient(const double* x, double* grad);
@@ -62,6 +63,7 @@ class Transcription {
   /// x'(τ_j)/h of interval k into qp_, and the residual's dynamics at (k, j) with the controls
   /// held: values into r (nq + nv + m).
   void residual(const double* x, int k, int j, double* r);
+  std::vector<double> make_guess();
   /// Every Jacobian entry as emit(row, column, value), in a fixed order.
   template <class Emit>
   void walk_jacobian(const double* x, Emit&& emit);
@@ -84,7 +86,7 @@ class Transcription {
   size_t n_ = 0, rows_ = 0, block_ = 0, first_ = 0, path_rows_ = 0;
   std::vector<std::pair<size_t, size_t>> nz_;
   std::vector<size_t> slot_;  ///< per emitted entry, its index in nz_
-  std::vector<double> in_, out_, xp_;
+  std::vector<double> in_, out_, xp_, guess_;
 };
 
-}  // namespace lagrange::optimize
+}  // namespace lagrange::collocation

@@ -18,8 +18,9 @@ const std::string kDir = std::string(LAGRANGE_SOURCE_DIR) + "/examples/optimal/"
 TEST(OptimizeCommand, SolvesWritesAndVerifies) {
   const std::string csv =
       (std::filesystem::temp_directory_path() / "lagrange_optimize_di.csv").string();
-  const auto r = testing::run_shell("optimize " + kDir + "double_integrator_min_energy.yaml --intervals 10 -o " +
-                                    csv + " --verify");
+  const auto r = testing::run_shell("optimize " + kDir +
+                                    "double_integrator_min_energy.yaml --intervals 10 -o " + csv +
+                                    " --verify");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("optimal solution found"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("objective          12.12121212"), std::string::npos) << r.output;
@@ -56,7 +57,8 @@ TEST(OptimizeCommand, InfeasibleProblemExitsThreeNamingTheMostViolatedConstraint
 }
 
 TEST(OptimizeCommand, ModelWithoutAProblemIsAUsageError) {
-  const auto r = testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml");
+  const auto r = testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) +
+                                    "/examples/pendulum.yaml");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("has no optimal_control section"), std::string::npos) << r.output;
 }

@@ -32,7 +32,8 @@ std::string error_of(const std::string& section) {
 TEST(OptimalControlErrors, AreLocatedAndSayWhatWasExpected) {
   const std::string ok = "  horizon: 1\n  minimize: integral(u^2)\n";
   // An unknown control: line 10, column 3.
-  EXPECT_NE(error_of("  controls: {v: {}}\n" + ok).find("di.yaml:9:14: error: expected an input of the model as a control, got 'v'"),
+  EXPECT_NE(error_of("  controls: {v: {}}\n" + ok)
+                .find("di.yaml:9:14: error: expected an input of the model as a control, got 'v'"),
             std::string::npos)
       << error_of("  controls: {v: {}}\n" + ok);
   // A lower bound above the upper one.
@@ -53,7 +54,8 @@ TEST(OptimalControlErrors, AreLocatedAndSayWhatWasExpected) {
             std::string::npos)
       << final;
   // An unknown name inside integral(…), located at its column.
-  const std::string unknown = error_of("  controls: {u: {}}\n  horizon: 1\n  minimize: integral(w^2)\n");
+  const std::string unknown =
+      error_of("  controls: {u: {}}\n  horizon: 1\n  minimize: integral(w^2)\n");
   EXPECT_NE(unknown.find("di.yaml:11:22:"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("'w'"), std::string::npos) << unknown;
   // An integral used nonlinearly.
@@ -73,7 +75,8 @@ TEST(OptimalControlErrors, AreLocatedAndSayWhatWasExpected) {
 
 TEST(OptimalControlErrors, ObjectiveSplitsIntoIntegrandAndTerminalTerms) {
   const Model m = read_model_string(
-      kModel + "  controls: {u: {}}\n  horizon: 1\n  minimize: 3*integral(u^2) - integral(x) + x^2\n",
+      kModel +
+          "  controls: {u: {}}\n  horizon: 1\n  minimize: 3*integral(u^2) - integral(x) + x^2\n",
       "di.yaml");
   ASSERT_TRUE(m.optimal_control.has_value());
   const GiNaC::symbol& x = m.coordinates[0].q;

@@ -16,23 +16,25 @@ namespace {
 // x'(τ_j) exact for polynomials of degree ≤ d, quadrature exact to degree 2d − 2 (order 2d − 1).
 TEST(Radau, DifferentiatesAndIntegratesPolynomialsExactly) {
   for (int d = 1; d <= 5; ++d) {
-    const optimize::Radau r = optimize::radau(d);
+    const collocation::Radau r = collocation::radau(d);
     EXPECT_DOUBLE_EQ(r.tau.back(), 1.0);
     for (int p = 0; p <= 2 * d - 2; ++p) {
       double s = 0.0;
-      for (int j = 1; j <= d; ++j) s += r.b[static_cast<size_t>(j - 1)] * std::pow(r.tau[static_cast<size_t>(j)], p);
+      for (int j = 1; j <= d; ++j)
+        s += r.b[static_cast<size_t>(j - 1)] * std::pow(r.tau[static_cast<size_t>(j)], p);
       EXPECT_NEAR(s, 1.0 / (p + 1), 1e-13) << "d = " << d << ", τ^" << p;
     }
     for (int p = 0; p <= d; ++p)
       for (int j = 1; j <= d; ++j) {
         double s = 0.0;
-        for (int l = 0; l <= d; ++l) s += r.derivative(j, l) * std::pow(r.tau[static_cast<size_t>(l)], p);
+        for (int l = 0; l <= d; ++l)
+          s += r.derivative(j, l) * std::pow(r.tau[static_cast<size_t>(l)], p);
         const double exact = p == 0 ? 0.0 : p * std::pow(r.tau[static_cast<size_t>(j)], p - 1);
         EXPECT_NEAR(s, exact, 1e-11) << "d = " << d << ", τ^" << p << " at point " << j;
       }
   }
   // Radau IIA of degree 2: points 1/3 and 1, weights 3/4 and 1/4 (Hairer & Wanner IV.5).
-  const optimize::Radau r2 = optimize::radau(2);
+  const collocation::Radau r2 = collocation::radau(2);
   EXPECT_NEAR(r2.tau[1], 1.0 / 3.0, 1e-15);
   EXPECT_NEAR(r2.b[0], 0.75, 1e-15);
   EXPECT_NEAR(r2.b[1], 0.25, 1e-15);
@@ -44,7 +46,7 @@ class NlpDerivatives : public ::testing::TestWithParam<std::string> {};
 // the starting one (every entry, not only the pattern's: an entry missing from the pattern shows).
 TEST_P(NlpDerivatives, MatchCentralDifferences) {
   testing::OptimalProblem p(GetParam());
-  optimize::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
+  collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
   std::vector<double> x = nlp.guess();
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> perturb(-0.3, 0.3);
@@ -77,19 +79,17 @@ TEST_P(NlpDerivatives, MatchCentralDifferences) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, NlpDerivatives,
-                         ::testing::Values("double_integrator_min_energy.yaml",
-                                           "double_integrator_min_time.yaml",
-                                           "cart_pole_swing_up.yaml",
-                                           "pendulum_swing_up_polar.yaml",
-                                           "pendulum_swing_up_cartesian.yaml",
-                                           "data/everything.yaml"),
-                         [](const auto& info) {
-                           std::string s = info.param.substr(0, info.param.size() - 5);
-                           for (char& c : s)
-                             if (c == '.' || c == '/') c = '_';
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Examples, NlpDerivatives,
+    ::testing::Values("double_integrator_min_energy.yaml", "double_integrator_min_time.yaml",
+                      "cart_pole_swing_up.yaml", "pendulum_swing_up_polar.yaml",
+                      "pendulum_swing_up_cartesian.yaml", "data/everything.yaml"),
+    [](const auto& info) {
+      std::string s = info.param.substr(0, info.param.size() - 5);
+      for (char& c : s)
+        if (c == '.' || c == '/') c = '_';
+      return s;
+    });
 
 }  // namespace
 }  // namespace lagrange
