@@ -80,11 +80,13 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   if (spec.initial)
     for (const BoundaryValue& b : *spec.initial) fixed += b.fixed();
   consistency_ = m_ > 0 && spec.initial.has_value() && fixed < nx_;
+
   block_ = static_cast<size_t>(d_) * (nx_ + m_) + nu_;
   first_ = free_T_ ? 1 : 0;
   n_ = first_ + static_cast<size_t>(N_) * block_ + nx_;
   path_rows_ = static_cast<size_t>(N_ * d_) * (nx_ + m_);
-  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + (consistency_ ? 2 * m_ : 0);
+  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + (consistency_ ? 2 * m_ : 0) +
+          (final_invariants_ ? 2 * m_ : 0);
   in_.assign(cm->input_count(), 0.0);
   xp_.assign(nx_, 0.0);
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
@@ -186,8 +188,10 @@ std::vector<double> Transcription::make_guess() {
       const double s = (k + rad_.tau[static_cast<size_t>(j)]) / N_;
       const size_t p = static_cast<size_t>(k * d_ + j);
       for (size_t i = 0; i < nx_; ++i)
+        // A simulated state stays as simulated (on the constraints; Ipopt moves it into the
+        // bounds itself), an interpolated one is clipped to them.
         x[xi(k, j) + i] =
-            clamp(xi(k, j) + i, states.empty() ? (1 - s) * start[i] + s * end[i] : states[p][i]);
+            states.empty() ? clamp(xi(k, j) + i, (1 - s) * start[i] + s * end[i]) : states[p][i];
     }
   }
   // Multipliers from the forward dynamics at the guessed states (0 where it cannot solve).
@@ -303,11 +307,14 @@ void Transcription::constraint_values(const double* x, double* g) {
       std::copy(out_.begin() + 2, out_.begin() + 2 + static_cast<long>(np_),
                 g + path_rows_ + p * np_);
     }
-  if (consistency_) {
-    for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
-    const double* X = state(x, 0, 0);
-    const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
-    dyn_.constraints(0.0, X, X + nq_, g + at, g + at + m_);
+  size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
+  for (int end = 0; end < 2; ++end) {
+    if (!(end == 0 ? consistency_ : final_invariants_)) continue;
+    const int k = end == 0 ? 0 : N_ - 1;
+    for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, k)[c]);
+    const double* X = state(x, end == 0 ? 0 : N_, 0);
+    dyn_.constraints(end == 0 ? 0.0 : horizon(x), X, X + nq_, g + at, g + at + m_);
+    at += 2 * m_;
   }
 }
 
@@ -375,19 +382,33 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
         }
       }
     }
-  if (consistency_) {
-    const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
-    for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
-    const double* X = state(x, 0, 0);
-    const StateJacobian S = jac_.evaluate(dyn_, 0.0, X, X + nq_);
-    for (size_t i = 0; i < m_; ++i) {
-      for (size_t c = 0; c < nq_; ++c) {
-        emit(at + i, xi(0, 0) + c, S.C_q(static_cast<long>(i), static_cast<long>(c)));
-        emit(at + m_ + i, xi(0, 0) + c, S.Cdot_q(static_cast<long>(i), static_cast<long>(c)));
-      }
-      for (size_t c = 0; c < nv_; ++c)
-        emit(at + m_ + i, xi(0, 0) + nq_ + c, S.G(static_cast<long>(i), static_cast<long>(c)));
+  // C = 0, Ċ = 0 at t = 0 and t = T (constraints without explicit t: no ∂/∂T term).
+  size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
+  for (int end = 0; end < 2; ++end) {
+    if (!(end == 0 ? consistency_ : final_invariants_)) continue;
+    const int k = end == 0 ? 0 : N_ - 1;
+    const size_t base = xi(end == 0 ? 0 : N_, 0);
+    for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, k)[c]);
+    const double* X = x + base;
+    // G = ∂Ċ/∂v is a value, ∂C/∂q and ∂Ċ/∂q are derivatives on the Jacobian tape (at the inputs
+    // dyn.constraints loads); no KKT solve, so no singular-matrix stop.
+    std::vector<double> C(m_), Cdot(m_);
+    dyn_.constraints(end == 0 ? 0.0 : T, X, X + nq_, C.data(), Cdot.data());
+    const Tape& tape = jac_.tape();
+    out_.resize(tape.num_outputs());
+    std::vector<double> work(std::max<size_t>(tape.work_size(), 1));
+    tape.eval(dyn_.last_inputs().data(), out_.data(), work.data());
+    const CompiledModel& cm = *cm_;
+    for (size_t e = 0; e < cm.G_pattern.size(); ++e)
+      emit(at + m_ + cm.G_pattern[e].first, base + nq_ + cm.G_pattern[e].second,
+           out_[cm.G_out() + e]);
+    for (size_t e = 0; e < jac_.pattern().size(); ++e) {
+      const auto [r, col] = jac_.pattern()[e];
+      if (r >= cm.Cdot_out() && r < cm.Cq_out() && col < nq_)  // ∂Ċ/∂q, then ∂C/∂q
+        emit(at + (r < cm.C_out() ? m_ + r - cm.Cdot_out() : r - cm.C_out()), base + col,
+             out_[jac_.value_count() + e]);
     }
+    at += 2 * m_;
   }
 }
 
@@ -410,8 +431,10 @@ std::string Transcription::describe(size_t row, const double* x) const {
                        time(x, static_cast<int>(p) / d_, static_cast<int>(p) % d_ + 1));
   }
   row -= static_cast<size_t>(N_ * d_) * np_;
-  return fmt::format("constraint '{}' {}at t = 0", c.constraint_names[row % m_],
-                     row < m_ ? "" : "rate ");
+  const bool final = !consistency_ || row >= 2 * m_;
+  return fmt::format("constraint '{}' {}at t = {}", c.constraint_names[row % m_],
+                     row % (2 * m_) < m_ ? "" : "rate ",
+                     final ? fmt::format("{:.6g}", horizon(x)) : "0");
 }
 
 }  // namespace lagrange::collocation

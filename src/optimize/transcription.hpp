@@ -80,7 +80,8 @@ class Transcription {
   bool free_T_;
   double T_;
   double sign_;
-  bool consistency_;  ///< C = 0, Ċ = 0 imposed at t = 0
+  bool consistency_;               ///< C = 0, Ċ = 0 imposed at t = 0
+  bool final_invariants_ = false;  ///< C = 0, Ċ = 0 at t = T: not imposed (nearly redundant)
   std::vector<size_t> controls_;
   std::vector<double> q0_, v0_;
   size_t n_ = 0, rows_ = 0, block_ = 0, first_ = 0, path_rows_ = 0;

@@ -44,8 +44,8 @@ TEST(OptimizeCommand, InfeasibleProblemExitsThreeNamingTheMostViolatedConstraint
     std::ifstream src(kDir + "double_integrator_min_time.yaml");
     std::ofstream dst(yaml);
     for (std::string line; std::getline(src, line);) {
-      if (line.find("horizon:") != std::string::npos) line = "  horizon: 1";
-      if (line.find("minimize:") != std::string::npos) line = "  minimize: integral(u^2)";
+      if (line.rfind("  horizon:", 0) == 0) line = "  horizon: 1";
+      if (line.rfind("  minimize:", 0) == 0) line = "  minimize: integral(u^2)";
       dst << line << "\n";
     }
   }
