@@ -48,6 +48,7 @@ struct Options {
   bool resume = false, keep_trajectories = false;  ///< sweep --resume, --keep-trajectories
   int intervals = 0, degree = 0;   ///< optimize --intervals, --degree (0: the problem's)
   bool verify = false;             ///< optimize --verify
+  bool verbose = false;            ///< optimize -v: Ipopt's iteration log
   std::vector<std::string> ipopt;  ///< optimize --ipopt KEY=VALUE
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models

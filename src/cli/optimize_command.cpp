@@ -24,7 +24,7 @@ int run_optimize(const Options& opt) {
   OptimizeOptions o;
   o.intervals = opt.intervals;
   o.degree = opt.degree;
-  o.verbose = opt.expand;
+  o.verbose = opt.verbose;
   for (const std::string& a : opt.ipopt) {
     const size_t eq = a.find('=');
     if (eq == std::string::npos || eq == 0)
