@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config ccache mold time
   libginac-dev libcln-dev libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev
-  libcli11-dev libfmt-dev nlohmann-json3-dev libtinyxml2-dev libssl-dev
+  libcli11-dev libfmt-dev nlohmann-json3-dev libtinyxml2-dev libssl-dev coinor-libipopt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox python3 python3-sympy
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pandas python3-matplotlib

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lagrange/error.hpp"
+#include "lagrange/optimal_control.hpp"
 
 namespace lagrange {
 
@@ -256,6 +257,8 @@ struct Model {
   std::vector<StopSpec> stop_when;  ///< `stop_when:` conditions, in file order
   std::vector<MetricSpec> metrics;  ///< `metrics:`, in file order
   Visual visual;                    ///< `visual:`, empty when not written
+  /// `optimal_control:`, what `lagrange optimize` solves; unset when not written.
+  std::optional<OptimalControlSpec> optimal_control;
   /// Conditions that leave an element's physical domain (a winch's reeled-out length below 0),
   /// added by the elements: a run fails, located in time, where one becomes true. The name says
   /// what went wrong; loc is the element's.

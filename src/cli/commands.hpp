@@ -51,6 +51,10 @@ struct Options {
   std::string study;                               ///< sweep -o: the study directory
   size_t jobs = 0;                                 ///< sweep -j (0: every core)
   bool resume = false, keep_trajectories = false;  ///< sweep --resume, --keep-trajectories
+  int intervals = 0, degree = 0;   ///< optimize --intervals, --degree (0: the problem's)
+  bool verify = false;             ///< optimize --verify
+  bool verbose = false;            ///< optimize -v: Ipopt's iteration log
+  std::vector<std::string> ipopt;  ///< optimize --ipopt KEY=VALUE
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;
@@ -73,5 +77,8 @@ int run_trim(const Options& opt);
 /// Every case of a parameter grid or random sample, one derivation shared by a pool of workers,
 /// into STUDY/summary.csv (src/cli/sweep_command.cpp, docs/sweeps.md).
 int run_sweep(const Options& opt);
+/// The model file's optimal-control problem by direct collocation and Ipopt (docs/theory.md §10,
+/// src/cli/optimize_command.cpp).
+int run_optimize(const Options& opt);
 
 }  // namespace lagrange::cli

@@ -1,5 +1,5 @@
 // The `lagrange` command (README.md, "Command line"): derive, simulate, export, check, eval,
-// report, linearize, trim, sweep.
+// report, linearize, trim, sweep, optimize.
 // Exit codes: 0 ok, 1 model error, 2 usage error, 3 simulation failure.
 
 #include <fmt/format.h>
@@ -256,6 +256,24 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
   sweep->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
 
+  auto* optimize = app.add_subcommand(
+      "optimize",
+      "solve the model's optimal_control problem: Radau collocation of the DAE, solved by Ipopt");
+  optimize->add_option("model", opt.model, "model file (YAML) with an optimal_control section")
+      ->required();
+  optimize->add_option("-o,--output", opt.csv,
+                       "CSV of the optimal trajectory (t, states, controls, multipliers)");
+  optimize->add_option("--intervals", opt.intervals, "collocation intervals N (overrides the file)")
+      ->check(CLI::Range(1, 100000));
+  optimize->add_option("--degree", opt.degree, "Radau IIA points per interval, 1-5")
+      ->check(CLI::Range(1, 5));
+  optimize->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  optimize->add_flag("--verify", opt.verify,
+                     "re-simulate the optimal controls at tight tolerance and report the gap");
+  optimize->add_option("--ipopt", opt.ipopt, "Ipopt option KEY=VALUE (repeatable)");
+  optimize->add_flag("-v,--verbose", opt.verbose, "print Ipopt's iteration log");
+  optimize->add_flag("-q,--quiet", opt.quiet, "no summary");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -274,6 +292,7 @@ int main(int argc, char** argv) {
     if (*lin) return run_linearize(opt);
     if (*trim) return run_trim(opt);
     if (*sweep) return run_sweep(opt);
+    if (*optimize) return run_optimize(opt);
   } catch (const lagrange::AnalysisError& e) {
     fmt::print(stderr, "lagrange: {}\n", e.what());
     return 3;

@@ -95,6 +95,10 @@ class ModelReader {
   using LocalNames = std::map<std::string, GiNaC::ex>;
   Value parse(const YAML::Node& node, unsigned allowed, const std::string& what,
               const LocalNames* locals = nullptr) const;
+  /// parse() of `text` in place of the node's own scalar, errors located in the node: `text` has
+  /// the scalar's length with parts blanked or renamed (offsets unchanged).
+  Value parse_text(const YAML::Node& node, const std::string& text, unsigned allowed,
+                   const std::string& what, const LocalNames* locals = nullptr) const;
   GiNaC::ex scalar_expr(const YAML::Node& node, unsigned allowed, const std::string& what,
                         const LocalNames* locals = nullptr) const;
   Vec3 vector_expr(const YAML::Node& node, unsigned allowed, const std::string& what) const;
@@ -198,6 +202,15 @@ class ModelReader {
   /// `visual: {color, size, trail, hide}`: names of points, bodies or elements, CSS colours,
   /// positive sizes; read by the report, checked here so that `check` finds its mistakes.
   void read_visual(const YAML::Node& node);
+  // read_optimal_control.cpp — the problem `lagrange optimize` solves (docs/model-language.md).
+  void read_optimal_control(const YAML::Node& node);
+  /// A coordinate NAME or its rate NAME_dot named by the scalar `node`, or a located error.
+  StateRef state_ref(const YAML::Node& node, const std::string& what) const;
+  /// `{lower: …, upper: …}` (each optional, numbers of parameters), lower ≤ upper.
+  Bounds read_bounds(const YAML::Node& node, const std::string& what,
+                     const std::vector<std::string>& extra_keys = {}) const;
+  /// The objective `text` at `node`: integral(…) terms with constant factors, plus terminal terms.
+  void read_objective(const YAML::Node& node, OptimalControlSpec& spec) const;
 
   // read_generated.cpp — names and state that elements generate (docs/model-language.md).
   Model& model() { return m_; }

@@ -51,6 +51,11 @@ Value ModelReader::parse(const YAML::Node& node, unsigned allowed, const std::st
   const std::string& text = node.Scalar();
   if (is_yaml_nonfinite(text))
     fail(node, fmt::format("expected a finite number for {}, got '{}'", what, text));
+  return parse_text(node, text, allowed, what, locals);
+}
+
+Value ModelReader::parse_text(const YAML::Node& node, const std::string& text, unsigned allowed,
+                              const std::string& what, const LocalNames* locals) const {
   ParseContext ctx;
   ctx.resolve = [this, allowed, locals](const std::string& name,
                                         size_t offset) -> std::optional<Value> {

@@ -24,7 +24,7 @@ const std::vector<std::string>& top_level_keys() {
       "points",      "particles",  "gravity",     "kinetic",   "potential",
       "generalized_forces",        "forces",      "torques",   "springs",
       "dampers",     "constraints", "outputs",    "stabilization", "simulate",
-      "stop_when",   "metrics",    "visual"};  // visual: read into Model::visual, drawn by the report
+      "stop_when",   "metrics",    "visual",    "optimal_control"};  // visual: read into Model::visual, drawn by the report
   // clang-format on
   static const std::vector<std::string> all = [] {
     std::vector<std::string> k = keys;
@@ -100,6 +100,7 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "stop_when")) read_stop_when(*n);
   if (auto n = section(root, "metrics")) read_metrics(*n);
   if (auto n = section(root, "visual")) read_visual(*n);
+  if (auto n = section(root, "optimal_control")) read_optimal_control(*n);
   warn_angle_parameters();
   return m_;
 }

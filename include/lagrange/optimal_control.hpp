@@ -1,0 +1,84 @@
+#pragma once
+// The `optimal_control:` section of a model file as the reader checked it (docs/model-language.md,
+// "Optimal control"): what `lagrange optimize` solves (lagrange/optimize.hpp).
+
+#include <ginac/ginac.h>
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lagrange/error.hpp"
+
+namespace lagrange {
+
+/// Lower and upper bounds, infinite when not written.
+struct Bounds {
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+};
+
+/// A model input the optimiser chooses, constant on each collocation interval.
+struct ControlSpec {
+  size_t input = 0;  ///< index into Model::inputs
+  Bounds bounds;
+  std::optional<double> guess;  ///< initial guess (else 0 clipped to the bounds)
+  SourceLoc loc;
+};
+
+/// A coordinate (`velocity` false) or its rate NAME_dot, by index into Model::coordinates.
+struct StateRef {
+  size_t coordinate = 0;
+  bool velocity = false;
+  SourceLoc loc;
+};
+
+/// A bound on a coordinate or a rate, held at every collocation point.
+struct StateBound {
+  StateRef state;
+  Bounds bounds;
+};
+
+/// A boundary condition on a state component at the start or the end: fixed (lower = upper)
+/// or bounded.
+struct BoundaryValue {
+  StateRef state;
+  Bounds bounds;
+  bool fixed() const { return bounds.lower == bounds.upper; }
+};
+
+/// lower ≤ expr(t, q, v, u, p) ≤ upper at every collocation point.
+struct PathConstraintSpec {
+  std::string name;
+  GiNaC::ex expr;
+  Bounds bounds;
+  SourceLoc loc;
+};
+
+/// The problem: J = ∫₀ᵀ L dt + Φ(T, q(T), v(T), u(T)), minimised (or maximised) subject to the
+/// dynamics, bounds, path constraints and boundary values (docs/theory.md §10).
+struct OptimalControlSpec {
+  std::vector<ControlSpec> controls;
+  double horizon = 1.0;                ///< T when fixed; the initial guess when free
+  std::optional<Bounds> free_horizon;  ///< set: T is chosen within these bounds
+  bool maximize = false;
+  GiNaC::ex integrand = 0;  ///< L, the sum of the objective's integral terms with their factors
+  GiNaC::ex terminal = 0;   ///< Φ, the rest of the objective (t is the final time there)
+  std::string objective_text;
+  std::vector<StateBound> bounds;
+  std::vector<PathConstraintSpec> path;
+  /// Unset: the model's initial state, all fixed; set: only the listed components are fixed or
+  /// bounded.
+  std::optional<std::vector<BoundaryValue>> initial;
+  std::vector<BoundaryValue> final;
+  /// The starting point: "linear" interpolation between the boundary states, a "simulation" of
+  /// the model with the controls at their guesses, or "" (simulation for constrained models,
+  /// whose states a straight line would take off the constraints; linear otherwise).
+  std::string guess;
+  int intervals = 50;  ///< collocation intervals N
+  int degree = 3;      ///< Radau IIA collocation points per interval
+  SourceLoc loc;
+};
+
+}  // namespace lagrange

@@ -1,0 +1,64 @@
+#pragma once
+// Optimal control by direct collocation (docs/theory.md §10): the model file's
+// `optimal_control:` problem transcribed with Radau IIA on the implicit DAE and solved by Ipopt.
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/optimal_control.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange {
+
+/// How optimize() transcribes and solves; unset sizes keep the problem's own.
+struct OptimizeOptions {
+  int intervals = 0;  ///< collocation intervals N (0: the problem's)
+  int degree = 0;     ///< Radau IIA points per interval, 1 to 5 (0: the problem's)
+  /// Ipopt options by name, as text: integers, numbers and words are told apart by their form.
+  std::vector<std::pair<std::string, std::string>> ipopt;
+  bool verbose = false;  ///< Ipopt's iteration log on stdout
+};
+
+/// What optimize() found.
+struct OptimizeResult {
+  bool optimal = false;    ///< Ipopt converged to a (locally) optimal point
+  std::string status;      ///< Ipopt's status in words
+  double objective = 0.0;  ///< J at the result, in the problem's own sign (maximised: J itself)
+  double horizon = 0.0;    ///< T
+  /// Largest violation of a constraint (dynamics, path, consistency) and which one and where.
+  double violation = 0.0;
+  std::string worst_constraint;
+  int iterations = 0;
+  double setup_seconds = 0.0, solve_seconds = 0.0, function_seconds = 0.0;
+  std::vector<std::string> control_names;
+  /// The trajectory at t = 0 and every collocation point: t, coordinates, velocities, controls,
+  /// multipliers (columns named as `simulate` names them).
+  Trajectory trajectory;
+  std::vector<double> controls;  ///< N × nu, row-major: the control on each interval
+  int intervals = 0, degree = 0;
+};
+
+/// Solve `spec` for the model `eq` (compiled as `cm`) with workspace `dyn` (its parameters and
+/// Baumgarte rate) from the consistent initial state (q0, v0) (used where `spec` leaves the
+/// initial state to the model). std::invalid_argument for a problem the transcription cannot
+/// take (saying why); a failure of Ipopt is a result with optimal = false.
+OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
+                        const OptimalControlSpec& spec, const std::vector<double>& q0,
+                        const std::vector<double>& v0, const OptimizeOptions& options = {});
+
+/// Re-simulate the result's piecewise-constant controls from its initial state with `options`
+/// (the caller's integrator and tolerances): the largest difference of a state component at
+/// the final time (`final_gap`) and at the collocation samples (`largest_gap`).
+struct VerifyResult {
+  double final_gap = 0.0, largest_gap = 0.0;
+  std::string message;  ///< empty, or why the simulation failed
+};
+VerifyResult verify(Dynamics& dyn, const OptimalControlSpec& spec, const OptimizeResult& result,
+                    SimulationOptions options);
+
+}  // namespace lagrange

@@ -1,0 +1,73 @@
+// `lagrange optimize MODEL [-o out.csv] [--intervals N] [--degree d] [--set …] [--verify]
+// [--ipopt KEY=VALUE …]` (docs/model-language.md, "Optimal control"; docs/theory.md §10).
+// Exit codes: 0 optimal, 1 a mistake in the model file, 2 usage, 3 Ipopt failed or infeasible.
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "cli/commands.hpp"
+#include "cli/prepare.hpp"
+#include "lagrange/io.hpp"
+#include "lagrange/optimize.hpp"
+
+namespace lagrange::cli {
+
+int run_optimize(const Options& opt) {
+  Prepared p = prepare(opt.model, opt.sets, {}, "--initial", "lagrangian");
+  if (!p.model->optimal_control)
+    throw UsageError(
+        fmt::format("{} has no optimal_control section (docs/model-language.md, "
+                    "\"Optimal control\")",
+                    opt.model));
+  const OptimalControlSpec& spec = *p.model->optimal_control;
+  OptimizeOptions o;
+  o.intervals = opt.intervals;
+  o.degree = opt.degree;
+  o.verbose = opt.verbose;
+  for (const std::string& a : opt.ipopt) {
+    const size_t eq = a.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw UsageError(fmt::format("expected --ipopt KEY=VALUE, got '{}'", a));
+    o.ipopt.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+  }
+  const SimulationOptions so = simulation_options(*p.model, RunSettings{});
+  p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
+  OptimizeResult r;
+  try {
+    r = optimize(p.equations, p.compiled, *p.dynamics, spec, p.q, p.v, o);
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(spec.loc, e.what());
+  }
+  if (!opt.csv.empty()) write_trajectory_csv(r.trajectory, opt.csv);
+  if (!opt.quiet) {
+    fmt::print("{}: {} ({} iterations)\n", p.model->name, r.status, r.iterations);
+    fmt::print("  objective          {:.10g}\n", r.objective);
+    fmt::print("  horizon            {:.10g}{}\n", r.horizon, spec.free_horizon ? " (free)" : "");
+    fmt::print("  intervals, degree  {}, {} (Radau IIA)\n", r.intervals, r.degree);
+    fmt::print("  worst violation    {:.3g}{}\n", r.violation,
+               r.worst_constraint.empty() ? "" : " (" + r.worst_constraint + ")");
+    fmt::print(
+        "  time               {:.3f} s set-up (derive, compile, transcribe), {:.3f} s "
+        "solve ({:.3f} s in our functions)\n",
+        p.derive_seconds + p.compile_seconds + r.setup_seconds, r.solve_seconds,
+        r.function_seconds);
+  }
+  if (opt.verify) {
+    SimulationOptions tight = so;
+    tight.integrator.rtol = 1e-10;
+    tight.integrator.atol = 1e-12;
+    const VerifyResult v = verify(*p.dynamics, spec, r, tight);
+    if (!v.message.empty()) fmt::print("  verify             simulation failed: {}\n", v.message);
+    fmt::print("  verify             final-state gap {:.3g}, largest gap at the mesh {:.3g}\n",
+               v.final_gap, v.largest_gap);
+  }
+  if (!r.optimal) {
+    fmt::print(stderr, "lagrange: optimize: {}; most violated: {} (by {:.3g})\n", r.status,
+               r.worst_constraint.empty() ? "none" : r.worst_constraint, r.violation);
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace lagrange::cli

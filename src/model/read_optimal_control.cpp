@@ -1,0 +1,232 @@
+// The `optimal_control:` section (docs/model-language.md, "Optimal control"): controls, horizon,
+// objective, bounds, path constraints and boundary values, checked with located errors.
+
+#include <fmt/format.h>
+
+#include <cctype>
+#include <cmath>
+#include <map>
+
+#include "model/model_reader.hpp"
+
+namespace lagrange::model {
+
+namespace {
+
+bool name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+/// Offset of the ')' closing the '(' at `open`, or npos.
+size_t closing(const std::string& text, size_t open) {
+  int depth = 0;
+  for (size_t i = open; i < text.size(); ++i) {
+    if (text[i] == '(') ++depth;
+    if (text[i] == ')' && --depth == 0) return i;
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+StateRef ModelReader::state_ref(const YAML::Node& node, const std::string& what) const {
+  const std::string name = scalar(node, what);
+  const std::string rate = "_dot";
+  const bool velocity =
+      name.size() > rate.size() && name.compare(name.size() - rate.size(), rate.size(), rate) == 0;
+  const std::string base = velocity ? name.substr(0, name.size() - rate.size()) : name;
+  const int index = m_.coordinate_index(base);
+  if (index < 0)
+    fail(node, fmt::format("expected a coordinate or its rate NAME_dot for {}, got '{}' "
+                           "(coordinates: {})",
+                           what, clip(name), names_of(NameKind::Coordinate)));
+  return StateRef{static_cast<size_t>(index), velocity, src_.at(node)};
+}
+
+Bounds ModelReader::read_bounds(const YAML::Node& node, const std::string& what,
+                                const std::vector<std::string>& extra_keys) const {
+  expect_map(node, fmt::format("{} ({{lower: …, upper: …}})", what));
+  std::vector<std::string> keys{"lower", "upper"};
+  keys.insert(keys.end(), extra_keys.begin(), extra_keys.end());
+  check_keys(node, keys, what);
+  Bounds b;
+  if (node["lower"])
+    b.lower = number(node["lower"], kParams, fmt::format("lower bound of {}", what));
+  if (node["upper"])
+    b.upper = number(node["upper"], kParams, fmt::format("upper bound of {}", what));
+  if (b.lower > b.upper)
+    fail(node["lower"], fmt::format("expected the lower bound of {} at most its upper bound {:g}, "
+                                    "got {:g}",
+                                    what, b.upper, b.lower));
+  return b;
+}
+
+// J = Σ c_k ∫ L_k dt + Φ: each integral(…) is read on its own (the rest of the text blanked), then
+// the whole with each integral(…) renamed to a placeholder symbol of the same length, so that
+// every error keeps its column. The placeholders must enter linearly with constant factors c_k.
+void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spec) const {
+  const std::string what = "the objective";
+  if (!node.IsScalar() || node.Scalar().find_first_not_of(" \t\r\n") == std::string::npos)
+    fail(node, fmt::format("expected an expression for {}, got {}", what, describe(node)));
+  std::string outer = node.Scalar();
+  spec.objective_text = outer;
+  const std::string keyword = "integral";
+  LocalNames placeholders;
+  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> integrals;
+  for (size_t at = outer.find(keyword); at != std::string::npos; at = outer.find(keyword, at + 1)) {
+    const size_t after = at + keyword.size();
+    if ((at > 0 && name_char(outer[at - 1])) || after >= outer.size() || outer[after] != '(')
+      continue;
+    const size_t close = closing(outer, after);
+    if (close == std::string::npos)
+      throw ModelError(src_.at(node, after), "expected ')' closing integral( (in the objective)");
+    std::string inner(outer.size(), ' ');
+    inner.replace(after + 1, close - after - 1, outer, after + 1, close - after - 1);
+    if (inner.find_first_not_of(' ') == std::string::npos)
+      throw ModelError(src_.at(node, after), "expected an expression inside integral()");
+    const GiNaC::ex L = parse_text(node, inner, kAll, "an integral of the objective").scalar;
+    const std::string name = fmt::format("_integral{}", integrals.size());
+    const GiNaC::symbol s(name);
+    placeholders[name] = s;
+    integrals.emplace_back(s, L);
+    outer.replace(at, close + 1 - at, name + std::string(close + 1 - at - name.size(), ' '));
+  }
+  const Value v = parse_text(node, outer, kAll, what, &placeholders);
+  if (v.is_vector || v.is_matrix)
+    fail(node, fmt::format("expected a scalar for {}, got a vector or matrix", what));
+  GiNaC::exmap zero;
+  for (const auto& [s, L] : integrals) zero[s] = 0;
+  spec.terminal = v.scalar.subs(zero);
+  spec.integrand = 0;
+  for (size_t k = 0; k < integrals.size(); ++k) {
+    const GiNaC::ex factor = v.scalar.diff(integrals[k].first);
+    if (!evaluate_unrecorded(factor) || factor.has(m_.t) || factor.has(integrals[k].first) ||
+        !evaluate_unrecorded(factor.subs(zero)))
+      fail(node, fmt::format("expected integral terms added with constant factors in {} "
+                             "(c*integral(L) + terminal terms), got integral {} inside "
+                             "another function",
+                             what, k + 1));
+    spec.integrand += factor * integrals[k].second;
+  }
+}
+
+void ModelReader::read_optimal_control(const YAML::Node& node) {
+  expect_map(node, "optimal_control");
+  check_keys(node,
+             {"controls", "horizon", "minimize", "maximize", "bounds", "path", "initial", "final",
+              "guess", "intervals", "degree"},
+             "optimal_control");
+  OptimalControlSpec spec;
+  spec.loc = src_.at(node);
+
+  if (!node["controls"]) fail(node, "expected 'controls' in optimal_control (inputs it chooses)");
+  expect_map(node["controls"], "controls (a map INPUT: {lower: …, upper: …})");
+  for (const auto& kv : node["controls"]) {
+    const std::string name = scalar(kv.first, "a control");
+    const int index = m_.input_index(name);
+    if (index < 0)
+      fail(kv.first, fmt::format("expected an input of the model as a control, got '{}' "
+                                 "(inputs: {})",
+                                 clip(name), names_of(NameKind::Input)));
+    ControlSpec c{static_cast<size_t>(index), {}, std::nullopt, src_.at(kv.first)};
+    if (!kv.second.IsNull()) {
+      const std::string what = fmt::format("control '{}'", name);
+      c.bounds = read_bounds(kv.second, what, {"guess"});
+      if (kv.second["guess"]) c.guess = number(kv.second["guess"], kParams, "guess of " + what);
+    }
+    spec.controls.push_back(c);
+  }
+
+  if (!node["horizon"]) fail(node, "expected 'horizon' in optimal_control (T, or {lower, upper})");
+  const YAML::Node& h = node["horizon"];
+  if (h.IsMap()) {
+    spec.free_horizon = read_bounds(h, "the horizon", {"guess"});
+    const Bounds& b = *spec.free_horizon;
+    if (!(b.lower > 0) || !std::isfinite(b.upper))
+      fail(h, fmt::format("expected a free horizon with 0 < lower <= upper < inf, got [{:g}, {:g}]",
+                          b.lower, b.upper));
+    spec.horizon = h["guess"] ? number(h["guess"], kParams, "guess of the horizon")
+                              : 0.5 * (b.lower + b.upper);
+    if (spec.horizon < b.lower || spec.horizon > b.upper)
+      fail(h["guess"], fmt::format("expected the horizon's guess within [{:g}, {:g}], got {:g}",
+                                   b.lower, b.upper, spec.horizon));
+  } else {
+    spec.horizon = number(h, kParams, "the horizon");
+    if (!(spec.horizon > 0)) fail(h, fmt::format("expected a horizon > 0, got {:g}", spec.horizon));
+  }
+
+  if (node["minimize"] && node["maximize"])
+    fail(node["maximize"], "expected one of 'minimize' and 'maximize', got both");
+  if (!node["minimize"] && !node["maximize"])
+    fail(node, "expected 'minimize' or 'maximize' in optimal_control, got neither");
+  spec.maximize = static_cast<bool>(node["maximize"]);
+  read_objective(node[spec.maximize ? "maximize" : "minimize"], spec);
+
+  if (const YAML::Node b = node["bounds"]; b && !b.IsNull()) {
+    expect_map(b, "bounds (a map NAME: {lower: …, upper: …})");
+    for (const auto& kv : b) {
+      const StateRef s = state_ref(kv.first, "a bound");
+      spec.bounds.push_back({s, read_bounds(kv.second, "bound of '" + kv.first.Scalar() + "'")});
+    }
+  }
+
+  if (const YAML::Node p = node["path"]; p && !p.IsNull()) {
+    expect_map(p, "path (a map NAME: {expression: …, lower: …, upper: …})");
+    for (const auto& kv : p) {
+      const std::string name = scalar(kv.first, "a path constraint");
+      const std::string what = fmt::format("path constraint '{}'", name);
+      expect_map(kv.second, what);
+      if (!kv.second["expression"])
+        fail(kv.first, fmt::format("expected 'expression' in {}, got none", what));
+      PathConstraintSpec c{name, scalar_expr(kv.second["expression"], kAll, what),
+                           read_bounds(kv.second, what, {"expression"}), src_.at(kv.first)};
+      if (!std::isfinite(c.bounds.lower) && !std::isfinite(c.bounds.upper))
+        fail(kv.first, fmt::format("expected a lower or an upper bound in {}, got neither", what));
+      spec.path.push_back(c);
+    }
+  }
+
+  auto boundary = [&](const char* key) {
+    std::vector<BoundaryValue> out;
+    const YAML::Node b = node[key];
+    if (b.IsNull()) return out;
+    expect_map(b, fmt::format("{} (a map NAME: value or {{lower, upper}}, NAME a coordinate or "
+                              "NAME_dot)",
+                              key));
+    for (const auto& kv : b) {
+      const std::string what = fmt::format("the {} value of '{}'", key, kv.first.Scalar());
+      BoundaryValue v{
+          state_ref(kv.first, std::string(key) == "initial" ? "an initial value" : "a final value"),
+          {}};
+      if (kv.second.IsMap()) {
+        v.bounds = read_bounds(kv.second, what);
+      } else {
+        v.bounds.lower = v.bounds.upper = number(kv.second, kParams, what);
+      }
+      out.push_back(v);
+    }
+    return out;
+  };
+  if (node["initial"]) spec.initial = boundary("initial");
+  if (node["final"]) spec.final = boundary("final");
+
+  if (node["guess"]) {
+    spec.guess = scalar(node["guess"], "guess");
+    if (spec.guess != "linear" && spec.guess != "simulation")
+      fail(node["guess"],
+           fmt::format("expected guess linear or simulation, got '{}'", clip(spec.guess)));
+  }
+  auto count = [&](const char* key, int& out, int lo, int hi) {
+    if (!node[key]) return;
+    const double n = number(node[key], kParams, key);
+    if (n != std::floor(n) || n < lo || n > hi)
+      fail(node[key],
+           fmt::format("expected {} an integer from {} to {}, got {:g}", key, lo, hi, n));
+    out = static_cast<int>(n);
+  };
+  count("intervals", spec.intervals, 1, 100000);
+  count("degree", spec.degree, 1, 5);
+  m_.optimal_control = std::move(spec);
+}
+
+}  // namespace lagrange::model

@@ -1,0 +1,169 @@
+#include "optimize/ipopt_adapter.hpp"
+
+#include <IpIpoptApplication.hpp>
+#include <IpSolveStatistics.hpp>
+#include <IpTNLP.hpp>
+#include <chrono>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace lagrange::collocation {
+
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+/// Ipopt's outcome in words.
+std::string words(Ipopt::SolverReturn s) {
+  switch (s) {
+    case Ipopt::SUCCESS:
+      return "optimal solution found";
+    case Ipopt::MAXITER_EXCEEDED:
+      return "maximum number of iterations exceeded";
+    case Ipopt::CPUTIME_EXCEEDED:
+      return "maximum CPU time exceeded";
+    case Ipopt::STOP_AT_TINY_STEP:
+      return "stopped at a tiny step (no progress)";
+    case Ipopt::STOP_AT_ACCEPTABLE_POINT:
+      return "solved to acceptable level only";
+    case Ipopt::LOCAL_INFEASIBILITY:
+      return "converged to a point of local infeasibility";
+    case Ipopt::USER_REQUESTED_STOP:
+      return "stopped on request";
+    case Ipopt::FEASIBLE_POINT_FOUND:
+      return "feasible point found";
+    case Ipopt::DIVERGING_ITERATES:
+      return "iterates diverging (problem unbounded?)";
+    case Ipopt::RESTORATION_FAILURE:
+      return "restoration phase failed (problem infeasible?)";
+    case Ipopt::ERROR_IN_STEP_COMPUTATION:
+      return "error in step computation";
+    case Ipopt::INVALID_NUMBER_DETECTED:
+      return "invalid number (NaN or Inf) in a function";
+    case Ipopt::TOO_FEW_DEGREES_OF_FREEDOM:
+      return "too few degrees of freedom";
+    case Ipopt::INVALID_OPTION:
+      return "invalid option";
+    case Ipopt::OUT_OF_MEMORY:
+      return "out of memory";
+    default:
+      return "internal error of Ipopt";
+  }
+}
+
+class Adapter : public Ipopt::TNLP {
+ public:
+  Adapter(Transcription& nlp, IpoptOutcome& out) : nlp_(nlp), out_(out) {}
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
+                    IndexStyleEnum& style) override {
+    n = static_cast<Index>(nlp_.variables());
+    m = static_cast<Index>(nlp_.constraints());
+    nnz_jac = static_cast<Index>(nlp_.jacobian_pattern().size());
+    nnz_h = 0;  // limited-memory quasi-Newton
+    style = C_STYLE;
+    return true;
+  }
+  bool get_bounds_info(Index, Number* xl, Number* xu, Index, Number* gl, Number* gu) override {
+    nlp_.bounds(xl, xu, gl, gu);
+    return true;
+  }
+  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number*, Number*, Index,
+                          bool init_lambda, Number*) override {
+    if (init_z || init_lambda) return false;
+    if (init_x) {
+      const std::vector<double>& g = nlp_.guess();
+      std::copy(g.begin(), g.end(), x);
+    }
+    return n == static_cast<Index>(nlp_.variables());
+  }
+  bool eval_f(Index, const Number* x, bool, Number& f) override {
+    return timed([&] { f = nlp_.objective(x); });
+  }
+  bool eval_grad_f(Index, const Number* x, bool, Number* g) override {
+    return timed([&] { nlp_.gradient(x, g); });
+  }
+  bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
+    return timed([&] { nlp_.constraint_values(x, g); });
+  }
+  bool eval_jac_g(Index, const Number* x, bool, Index, Index, Index* rows, Index* cols,
+                  Number* values) override {
+    if (values == nullptr) {
+      const auto& nz = nlp_.jacobian_pattern();
+      for (size_t e = 0; e < nz.size(); ++e) {
+        rows[e] = static_cast<Index>(nz[e].first);
+        cols[e] = static_cast<Index>(nz[e].second);
+      }
+      return true;
+    }
+    return timed([&] { nlp_.jacobian(x, values); });
+  }
+  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*,
+                         const Number*, Index, const Number*, const Number*, Number,
+                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    out_.optimal = status == Ipopt::SUCCESS;
+    out_.status = words(status);
+    out_.x.assign(x, x + n);
+  }
+
+ private:
+  /// Runs f, adding its time; a failure of the model's evaluation (a singular matrix) makes
+  /// Ipopt shorten the step instead of aborting.
+  template <class F>
+  bool timed(F&& f) {
+    const auto start = std::chrono::steady_clock::now();
+    bool ok = true;
+    try {
+      f();
+    } catch (const std::runtime_error&) {
+      ok = false;
+    }
+    out_.function_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return ok;
+  }
+  Transcription& nlp_;
+  IpoptOutcome& out_;
+};
+
+/// Sets one option by the form of its value: an integer, a number, else a word.
+bool set_option(Ipopt::OptionsList& list, const std::string& key, const std::string& value) {
+  char* end = nullptr;
+  const long i = std::strtol(value.c_str(), &end, 10);
+  if (!value.empty() && *end == '\0') return list.SetIntegerValue(key, static_cast<Index>(i));
+  const double d = std::strtod(value.c_str(), &end);
+  if (!value.empty() && *end == '\0') return list.SetNumericValue(key, d);
+  return list.SetStringValue(key, value);
+}
+
+}  // namespace
+
+IpoptOutcome solve_with_ipopt(Transcription& nlp,
+                              const std::vector<std::pair<std::string, std::string>>& options,
+                              bool verbose) {
+  IpoptOutcome out;
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+  Ipopt::OptionsList& list = *app->Options();
+  list.SetStringValue("sb", "yes");
+  list.SetIntegerValue("print_level", verbose ? 5 : 0);
+  list.SetStringValue("hessian_approximation", "limited-memory");
+  list.SetStringValue("linear_solver", "mumps");
+  list.SetNumericValue("tol", 1e-8);
+  list.SetIntegerValue("max_iter", 1000);
+  for (const auto& [key, value] : options)
+    if (!set_option(list, key, value))
+      throw std::invalid_argument("Ipopt rejected the option " + key + "=" + value);
+  if (app->Initialize() != Ipopt::Solve_Succeeded)
+    throw std::runtime_error("Ipopt could not be initialised");
+  Ipopt::SmartPtr<Ipopt::TNLP> tnlp = new Adapter(nlp, out);
+  app->OptimizeTNLP(tnlp);
+  if (Ipopt::IsValid(app->Statistics())) out.iterations = app->Statistics()->IterationCount();
+  if (out.x.empty()) {
+    out.x = nlp.guess();
+    if (out.status.empty()) out.status = "Ipopt stopped before its first iterate";
+  }
+  return out;
+}
+
+}  // namespace lagrange::collocation

@@ -1,0 +1,28 @@
+#pragma once
+// Ipopt's TNLP over a Transcription: a thin class that copies arrays, and the solve around it.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "optimize/transcription.hpp"
+
+namespace lagrange::collocation {
+
+/// What Ipopt returned.
+struct IpoptOutcome {
+  bool optimal = false;
+  std::string status;     ///< in words
+  std::vector<double> x;  ///< the last iterate (the solution when optimal)
+  int iterations = 0;
+  double function_seconds = 0.0;  ///< spent in the transcription's functions
+};
+
+/// Solve the NLP with Ipopt (MUMPS, limited-memory Hessian) from the transcription's guess,
+/// `options` applied after the defaults (a value is an integer, a number or a word by its form).
+/// std::invalid_argument for an option Ipopt rejects.
+IpoptOutcome solve_with_ipopt(Transcription& nlp,
+                              const std::vector<std::pair<std::string, std::string>>& options,
+                              bool verbose);
+
+}  // namespace lagrange::collocation

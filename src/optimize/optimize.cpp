@@ -1,0 +1,154 @@
+// optimize() and verify() (lagrange/optimize.hpp): transcription, Ipopt, and the result read
+// back as a trajectory.
+
+#include "lagrange/optimize.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "optimize/ipopt_adapter.hpp"
+#include "optimize/transcription.hpp"
+
+namespace lagrange {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Rows t, q, v, controls, λ at t = 0 (λ from the forward dynamics) and every collocation point.
+Trajectory collocated(collocation::Transcription& nlp, Dynamics& dyn, const double* x,
+                      const std::vector<std::string>& controls) {
+  const CompiledModel& cm = dyn.model();
+  Trajectory traj;
+  traj.columns.push_back("t");
+  for (const auto& n : cm.coordinate_names) traj.columns.push_back(n);
+  for (const auto& n : cm.velocity_names) traj.columns.push_back(n);
+  for (const auto& n : controls) traj.columns.push_back(n);
+  for (const auto& n : cm.constraint_names) traj.columns.push_back("lambda_" + n);
+  const size_t nx = cm.nq + cm.nv, nu = controls.size();
+  auto row = [&](double t, const double* X, const double* u, const double* lambda) {
+    traj.data.push_back(t);
+    traj.data.insert(traj.data.end(), X, X + nx);
+    traj.data.insert(traj.data.end(), u, u + nu);
+    traj.data.insert(traj.data.end(), lambda, lambda + cm.m);
+  };
+  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
+  for (size_t c = 0; c < nu; ++c) dyn.hold_input(nlp.control_inputs()[c], nlp.control(x, 0)[c]);
+  const double* X0 = nlp.state(x, 0, 0);
+  try {
+    dyn.forward(0.0, X0, X0 + cm.nq, qdot.data(), a.data(), lambda.data());
+  } catch (const SimulationError&) {
+    std::fill(lambda.begin(), lambda.end(), std::nan(""));
+  }
+  row(0.0, X0, nlp.control(x, 0), lambda.data());
+  for (int k = 0; k < nlp.intervals(); ++k)
+    for (int j = 1; j <= nlp.scheme().degree; ++j)
+      row(nlp.time(x, k, j), nlp.state(x, k, j), nlp.control(x, k), nlp.multipliers(x, k, j));
+  return traj;
+}
+
+}  // namespace
+
+OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
+                        const OptimalControlSpec& spec, const std::vector<double>& q0,
+                        const std::vector<double>& v0, const OptimizeOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  // The transcription takes constrained models (its derivatives are tested), but collocating the
+  // index-1 DAE holds C only at the acceleration level: the optimum can drift off the
+  // constraints near a free end (docs/theory.md §10, "Constrained models"). Refused until the
+  // position-level invariants are imposed.
+  if (cm->m > 0)
+    throw std::invalid_argument(
+        "optimize does not take models with constraints yet (the collocated index-1 DAE can "
+        "drift off them; docs/theory.md §10): write the model in independent coordinates");
+  OptimizeResult r;
+  r.intervals = options.intervals > 0 ? options.intervals : spec.intervals;
+  r.degree = options.degree > 0 ? options.degree : spec.degree;
+  for (const ControlSpec& c : spec.controls)
+    r.control_names.push_back(eq.model->inputs[c.input].name);
+  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0);
+  r.setup_seconds = seconds_since(start);
+
+  const auto solve_start = std::chrono::steady_clock::now();
+  collocation::IpoptOutcome out =
+      collocation::solve_with_ipopt(nlp, options.ipopt, options.verbose);
+  r.solve_seconds = seconds_since(solve_start);
+  r.function_seconds = out.function_seconds;
+  r.optimal = out.optimal;
+  r.status = out.status;
+  r.iterations = out.iterations;
+  const double* x = out.x.data();
+  r.horizon = nlp.horizon(x);
+  r.objective = nlp.objective(x) * (nlp.maximize() ? -1.0 : 1.0);
+
+  // The worst violation of a constraint's bounds at the result.
+  std::vector<double> g(nlp.constraints()), xl(nlp.variables()), xu(nlp.variables()),
+      gl(nlp.constraints()), gu(nlp.constraints());
+  nlp.bounds(xl.data(), xu.data(), gl.data(), gu.data());
+  nlp.constraint_values(x, g.data());
+  for (size_t i = 0; i < g.size(); ++i) {
+    const double v = std::isnan(g[i]) ? INFINITY : std::max({gl[i] - g[i], g[i] - gu[i], 0.0});
+    if (v > r.violation || (i == 0 && v > 0)) {
+      r.violation = v;
+      r.worst_constraint = nlp.describe(i, x);
+    }
+  }
+  for (int k = 0; k < r.intervals; ++k)
+    r.controls.insert(r.controls.end(), nlp.control(x, k),
+                      nlp.control(x, k) + spec.controls.size());
+  r.trajectory = collocated(nlp, dyn, x, r.control_names);
+  if (!r.optimal) {
+    r.trajectory.status = Trajectory::Status::Failed;
+    r.trajectory.message = "not optimal: " + r.status;
+  }
+  dyn.release_inputs();
+  return r;
+}
+
+VerifyResult verify(Dynamics& dyn, const OptimalControlSpec& spec, const OptimizeResult& result,
+                    SimulationOptions options) {
+  const CompiledModel& cm = dyn.model();
+  const Trajectory& traj = result.trajectory;
+  const size_t cols = traj.columns.size(), nu = spec.controls.size();
+  const int N = result.intervals;
+  const double T = result.horizon;
+  std::vector<size_t> inputs;
+  for (const ControlSpec& c : spec.controls) inputs.push_back(c.input);
+  dyn.set_input_law(inputs, [&](double t, const double*, const double*, double* u) {
+    const int k = std::clamp(static_cast<int>(std::floor(t / T * N)), 0, N - 1);
+    for (size_t c = 0; c < nu; ++c) u[c] = result.controls[static_cast<size_t>(k) * nu + c];
+  });
+  std::vector<double> q0(traj.data.begin() + 1, traj.data.begin() + 1 + static_cast<long>(cm.nq));
+  std::vector<double> v0(traj.data.begin() + 1 + static_cast<long>(cm.nq),
+                         traj.data.begin() + 1 + static_cast<long>(cm.nq + cm.nv));
+  options.t0 = 0.0;
+  options.t_end = T;
+  options.output_step = T / (N * 8.0);
+  const Trajectory sim = simulate(dyn, options, q0, v0);
+  dyn.release_inputs();
+  VerifyResult v;
+  if (sim.status != Trajectory::Status::Complete) v.message = sim.message;
+  const size_t sc = sim.columns.size(), rows = sim.rows();
+  auto sim_at = [&](double t, size_t i) {
+    size_t r = 0;
+    while (r + 1 < rows && sim.data[(r + 1) * sc] < t) ++r;
+    if (r + 1 >= rows) return sim.data[r * sc + 1 + i];
+    const double t0 = sim.data[r * sc], t1 = sim.data[(r + 1) * sc];
+    const double s = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
+    return (1 - s) * sim.data[r * sc + 1 + i] + s * sim.data[(r + 1) * sc + 1 + i];
+  };
+  // At the mesh points (samples of the simulation: the output step divides T/N).
+  for (size_t r = 0; r < traj.rows() && rows > 0; r += static_cast<size_t>(result.degree))
+    for (size_t i = 0; i < cm.nq + cm.nv; ++i) {
+      const double gap = std::fabs(sim_at(traj.data[r * cols], i) - traj.data[r * cols + 1 + i]);
+      v.largest_gap = std::max(v.largest_gap, gap);
+      if (r + 1 == traj.rows()) v.final_gap = std::max(v.final_gap, gap);
+    }
+  return v;
+}
+
+}  // namespace lagrange

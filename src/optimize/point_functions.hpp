@@ -1,0 +1,35 @@
+#pragma once
+// The problem's scalar functions of one collocation point (objective integrand and terminal
+// term, path constraints) with their exact first derivatives, compiled onto one tape.
+
+#include <utility>
+#include <vector>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/tape.hpp"
+
+namespace lagrange::collocation {
+
+/// f_i(t, q, v, u) for i < count, and their non-zero derivatives along the columns
+/// (t, q₁…q_nq, v₁…v_nv, the controls), differentiated symbolically (docs/theory.md §10).
+class PointFunctions {
+ public:
+  /// `controls`: indices of the model inputs that are controls (the last columns).
+  PointFunctions(const Equations& eq, const CompiledModel& cm, const std::vector<GiNaC::ex>& fs,
+                 const std::vector<size_t>& controls);
+  size_t count() const { return count_; }
+  /// (function, column) of each derivative, in output order.
+  const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
+  /// Values (count()) then derivatives (pattern()) at the tape input vector `in` (the model's
+  /// layout t, q, v, u, u̇, ü, p) into `out`.
+  void eval(const std::vector<double>& in, std::vector<double>& out) const;
+
+ private:
+  size_t count_ = 0;
+  std::vector<std::pair<size_t, size_t>> pattern_;
+  Tape tape_;
+  mutable std::vector<double> work_;
+};
+
+}  // namespace lagrange::collocation

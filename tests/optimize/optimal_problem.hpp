@@ -1,0 +1,45 @@
+#pragma once
+// Test helper: an example's model, equations, tapes and workspace, ready for optimize().
+
+#include <memory>
+#include <string>
+
+#include "lagrange/compiled_model.hpp"
+#include "lagrange/dynamics.hpp"
+#include "lagrange/equations.hpp"
+#include "lagrange/optimize.hpp"
+#include "lagrange/reader.hpp"
+#include "lagrange/simulation.hpp"
+
+namespace lagrange::testing {
+
+/// examples/optimal/NAME, or tests/optimize/data/NAME for "data/NAME".
+inline std::string path(const std::string& name) {
+  const std::string root = LAGRANGE_SOURCE_DIR;
+  if (name.rfind("data/", 0) == 0) return root + "/tests/optimize/" + name;
+  return root + "/examples/optimal/" + name;
+}
+
+struct OptimalProblem {
+  std::unique_ptr<Model> model;
+  Equations eq;
+  std::shared_ptr<const CompiledModel> cm;
+  std::unique_ptr<Dynamics> dyn;
+
+  explicit OptimalProblem(const std::string& example, const ParameterOverrides& sets = {})
+      : model(std::make_unique<Model>(read_model_file(path(example), sets))),
+        eq(derive(*model)),
+        cm(compile(eq)),
+        dyn(std::make_unique<Dynamics>(cm, cm->parameter_defaults)) {
+    dyn->set_baumgarte(baumgarte_rate(model->stabilization, model->simulate.integrator));
+  }
+  const OptimalControlSpec& spec() const { return *model->optimal_control; }
+  OptimizeResult solve(int intervals = 0, int degree = 0) {
+    OptimizeOptions o;
+    o.intervals = intervals;
+    o.degree = degree;
+    return optimize(eq, cm, *dyn, spec(), cm->q0, cm->v0, o);
+  }
+};
+
+}  // namespace lagrange::testing

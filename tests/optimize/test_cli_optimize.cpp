@@ -1,0 +1,67 @@
+// `lagrange optimize`: the summary, the CSV, --verify, and exit code 3 naming the most violated
+// constraint of an infeasible problem.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli/shell_run.hpp"
+
+namespace lagrange {
+namespace {
+
+const std::string kDir = std::string(LAGRANGE_SOURCE_DIR) + "/examples/optimal/";
+
+TEST(OptimizeCommand, SolvesWritesAndVerifies) {
+  const std::string csv =
+      (std::filesystem::temp_directory_path() / "lagrange_optimize_di.csv").string();
+  const auto r = testing::run_shell("optimize " + kDir +
+                                    "double_integrator_min_energy.yaml --intervals 10 -o " + csv +
+                                    " --verify");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("optimal solution found"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("objective          12.12121212"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("final-state gap"), std::string::npos) << r.output;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,x,x_dot,u");
+  size_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 1u + 10u * 3u);  // t = 0 and every collocation point
+  std::filesystem::remove(csv);
+  std::filesystem::remove(csv + ".json");
+}
+
+// |u| ≤ 1 cannot carry the mass over distance 1 in T = 1 (that takes 2 s): exit 3, naming a
+// constraint and where.
+TEST(OptimizeCommand, InfeasibleProblemExitsThreeNamingTheMostViolatedConstraint) {
+  const std::string yaml = (std::filesystem::temp_directory_path() / "infeasible.yaml").string();
+  {
+    std::ifstream src(kDir + "double_integrator_min_time.yaml");
+    std::ofstream dst(yaml);
+    for (std::string line; std::getline(src, line);) {
+      if (line.rfind("  horizon:", 0) == 0) line = "  horizon: 1";
+      if (line.rfind("  minimize:", 0) == 0) line = "  minimize: integral(u^2)";
+      dst << line << "\n";
+    }
+  }
+  const auto bad = testing::run_shell("optimize " + yaml + " --intervals 6");
+  EXPECT_EQ(bad.code, 3) << bad.output;
+  EXPECT_NE(bad.output.find("most violated:"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("at t = "), std::string::npos) << bad.output;
+  std::filesystem::remove(yaml);
+}
+
+TEST(OptimizeCommand, ModelWithoutAProblemIsAUsageError) {
+  const auto r = testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) +
+                                    "/examples/pendulum.yaml");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("has no optimal_control section"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace lagrange

@@ -1,0 +1,89 @@
+// The optimal_control section's mistakes, each a located error before anything runs.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "lagrange/reader.hpp"
+
+namespace lagrange {
+namespace {
+
+const std::string kModel = R"(name: di
+coordinates:
+  x: {initial: 0}
+inputs:
+  u: 0
+kinetic: der(x)^2/2
+generalized_forces: {x: u}
+optimal_control:
+)";
+
+/// The error message of reading kModel followed by `section` (the optimal_control body).
+std::string error_of(const std::string& section) {
+  try {
+    read_model_string(kModel + section, "di.yaml");
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(OptimalControlErrors, AreLocatedAndSayWhatWasExpected) {
+  const std::string ok = "  horizon: 1\n  minimize: integral(u^2)\n";
+  // An unknown control: line 10, column 3.
+  EXPECT_NE(error_of("  controls: {v: {}}\n" + ok)
+                .find("di.yaml:9:14: error: expected an input of the model as a control, got 'v'"),
+            std::string::npos)
+      << error_of("  controls: {v: {}}\n" + ok);
+  // A lower bound above the upper one.
+  const std::string bad_bounds = error_of("  controls: {u: {lower: 2, upper: 1}}\n" + ok);
+  EXPECT_NE(bad_bounds.find("di.yaml:9:"), std::string::npos) << bad_bounds;
+  EXPECT_NE(bad_bounds.find("lower bound of control 'u' at most its upper bound 1, got 2"),
+            std::string::npos)
+      << bad_bounds;
+  // A horizon ≤ 0.
+  const std::string horizon =
+      error_of("  controls: {u: {}}\n  horizon: -1\n  minimize: integral(u^2)\n");
+  EXPECT_NE(horizon.find("di.yaml:10:12: error: expected a horizon > 0, got -1"), std::string::npos)
+      << horizon;
+  // A boundary value for a coordinate that does not exist.
+  const std::string final = error_of("  controls: {u: {}}\n" + ok + "  final: {z: 1}\n");
+  EXPECT_NE(final.find("di.yaml:12:11: error: expected a coordinate or its rate NAME_dot for a "
+                       "final value, got 'z'"),
+            std::string::npos)
+      << final;
+  // An unknown name inside integral(…), located at its column.
+  const std::string unknown =
+      error_of("  controls: {u: {}}\n  horizon: 1\n  minimize: integral(w^2)\n");
+  EXPECT_NE(unknown.find("di.yaml:11:22:"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("'w'"), std::string::npos) << unknown;
+  // An integral used nonlinearly.
+  const std::string nonlinear =
+      error_of("  controls: {u: {}}\n  horizon: 1\n  minimize: integral(u^2)^2\n");
+  EXPECT_NE(nonlinear.find("constant factors"), std::string::npos) << nonlinear;
+  // Both minimize and maximize; a free horizon with lower ≤ 0.
+  EXPECT_NE(error_of("  controls: {u: {}}\n" + ok + "  maximize: t\n").find("got both"),
+            std::string::npos);
+  EXPECT_NE(error_of("  controls: {u: {}}\n  horizon: {lower: 0, upper: 2}\n  minimize: t\n")
+                .find("0 < lower <= upper < inf"),
+            std::string::npos);
+  // A misspelt key lists the valid ones.
+  EXPECT_NE(error_of("  controls: {u: {}}\n" + ok + "  intervalls: 3\n").find("intervals"),
+            std::string::npos);
+}
+
+TEST(OptimalControlErrors, ObjectiveSplitsIntoIntegrandAndTerminalTerms) {
+  const Model m = read_model_string(
+      kModel +
+          "  controls: {u: {}}\n  horizon: 1\n  minimize: 3*integral(u^2) - integral(x) + x^2\n",
+      "di.yaml");
+  ASSERT_TRUE(m.optimal_control.has_value());
+  const GiNaC::symbol& x = m.coordinates[0].q;
+  const GiNaC::symbol& u = m.inputs[0].u;
+  EXPECT_TRUE((m.optimal_control->integrand - (3 * u * u - x)).expand().is_zero());
+  EXPECT_TRUE((m.optimal_control->terminal - x * x).expand().is_zero());
+}
+
+}  // namespace
+}  // namespace lagrange

@@ -1,0 +1,95 @@
+// The transcription's pieces: Radau IIA coefficients, and the NLP's exact derivatives against
+// central differences on every example problem (docs/theory.md §10).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "optimize/optimal_problem.hpp"
+#include "optimize/radau.hpp"
+#include "optimize/transcription.hpp"
+
+namespace lagrange {
+namespace {
+
+// x'(τ_j) exact for polynomials of degree ≤ d, quadrature exact to degree 2d − 2 (order 2d − 1).
+TEST(Radau, DifferentiatesAndIntegratesPolynomialsExactly) {
+  for (int d = 1; d <= 5; ++d) {
+    const collocation::Radau r = collocation::radau(d);
+    EXPECT_DOUBLE_EQ(r.tau.back(), 1.0);
+    for (int p = 0; p <= 2 * d - 2; ++p) {
+      double s = 0.0;
+      for (int j = 1; j <= d; ++j)
+        s += r.b[static_cast<size_t>(j - 1)] * std::pow(r.tau[static_cast<size_t>(j)], p);
+      EXPECT_NEAR(s, 1.0 / (p + 1), 1e-13) << "d = " << d << ", τ^" << p;
+    }
+    for (int p = 0; p <= d; ++p)
+      for (int j = 1; j <= d; ++j) {
+        double s = 0.0;
+        for (int l = 0; l <= d; ++l)
+          s += r.derivative(j, l) * std::pow(r.tau[static_cast<size_t>(l)], p);
+        const double exact = p == 0 ? 0.0 : p * std::pow(r.tau[static_cast<size_t>(j)], p - 1);
+        EXPECT_NEAR(s, exact, 1e-11) << "d = " << d << ", τ^" << p << " at point " << j;
+      }
+  }
+  // Radau IIA of degree 2: points 1/3 and 1, weights 3/4 and 1/4 (Hairer & Wanner IV.5).
+  const collocation::Radau r2 = collocation::radau(2);
+  EXPECT_NEAR(r2.tau[1], 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(r2.b[0], 0.75, 1e-15);
+  EXPECT_NEAR(r2.b[1], 0.25, 1e-15);
+}
+
+class NlpDerivatives : public ::testing::TestWithParam<std::string> {};
+
+// Constraint Jacobian and objective gradient against central differences at a random point near
+// the starting one (every entry, not only the pattern's: an entry missing from the pattern shows).
+TEST_P(NlpDerivatives, MatchCentralDifferences) {
+  testing::OptimalProblem p(GetParam());
+  collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
+  std::vector<double> x = nlp.guess();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> perturb(-0.3, 0.3);
+  for (double& xi : x) xi += perturb(rng);
+  if (p.spec().free_horizon) x[0] = 1.3;
+  const size_t n = nlp.variables(), m = nlp.constraints();
+  std::vector<double> J(nlp.jacobian_pattern().size()), grad(n);
+  nlp.jacobian(x.data(), J.data());
+  nlp.gradient(x.data(), grad.data());
+  std::vector<std::vector<double>> dense(m, std::vector<double>(n, 0.0));
+  for (size_t e = 0; e < J.size(); ++e)
+    dense[nlp.jacobian_pattern()[e].first][nlp.jacobian_pattern()[e].second] = J[e];
+  std::vector<double> gp(m), gm(m);
+  for (size_t c = 0; c < n; ++c) {
+    const double step = 1e-6 * std::max(1.0, std::fabs(x[c])), keep = x[c];
+    x[c] = keep + step;
+    nlp.constraint_values(x.data(), gp.data());
+    const double fp = nlp.objective(x.data());
+    x[c] = keep - step;
+    nlp.constraint_values(x.data(), gm.data());
+    const double fm = nlp.objective(x.data());
+    x[c] = keep;
+    for (size_t r = 0; r < m; ++r) {
+      const double fd = (gp[r] - gm[r]) / (2 * step);
+      ASSERT_NEAR(dense[r][c], fd, 1e-5 * std::max(1.0, std::fabs(fd)))
+          << nlp.describe(r, x.data()) << ", variable " << c;
+    }
+    const double fd = (fp - fm) / (2 * step);
+    ASSERT_NEAR(grad[c], fd, 1e-5 * std::max(1.0, std::fabs(fd))) << "gradient, variable " << c;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, NlpDerivatives,
+                         ::testing::Values("double_integrator_min_energy.yaml",
+                                           "double_integrator_min_time.yaml",
+                                           "cart_pole_swing_up.yaml",
+                                           "pendulum_swing_up_polar.yaml", "data/everything.yaml"),
+                         [](const auto& info) {
+                           std::string s = info.param.substr(0, info.param.size() - 5);
+                           for (char& c : s)
+                             if (c == '.' || c == '/') c = '_';
+                           return s;
+                         });
+
+}  // namespace
+}  // namespace lagrange
