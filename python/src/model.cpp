@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "analysis.hpp"
-#include "cli/commands.hpp"
 #include "arrays.hpp"
+#include "cli/commands.hpp"
 #include "errors.hpp"
 #include "lagrange/io.hpp"
 #include "run.hpp"

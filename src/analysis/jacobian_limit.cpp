@@ -42,8 +42,8 @@ std::vector<Eigen::MatrixXd*> derivative_blocks(StateJacobian& J) {
           &J.C_q,    &J.Cdot_q, &J.y_q, &J.y_v, &J.y_w};
 }
 
-void fill_limits(const std::vector<Eigen::MatrixXd*>& out, const DerivativesAt& at,
-                 const double* y, size_t n, double t) {
+void fill_limits(const std::vector<Eigen::MatrixXd*>& out, const DerivativesAt& at, const double* y,
+                 size_t n, double t) {
   if (finite(out)) return;
   // J(s) = J₀ + J₁ s + O(s²) along a ray from the point (for |v| v exactly, J₁ s = 2|s d|):
   // 2 J(s) − J(2s) = J₀ + O(s²).

@@ -15,8 +15,8 @@ using DerivativesAt = std::function<std::vector<Eigen::MatrixXd>(const double* y
 /// `out`, evaluated at y, with each non-finite entry replaced by its limit: Richardson-
 /// extrapolated from `at` along three directions (d, −d, d'). Throws NotDifferentiable (at time
 /// t) when the limits differ by direction or are not finite.
-void fill_limits(const std::vector<Eigen::MatrixXd*>& out, const DerivativesAt& at,
-                 const double* y, size_t n, double t);
+void fill_limits(const std::vector<Eigen::MatrixXd*>& out, const DerivativesAt& at, const double* y,
+                 size_t n, double t);
 
 /// The derivative blocks of J that fill_limits completes, in one fixed order.
 std::vector<Eigen::MatrixXd*> derivative_blocks(StateJacobian& J);

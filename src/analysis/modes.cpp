@@ -1,11 +1,11 @@
 // Eigenvalues, natural frequencies, damping ratios and mode shapes of a linear model, and its
 // zero-order-hold discretisation (docs/theory.md §5.4).
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <Eigen/QR>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "lagrange/analysis.hpp"

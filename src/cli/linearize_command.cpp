@@ -234,7 +234,8 @@ int run_linearize(const Options& opt) {
     trimmed = trim_prepared(p, *jac, options);
     at = {&trimmed, !opt.steady.empty(), opt.tol, {}};
     for (size_t w = 0, k = 0; w < options.free_inputs.size(); ++w)
-      if (options.free_inputs[w]) at.inputs.emplace_back(jac->input_names()[w], trimmed.inputs[k++]);
+      if (options.free_inputs[w])
+        at.inputs.emplace_back(jac->input_names()[w], trimmed.inputs[k++]);
   } else if (!opt.free.empty() || !opt.fix.empty() || !opt.steady.empty()) {
     throw UsageError("--free, --fix and --steady choose what trim varies: give --at-trim too");
   }

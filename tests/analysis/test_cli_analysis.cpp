@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "support/test_paths.hpp"
 #include "analysis/euler_top.hpp"
 #include "cli/shell_run.hpp"
+#include "support/test_paths.hpp"
 
 namespace {
 
@@ -102,8 +102,9 @@ gravity: [0, -g, 0]
 )");
   const double rate = std::sqrt(1.2 * 9.81 / 0.6);
   for (const bool upright : {false, true}) {
-    const Result r = run("linearize " + model.string() + (upright ? " --at theta=3.14159265358979" : "") +
-                         " --format json --discrete 0.01");
+    const Result r =
+        run("linearize " + model.string() + (upright ? " --at theta=3.14159265358979" : "") +
+            " --format json --discrete 0.01");
     ASSERT_EQ(r.code, 0) << r.output;
     const auto j = nlohmann::json::parse(r.output);
     EXPECT_EQ(j["modes_time"], "continuous");
@@ -167,7 +168,8 @@ forces: [{point: bob, force: -c*norm(vel(bob))*vel(bob)}]
 TEST(CliTrim, PendulumFromTwentyDegreesPrintsTheInitialBlock) {
   const Result r = run("trim " + example("pendulum.yaml") + " --at theta=0.349");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("equilibrium found by Levenberg–Marquardt"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("equilibrium found by Levenberg–Marquardt"), std::string::npos)
+      << r.output;
   const std::string key = "theta: {initial: ";
   const size_t at = r.output.find(key);
   ASSERT_NE(at, std::string::npos) << r.output;
@@ -237,7 +239,8 @@ TEST(CliTrim, SteadyPrecessionOfATopInEulerAngles) {
   const auto model = write_model("top_euler.yaml", kTop);
   Result r = run("trim " + model.string() + " --steady phi_dot,psi_dot");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("steady state found by Levenberg–Marquardt"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("steady state found by Levenberg–Marquardt"), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("steady along the motion: max |da/dt| = 0"), std::string::npos)
       << r.output;
   const double cos_theta = (0.01 * 20 * 4.55 - 9.81 * 0.1) / ((0.006 - 0.01) * 4.55 * 4.55);

@@ -152,9 +152,8 @@ particles:
 gravity: [0, -g, 0]
 )";
   const Eigen::Matrix2d undamped{{0.0, 1.0}, {-9.81 * std::cos(0.3), 0.0}};
-  for (const std::string drag :
-       {"forces:\n  - {point: bob, force: -c*norm(vel(bob))*vel(bob)}\n",
-        "generalized_forces: {theta: -c*der(theta)*abs(der(theta))}\n"}) {
+  for (const std::string drag : {"forces:\n  - {point: bob, force: -c*norm(vel(bob))*vel(bob)}\n",
+                                 "generalized_forces: {theta: -c*der(theta)*abs(der(theta))}\n"}) {
     auto s = analyse_string(pendulum + drag);
     const Eigen::MatrixXd A = s.linear().A;
     ASSERT_EQ(A.rows(), 2) << drag;

@@ -110,7 +110,7 @@ TEST(InitialState, ADamperAtZeroLengthIsNamed) {
   const RunResult r = run_lagrange(dir.path(), {"check", model.string()});
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.err.find(model.string() + ":6:5: error: the damper between 'anchor' and 'bob' has "
-                                         "length 0 at the initial state"),
+                                        "length 0 at the initial state"),
             std::string::npos)
       << r.err;
   write("0.5");
