@@ -19,9 +19,9 @@ bool finite(const std::vector<Eigen::MatrixXd*>& blocks) {
   return true;
 }
 
-// Step of the moved states, relative to |y| + 1: small enough that the O(s²) error of the
-// extrapolation is 1e-12 relative, large enough that J(s) − J(2s) is far above rounding.
-constexpr double kStep = 1e-6;
+// Step of the moved states, relative to |y| + 1: the O(s²) error of the extrapolation is then
+// at the rounding of J itself, and |v| ~ s is far from underflow in v·v.
+constexpr double kStep = 1e-8;
 // Limits along different directions agreeing to this fraction of the derivatives nearby.
 constexpr double kAgree = 1e-6;
 // A limit below this fraction of the derivatives nearby is the rounding of an exact 0.
