@@ -173,14 +173,14 @@ py::object jacobian_model(const PyModel& m, std::optional<py::object> q_in,
   const StateJacobian J = jac->evaluate(*f.dynamics, t, q.data(), v.data());
   // The implicit form's ∂Φ/∂x with a removable 0/0 (drag at rest) as its limit, as evaluate's.
   const ImplicitJacobian I = jac->implicit(*f.dynamics, t, q.data(), v.data());
-  Eigen::MatrixXd Phi_x = I.Phi_x;
+  Eigen::MatrixXd Phi_x(I.Phi_x);
   std::vector<double> y = q;
   y.insert(y.end(), v.begin(), v.end());
   analysis_detail::fill_limits(
       {&Phi_x},
       [&](const double* moved) {
         return std::vector<Eigen::MatrixXd>{
-            jac->implicit(*f.dynamics, t, moved, moved + q.size()).Phi_x};
+            Eigen::MatrixXd(jac->implicit(*f.dynamics, t, moved, moved + q.size()).Phi_x)};
       },
       y.data(), y.size(), t);
   return namespace_of(

@@ -70,7 +70,7 @@ void print_element_equations(const Model& model, Style style, EquationWriter& ou
     out.heading(s.title);
     for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
     for (const auto& [lhs, rhs] : s.equations)
-      out.line(tex ? model::latex_name(lhs) : lhs, str(rhs, style));
+      out.line(tex ? lagrange::model::latex_name(lhs) : lhs, str(rhs, style));
   }
 }
 
