@@ -170,8 +170,8 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
   try {
     J = jac.evaluate(dyn, t, q.data(), v.data());
   } catch (const NotDifferentiable& e) {
-    throw NotDifferentiable(fmt::format("trim: at iteration {}, {}; stopped at {}", it, e.what(),
-                                        describe(cm, q, v)));
+    throw NotDifferentiable(
+        fmt::format("trim: at iteration {}, {}; stopped at {}", it, e.what(), describe(cm, q, v)));
   }
   const TangentChart chart = tangent_chart(cm, q.data(), v.data());
   const Eigen::SparseMatrix<double> T = chart.T.sparseView();
