@@ -59,6 +59,9 @@ TEST(EquationText, ElementEquationNamesAreLatex) {
   const std::string tex = format_equations(derive(model), "latex");
   EXPECT_NE(tex.find("T_{\\mathrm{drum}} &="), std::string::npos) << tex;
   EXPECT_EQ(tex.find("T_drum"), std::string::npos) << tex;
+  // The winch's generated coordinate drum.reeled_out is one upright name, its _ no subscript.
+  EXPECT_NE(tex.find("\\mathrm{drum.reeled\\_out}"), std::string::npos) << tex;
+  EXPECT_EQ(tex.find("\\mathrm{drum.reeled}_"), std::string::npos) << tex;
   EXPECT_NE(format_equations(derive(model), "text").find("T_drum = "), std::string::npos);
 }
 
