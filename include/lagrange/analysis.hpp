@@ -25,6 +25,12 @@ class AnalysisError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The dynamics have no derivative at the state (|x| at x = 0, max or min at a tie).
+class NotDifferentiable : public AnalysisError {
+ public:
+  using AnalysisError::AnalysisError;
+};
+
 /// Derivatives at one state (t, q, v): values and exact first derivatives of the accelerations,
 /// the kinematics, the constraints and the model's outputs, with respect to q, v and the named
 /// inputs w (columns of the *_w blocks in DynamicsJacobian::input_names() order).
@@ -79,7 +85,8 @@ class DynamicsJacobian {
   /// Values and derivatives at (t, q, v) with `dyn`'s parameter values and Baumgarte rate α.
   /// The accelerations come from dyn.forward (the one KKT path); their derivatives from the
   /// differentiated KKT system, one more factorisation of [M Gᵀ; G 0] (docs/theory.md §5.1).
-  /// Throws AnalysisError when that matrix is singular.
+  /// Throws AnalysisError when that matrix is singular. A derivative the tape gives as 0/0 is
+  /// its limit (|v|·v at v = 0); NotDifferentiable where that depends on the direction.
   StateJacobian evaluate(Dynamics& dyn, double t, const double* q, const double* v) const;
 
   /// The implicit form's sparse Jacobians at (t, q, v): one forward call, one evaluation of the
@@ -92,6 +99,9 @@ class DynamicsJacobian {
                             const double* a, const double* lambda) const;
 
  private:
+  /// evaluate() with the tape's non-finite derivatives left as they are.
+  StateJacobian evaluate_here(Dynamics& dyn, double t, const double* q, const double* v) const;
+
   std::shared_ptr<const CompiledModel> cm_;
   std::vector<std::string> input_names_, output_names_;
   std::vector<size_t> columns_;  ///< tape input index of each column: q, v, then the inputs

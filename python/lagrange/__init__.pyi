@@ -194,7 +194,7 @@ class Model:
         q: Optional[ArrayLike] = None,
         free: Sequence[str] = (),
         fix: Sequence[str] = (),
-        tol: float = 1e-10,
+        tol: float = 1e-9,
         max_iterations: int = 100,
         t: float = 0.0,
         steady: Sequence[str] = (),

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "analysis/jacobian_limit.hpp"
 #include "arrays.hpp"
 #include "cli/commands.hpp"
 #include "cli/trim_setup.hpp"
@@ -170,13 +171,24 @@ py::object jacobian_model(const PyModel& m, std::optional<py::object> q_in,
   std::vector<double> q, v;
   operating_point(p, *f.dynamics, t, q_in, v_in, q, v);
   const StateJacobian J = jac->evaluate(*f.dynamics, t, q.data(), v.data());
+  // The implicit form's ∂Φ/∂x with a removable 0/0 (drag at rest) as its limit, as evaluate's.
   const ImplicitJacobian I = jac->implicit(*f.dynamics, t, q.data(), v.data());
+  Eigen::MatrixXd Phi_x(I.Phi_x);
+  std::vector<double> y = q;
+  y.insert(y.end(), v.begin(), v.end());
+  analysis_detail::fill_limits(
+      {&Phi_x},
+      [&](const double* moved) {
+        return std::vector<Eigen::MatrixXd>{
+            Eigen::MatrixXd(jac->implicit(*f.dynamics, t, moved, moved + q.size()).Phi_x)};
+      },
+      y.data(), y.size(), t);
   return namespace_of(
       py::dict(py::arg("a") = J.a, py::arg("qdot") = J.qdot, py::arg("lam") = J.lambda,
                py::arg("a_q") = J.a_q, py::arg("a_v") = J.a_v, py::arg("a_w") = J.a_w,
                py::arg("qdot_q") = J.qdot_q, py::arg("qdot_v") = J.qdot_v, py::arg("G") = J.G,
                py::arg("C_q") = J.C_q, py::arg("inputs") = jac->input_names(),
-               py::arg("K") = Eigen::MatrixXd(I.K), py::arg("Phi_x") = Eigen::MatrixXd(I.Phi_x),
+               py::arg("K") = Eigen::MatrixXd(I.K), py::arg("Phi_x") = Phi_x,
                py::arg("nonzeros") = jac->nonzeros(), py::arg("q") = to_array(q),
                py::arg("v") = to_array(v)));
 }

@@ -11,6 +11,7 @@
 
 #include "analysis.hpp"
 #include "arrays.hpp"
+#include "cli/commands.hpp"
 #include "errors.hpp"
 #include "lagrange/io.hpp"
 #include "run.hpp"
@@ -257,7 +258,7 @@ void bind_model(py::module_& m) {
            "zero-order hold). Raises AnalysisError when the KKT matrix is singular.")
       .def("trim", &trim_model, py::arg("q") = py::none(),
            py::arg("free") = std::vector<std::string>{},
-           py::arg("fix") = std::vector<std::string>{}, py::arg("tol") = 1e-10,
+           py::arg("fix") = std::vector<std::string>{}, py::arg("tol") = cli::Options{}.tol,
            py::arg("max_iterations") = 100, py::arg("t") = 0.0,
            py::arg("steady") = std::vector<std::string>{}, py::arg("v") = py::none(),
            "An equilibrium (v = 0, a = 0) from q (default: the initial state) by "

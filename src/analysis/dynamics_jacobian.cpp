@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 
+#include "analysis/jacobian_limit.hpp"
 #include "analysis/kkt_layout.hpp"
 #include "dynamics/sparse_range_space.hpp"
 #include "lagrange/analysis.hpp"
@@ -189,6 +190,22 @@ ImplicitJacobian DynamicsJacobian::implicit(Dynamics& dyn, double t, const doubl
 // right-hand sides.
 StateJacobian DynamicsJacobian::evaluate(Dynamics& dyn, double t, const double* q,
                                          const double* v) const {
+  StateJacobian J = evaluate_here(dyn, t, q, v);
+  const size_t nq = cm_->nq, n = nq + cm_->nv;
+  std::vector<double> y(q, q + nq);
+  y.insert(y.end(), v, v + cm_->nv);
+  const auto at = [&](const double* moved) {
+    StateJacobian M = evaluate_here(dyn, t, moved, moved + nq);
+    std::vector<Eigen::MatrixXd> blocks;
+    for (const Eigen::MatrixXd* B : analysis_detail::derivative_blocks(M)) blocks.push_back(*B);
+    return blocks;
+  };
+  analysis_detail::fill_limits(analysis_detail::derivative_blocks(J), at, y.data(), n, t);
+  return J;
+}
+
+StateJacobian DynamicsJacobian::evaluate_here(Dynamics& dyn, double t, const double* q,
+                                              const double* v) const {
   const CompiledModel& c = *cm_;
   const long n = static_cast<long>(c.nv), m = static_cast<long>(c.m);
   const long nq = static_cast<long>(c.nq), nw = static_cast<long>(input_names_.size());

@@ -1,6 +1,7 @@
 // Eigenvalues, natural frequencies, damping ratios and mode shapes of a linear model, and its
 // zero-order-hold discretisation (docs/theory.md §5.4).
 
+#include <Eigen/QR>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -50,6 +51,28 @@ LinearModel discretize(const LinearModel& continuous, double dt) {
   return d;
 }
 
+namespace {
+
+/// The algebraic multiplicity of the eigenvalue 0 of A: n − rank(Aᵏ) once the rank stops
+/// falling (docs/theory.md §5.4). A defective 0 (a free coordinate's [0 1; 0 0]) comes out of
+/// the eigenvalue solver as ±√ε·‖A‖, far above the round-off of a simple one.
+long zero_eigenvalues(const Eigen::MatrixXd& A) {
+  Eigen::MatrixXd P = A;
+  long rank = A.rows();
+  for (long k = 0; k < A.rows(); ++k) {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(P);
+    qr.setThreshold(1e-10);
+    if (qr.rank() == rank) break;
+    rank = qr.rank();
+    const double size = P.cwiseAbs().maxCoeff();
+    if (size == 0.0) break;
+    P = (P / size) * A;  // scaled, so that high powers neither overflow nor underflow
+  }
+  return A.rows() - rank;
+}
+
+}  // namespace
+
 std::vector<Mode> modes(const LinearModel& lin, size_t components) {
   std::vector<Mode> out;
   if (lin.A.rows() == 0) return out;
@@ -57,8 +80,17 @@ std::vector<Mode> modes(const LinearModel& lin, size_t components) {
   if (es.info() != Eigen::Success) throw AnalysisError("the eigenvalue solver did not converge");
   const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
   const long n_full = lin.basis.rows() / 2;
+  // The zero_eigenvalues() smallest in magnitude are exactly 0: each a real mode of its own.
+  Eigen::VectorXcd eigenvalues = es.eigenvalues();
+  std::vector<long> by_size(static_cast<size_t>(eigenvalues.size()));
+  std::iota(by_size.begin(), by_size.end(), 0);
+  std::stable_sort(by_size.begin(), by_size.end(), [&](long a, long b) {
+    return std::abs(eigenvalues[a]) < std::abs(eigenvalues[b]);
+  });
+  const long zeros = zero_eigenvalues(lin.A);
+  for (long k = 0; k < zeros; ++k) eigenvalues[by_size[static_cast<size_t>(k)]] = 0.0;
   for (long k = 0; k < lin.A.rows(); ++k) {
-    const std::complex<double> lambda = es.eigenvalues()[k];
+    const std::complex<double> lambda = eigenvalues[k];
     if (lambda.imag() < -1e-12 * scale) continue;  // the conjugate of a listed pair
     Mode mode;
     // Parts below round-off of A's scale are zero: a conservative system's pairs are printed

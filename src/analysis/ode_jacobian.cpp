@@ -22,6 +22,23 @@ double entry(const StateJacobian& J, size_t nq, size_t r, size_t j) {
   return j < nq ? J.a_q(row, col) : J.a_v(row, col);
 }
 
+/// The derivatives at (t, y), with the limits of removable 0/0s (docs/theory.md §5.1); at a kink
+/// of max/min (|x| at x = 0, e.g. a slack tether segment at rest), where they do not exist,
+/// one-sided ones: those at a state moved by 1e-9 relative (docs/theory.md §5.6).
+StateJacobian evaluate(const DynamicsJacobian& jac, Dynamics& dyn, double t, const double* y) {
+  const size_t nq = jac.model().nq, n = nq + jac.model().nv;
+  std::mt19937 random(5);
+  for (int attempt = 0;; ++attempt) {
+    try {
+      if (attempt == 0) return jac.evaluate(dyn, t, y, y + nq);
+      const std::vector<double> moved = analysis_detail::off_kink(y, n, random);
+      return jac.evaluate(dyn, t, moved.data(), moved.data() + nq);
+    } catch (const NotDifferentiable&) {
+      if (attempt == 3) throw;
+    }
+  }
+}
+
 /// Per column of y, the rows of f whose derivative is non-zero at some of `states`
 /// (structural non-zeros are non-zero at a generic state).
 std::vector<std::vector<bool>> probe(const DynamicsJacobian& jac, Dynamics& dyn, double t,
@@ -30,30 +47,12 @@ std::vector<std::vector<bool>> probe(const DynamicsJacobian& jac, Dynamics& dyn,
   const size_t nq = cm.nq, n = cm.nq + cm.nv;
   std::vector<std::vector<bool>> used(n, std::vector<bool>(n, false));
   for (const auto& y : states) {
-    const StateJacobian J = jac.evaluate(dyn, t, y.data(), y.data() + nq);
+    const StateJacobian J = evaluate(jac, dyn, t, y.data());
     for (size_t j = 0; j < n; ++j)
       for (size_t r = 0; r < n; ++r)
         if (entry(J, nq, r, j) != 0.0) used[j][r] = true;
   }
   return used;
-}
-
-bool finite(const StateJacobian& J) {
-  return J.qdot_q.allFinite() && J.qdot_v.allFinite() && J.a_q.allFinite() && J.a_v.allFinite();
-}
-
-/// The derivatives at (t, y); at a kink of max/min (|x| at x = 0, e.g. a slack tether segment at
-/// rest), where they do not exist, one-sided ones: those at a state moved by 1e-9 relative
-/// (docs/theory.md §5.6). Non-finite entries are left for the caller's check otherwise.
-StateJacobian evaluate(const DynamicsJacobian& jac, Dynamics& dyn, double t, const double* y) {
-  const size_t nq = jac.model().nq, n = nq + jac.model().nv;
-  StateJacobian J = jac.evaluate(dyn, t, y, y + nq);
-  std::mt19937 random(5);
-  for (int attempt = 0; attempt < 3 && !finite(J); ++attempt) {
-    const std::vector<double> moved = analysis_detail::off_kink(y, n, random);
-    J = jac.evaluate(dyn, t, moved.data(), moved.data() + nq);
-  }
-  return J;
 }
 
 }  // namespace

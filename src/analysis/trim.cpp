@@ -171,7 +171,13 @@ Linearised linearised_at(const DynamicsJacobian& jac, Dynamics& dyn, double t,
   const CompiledModel& cm = jac.model();
   const long n = static_cast<long>(cm.nv), nu = static_cast<long>(unknowns.size()),
              np = static_cast<long>(unknowns.positions.size());
-  const StateJacobian J = jac.evaluate(dyn, t, q.data(), v.data());
+  StateJacobian J;
+  try {
+    J = jac.evaluate(dyn, t, q.data(), v.data());
+  } catch (const NotDifferentiable& e) {
+    throw NotDifferentiable(
+        fmt::format("trim: at iteration {}, {}; stopped at {}", it, e.what(), describe(cm, q, v)));
+  }
   const TangentChart chart = tangent_chart(cm, q.data(), v.data());
   const Eigen::SparseMatrix<double> T = chart.T.sparseView();
   const Eigen::MatrixXd Ax = J.a_q * T;

@@ -81,6 +81,30 @@ std::string parameters_in(const Model& model, const std::vector<double>& values,
   return text;
 }
 
+// A damper whose points coincide at the start: its force −c ḋ acts along b − a, and
+// ḋ = (b − a)·(ḃ − ȧ)/|b − a| is 0/0 there (docs/theory.md §4.2). Named at the damper.
+void require_dampers_apart(const Model& model, const GiNaC::exmap& at_start) {
+  for (const Damper& d : model.dampers) {
+    const Point* a = model.find_point(d.a);
+    const Point* b = model.find_point(d.b);
+    if (!a || !b) continue;
+    GiNaC::ex length2 = 0;
+    for (size_t k = 0; k < 3; ++k) length2 += GiNaC::pow(b->pos[k] - a->pos[k], 2);
+    GiNaC::ex value;
+    try {
+      value = GiNaC::evalf(length2.subs(at_start));
+    } catch (const std::exception&) {
+      continue;  // the dynamics' own message says more
+    }
+    if (GiNaC::is_a<GiNaC::numeric>(value) && GiNaC::ex_to<GiNaC::numeric>(value).is_zero())
+      throw ModelError(d.loc, fmt::format("the damper between '{}' and '{}' has length 0 at the "
+                                          "initial state: its force acts along the line between "
+                                          "its points, which has no direction there; expected "
+                                          "its points apart at the start",
+                                          d.a, d.b));
+  }
+}
+
 }  // namespace
 
 InitialConsistency require_consistent_initial_state(const Model& model, Dynamics& dyn,
@@ -130,6 +154,7 @@ void require_regular_initial_state(const Model& model, const Equations& eq, Dyna
     at_start[model.t] = 0;
     for (size_t j = 0; j < model.parameters.size(); ++j)
       at_start[model.parameters[j].sym] = number(dyn.parameters()[j]);
+    require_dampers_apart(model, at_start);
     for (size_t i = 0; i < cm.plain; ++i) {
       const GiNaC::ex Mii = eq.M(static_cast<unsigned>(i), static_cast<unsigned>(i));
       GiNaC::ex value;

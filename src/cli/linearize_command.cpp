@@ -78,6 +78,7 @@ struct TrimmedAt {
   const TrimResult* result = nullptr;
   bool steady = false;
   double tol = 0.0;
+  std::vector<std::pair<std::string, double>> inputs;  ///< the free inputs trim found
 };
 
 std::string format_text(const Prepared& p, const LinearModel& lin, const std::vector<Mode>& ms,
@@ -94,6 +95,8 @@ std::string format_text(const Prepared& p, const LinearModel& lin, const std::ve
         fmt::format("{}{} = {:.9g}", point.empty() ? "" : ", ", cm.coordinate_names[i], p.q[i]);
   for (size_t i = 0; i < cm.plain; ++i)
     if (p.v[i] != 0.0) point += fmt::format(", {} = {:.9g}", cm.velocity_names[i], p.v[i]);
+  for (const auto& [name, value] : trimmed.inputs)
+    point += fmt::format("{}{} = {:.9g}", point.empty() ? "" : ", ", name, value);
   if (!point.empty()) out += "operating point: " + point + "\n";
   if (trimmed.steady)
     out +=
@@ -153,7 +156,9 @@ std::string format_json(const Prepared& p, const LinearModel& lin, const std::ve
     j["trim"] = {{"steady", trimmed.steady},
                  {"iterations", trimmed.result->iterations},
                  {"residual", trimmed.result->residual},
-                 {"drift", trimmed.result->drift}};
+                 {"drift", trimmed.result->drift},
+                 {"inputs", nlohmann::json::object()}};
+  for (const auto& [name, value] : trimmed.inputs) j["trim"]["inputs"][name] = value;
   j["t"] = 0.0;
   j["dt"] = lin.dt;
   j["coordinates"] = cm.coordinate_names;
@@ -171,6 +176,8 @@ std::string format_json(const Prepared& p, const LinearModel& lin, const std::ve
   j["D"] = json_matrix(lin.D);
   j["full_states"] = lin.full_state_names;
   j["basis"] = json_matrix(lin.basis);
+  // The modes are A's before --discrete (its eigenvalues s, not z = exp(s dt)).
+  j["modes_time"] = "continuous";
   j["modes"] = nlohmann::json::array();
   for (const Mode& m : ms) {
     nlohmann::json mode{
@@ -224,8 +231,12 @@ int run_linearize(const Options& opt) {
   TrimResult trimmed;
   TrimmedAt at;
   if (opt.at_trim) {
-    trimmed = trim_prepared(p, *jac, trim_options(*p.compiled, p.q, p.v, opt, jac->input_names()));
-    at = {&trimmed, !opt.steady.empty(), opt.tol};
+    const TrimOptions options = trim_options(*p.compiled, p.q, p.v, opt, jac->input_names());
+    trimmed = trim_prepared(p, *jac, options);
+    at = {&trimmed, !opt.steady.empty(), opt.tol, {}};
+    for (size_t w = 0, k = 0; w < options.free_inputs.size(); ++w)
+      if (options.free_inputs[w])
+        at.inputs.emplace_back(jac->input_names()[w], trimmed.inputs[k++]);
   } else if (!opt.free.empty() || !opt.fix.empty() || !opt.steady.empty()) {
     throw UsageError("--free, --fix and --steady choose what trim varies: give --at-trim too");
   }

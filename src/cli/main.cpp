@@ -174,7 +174,8 @@ int main(int argc, char** argv) {
                     "a steady state: rates NAME_dot held at their initial or --at values, "
                     "comma-separated (docs/theory.md §5.5)")
         ->delimiter(',');
-    cmd->add_option("--tol", opt.tol, "tolerance on max |acceleration| (default 1e-9)");
+    cmd->add_option("--tol", opt.tol,
+                    fmt::format("tolerance on max |acceleration| (default {:g})", Options{}.tol));
   };
   auto* lin = app.add_subcommand(
       "linearize", "A, B, C, D and the modes at an operating point, on the constraint manifold");

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "model/latex_names.hpp"
 #include "symbolic/expansion_bound.hpp"
 #include "symbolic/printed_size.hpp"
 
@@ -61,6 +62,16 @@ std::string latex_escape(const std::string& name) {
 std::string multiplier_str(const std::string& constraint, Style style) {
   return style == Style::Latex ? "\\lambda_{\\mathrm{" + latex_escape(constraint) + "}}"
                                : "lambda_" + constraint;
+}
+
+void print_element_equations(const Model& model, Style style, EquationWriter& out) {
+  const bool tex = style == Style::Latex;
+  for (const ElementSummary& s : model.element_summaries) {
+    out.heading(s.title);
+    for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
+    for (const auto& [lhs, rhs] : s.equations)
+      out.line(tex ? lagrange::model::latex_name(lhs) : lhs, str(rhs, style));
+  }
 }
 
 void EquationWriter::heading(const std::string& h) {

@@ -63,6 +63,10 @@ class EquationWriter {
   std::string out_;
 };
 
+/// The elements' sections (a winch's T_drum = …), their names in LaTeX as the model's symbols
+/// are (T_{\mathrm{drum}}, not T_drum, whose subscript would take one letter).
+void print_element_equations(const Model& model, Style style, EquationWriter& out);
+
 /// Each rigid body's equations in the seed's form (docs/theory.md §4.4): for a free body
 /// m r̈ + ∂V/∂r = F_r − (∂C/∂r)ᵀλ, J ω̇ + ω × Jω + 2P(∂V/∂R) = F_rot − 2P(∂C/∂R)ᵀλ and
 /// Ṙ = R(Ω + Ξ); for a posed body its pose, ω = unskew(RᵀṘ) and its kinetic energy.

@@ -45,11 +45,7 @@ std::string format_text(const Equations& eq, Style style) {
   line("U", str(eq.U, style));
   line(tex ? "L" : "L",
        eq.m ? str(eq.L, style) + (tex ? " - \\lambda^T C" : " - lambda^T C") : str(eq.L, style));
-  for (const ElementSummary& s : model.element_summaries) {
-    heading(s.title);
-    for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
-    for (const auto& [lhs, rhs] : s.equations) line(lhs, str(rhs, style));
-  }
+  io::print_element_equations(model, style, out);
   if (eq.kin.plain > 0)
     heading(tex ? "Euler--Lagrange equations"
                 : "Euler-Lagrange equations  d/dt(dL/dq_dot) - dL/dq = Q - G^T lambda");
@@ -137,11 +133,7 @@ std::string recursive_text(const Equations& eq, const std::string& format, bool 
   const io::HeadingSink heading = out.heading_sink();
   const io::LineSink line = out.line_sink();
   out.raw(fmt::format(tex ? "% {}: {} coordinates\n" : "{} — {} coordinates\n", model.name, eq.nq));
-  for (const ElementSummary& s : model.element_summaries) {
-    heading(s.title);
-    for (const auto& note : s.notes) out.raw(tex ? "% " + note + "\n" : "  " + note + "\n");
-    for (const auto& [lhs, rhs] : s.equations) line(lhs, str(rhs, style));
-  }
+  io::print_element_equations(model, style, out);
   heading("Equations of motion");
   out.raw(tex ? "% " + what + "\n" : "  " + what + "\n");
   if (definitions) {

@@ -69,8 +69,10 @@ std::vector<Token> tokenize(const std::string& text) {
       out.push_back({TokenKind::Symbol, std::string(1, c), i});
       ++i;
     } else {
+      // x' (Newton's prime) is not a derivative here: say what is.
       throw ExprError{
-          i, fmt::format("expected an operator, a name or a number, got {}", describe_char(c))};
+          i, fmt::format("expected an operator, a name or a number, got {}{}", describe_char(c),
+                         c == '\'' ? " (a time derivative is written der(x))" : "")};
     }
   }
   out.push_back({TokenKind::End, "", text.size()});

@@ -285,8 +285,12 @@ class Parser {
     expect(")");
     if (static_cast<int>(args.size()) != it->second)
       throw ExprError{name.offset,
-                      fmt::format("expected {} argument{} for '{}', got {}", it->second,
-                                  it->second == 1 ? "" : "s", name.text, args.size())};
+                      fmt::format("expected {} argument{} for '{}', got {}{}", it->second,
+                                  it->second == 1 ? "" : "s", name.text, args.size(),
+                                  name.text == "dot" && args.size() == 1
+                                      ? " (dot(a, b) is the scalar product; a time derivative "
+                                        "is written der(x))"
+                                      : "")};
     return folded(guarded(name.offset, [&] { return apply(name, args); }), name.offset);
   }
 

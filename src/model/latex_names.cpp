@@ -33,6 +33,12 @@ std::string word(const std::string& w) {
 std::string latex_name(const std::string& name, const std::string& accent) {
   std::string base = name, sub;
   size_t us = name.find('_');
+  // An element's dotted name (drum.reeled_out) is one word: its underscore is no subscript.
+  const size_t dot = name.find('.');
+  if (dot != std::string::npos && dot < us) {
+    const std::string out = word(name);
+    return accent.empty() ? out : accent + "{" + out + "}";
+  }
   if (us != std::string::npos && us > 0) {
     base = name.substr(0, us);
     sub = name.substr(us + 1);

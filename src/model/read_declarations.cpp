@@ -26,6 +26,8 @@ void ModelReader::check_overrides() const {
 }
 
 void ModelReader::read_coordinates(const YAML::Node& node) {
+  // `coordinates: {}` says what an absent key says (a model of free bodies or tethers).
+  if (node.IsMap() && node.size() == 0) return;
   if (node.size() == 0) fail(node, "expected at least one coordinate in coordinates, got none");
   if (node.size() > kMaxCoordinates) {
     auto it = node.begin();

@@ -65,6 +65,16 @@ void ModelReader::read_stop_when(const YAML::Node& node) {
     const std::string name = scalar(kv.first, "name of a stop condition");
     const std::string what = fmt::format("stop condition '{}'", name);
     const std::string text = scalar(kv.second, what);
+    // A condition fires where its sides cross, located to the time they are equal: lhs <= rhs
+    // is the same condition as lhs < rhs, and lhs == rhs is that crossing, in either direction.
+    for (const std::string op : {"<=", ">=", "=="})
+      if (text.find(op) != std::string::npos)
+        fail(kv.second,
+             fmt::format("expected only '<' or '>' in {}, got '{}' in '{}': a stop condition "
+                         "fires when its sides cross, located to where they are equal, so {}",
+                         what, op, clip(text),
+                         op == "==" ? "write 'lhs < rhs' or 'lhs > rhs' for the crossing you mean"
+                                    : fmt::format("'{}' is the same condition", op.substr(0, 1))));
     size_t comparisons = 0;
     for (char c : text) comparisons += c == '<' || c == '>';
     if (comparisons != 1)

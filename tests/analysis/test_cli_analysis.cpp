@@ -7,9 +7,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "support/test_paths.hpp"
 #include "analysis/euler_top.hpp"
 #include "cli/shell_run.hpp"
+#include "support/test_paths.hpp"
 
 namespace {
 
@@ -88,10 +88,92 @@ TEST(CliLinearize, NonDifferentiablePointIsRefused) {
   EXPECT_NE(r.output.find("not differentiable"), std::string::npos) << r.output;
 }
 
+// docs/theory.md §5.4: the cart's free coordinate gives a defective eigenvalue 0 ([0 1; 0 0]),
+// printed as exactly 0, twice; each real eigenvalue is one mode and each complex pair one:
+// hanging 0, 0, ±iω (3 modes), upright 0, 0, ±σ (4), ω² = σ² = (M + m) g / (M l).
+TEST(CliLinearize, CartPoleModesHaveExactZerosAndOneModePerPairOrRealEigenvalue) {
+  const auto model = write_model("cart_pole.yaml", R"(
+name: cart-pole
+parameters: {M: 1.0, m: 0.2, l: 0.6, g: 9.81}
+coordinates: {x: {initial: 0}, theta: {initial: 0}}
+points: {cart: [x, 0, 0], bob: [x + l*sin(theta), -l*cos(theta), 0]}
+particles: {cart: M, bob: m}
+gravity: [0, -g, 0]
+)");
+  const double rate = std::sqrt(1.2 * 9.81 / 0.6);
+  for (const bool upright : {false, true}) {
+    const Result r =
+        run("linearize " + model.string() + (upright ? " --at theta=3.14159265358979" : "") +
+            " --format json --discrete 0.01");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto j = nlohmann::json::parse(r.output);
+    EXPECT_EQ(j["modes_time"], "continuous");
+    const auto& modes = j["modes"];
+    ASSERT_EQ(modes.size(), upright ? 4u : 3u) << r.output;
+    for (size_t k = 0; k < 2; ++k) {  // sorted by |λ|: the zeros first
+      EXPECT_EQ(modes[k]["re"].get<double>(), 0.0) << r.output;
+      EXPECT_EQ(modes[k]["im"].get<double>(), 0.0) << r.output;
+    }
+    for (size_t k = 2; k < modes.size(); ++k)
+      EXPECT_NEAR(std::hypot(modes[k]["re"].get<double>(), modes[k]["im"].get<double>()), rate,
+                  1e-9 * rate)
+          << r.output;
+  }
+  const Result text = run("linearize " + model.string());
+  ASSERT_EQ(text.code, 0) << text.output;
+  EXPECT_EQ(text.output.find("e-0"), std::string::npos) << text.output;  // no 1.36e-08i
+}
+
+// The operating point trim found includes the free inputs' values: F = m g tan θ holds the
+// pendulum at θ = 0.3 (examples' pendulum with a side force F).
+TEST(CliLinearize, AtTrimPrintsTheTrimmedInputs) {
+  const auto model = write_model("side_force.yaml", R"(
+name: pendulum in a side force
+parameters: {m: 1.0, l: 1.0, g: 9.81, F: 0.0}
+coordinates: {theta: {initial: 0.3}}
+points: {bob: [l*sin(theta), -l*cos(theta), 0]}
+particles: {bob: m}
+gravity: [0, -g, 0]
+forces: [{point: bob, force: [F, 0, 0]}]
+)");
+  Result r = run("linearize " + model.string() + " --at-trim --free F --inputs F");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string key = "operating point: theta = 0.3, F = ";
+  const size_t at = r.output.find(key);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(at + key.size())), 9.81 * std::tan(0.3), 1e-8) << r.output;
+  r = run("linearize " + model.string() + " --at-trim --free F --inputs F --format json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NEAR(nlohmann::json::parse(r.output)["trim"]["inputs"]["F"].get<double>(),
+              9.81 * std::tan(0.3), 1e-8);
+}
+
+// docs/theory.md §5.1, "Limits": quadratic drag at rest is differentiable (A undamped, exit 0).
+TEST(CliLinearize, QuadraticDragAtRestIsLinearised) {
+  const auto model = write_model("drag.yaml", R"(
+name: pendulum with drag
+parameters: {m: 1.0, l: 1.0, g: 9.81, c: 0.7}
+coordinates: {theta: {initial: 0, rate: 0}}
+points: {bob: [l*sin(theta), -l*cos(theta), 0]}
+particles: {bob: m}
+gravity: [0, -g, 0]
+forces: [{point: bob, force: -c*norm(vel(bob))*vel(bob)}]
+)");
+  const Result r = run("linearize " + model.string() + " --format csv");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string rows = "A,theta,theta_dot\ntheta,0,1\ntheta_dot,";
+  const size_t at = r.output.find(rows);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  size_t used = 0;
+  EXPECT_NEAR(std::stod(r.output.substr(at + rows.size()), &used), -9.81, 1e-12) << r.output;
+  EXPECT_EQ(r.output.substr(at + rows.size() + used, 3), ",0\n") << r.output;  // no damping
+}
+
 TEST(CliTrim, PendulumFromTwentyDegreesPrintsTheInitialBlock) {
   const Result r = run("trim " + example("pendulum.yaml") + " --at theta=0.349");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("equilibrium found by Levenberg–Marquardt"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("equilibrium found by Levenberg–Marquardt"), std::string::npos)
+      << r.output;
   const std::string key = "theta: {initial: ";
   const size_t at = r.output.find(key);
   ASSERT_NE(at, std::string::npos) << r.output;
@@ -161,7 +243,8 @@ TEST(CliTrim, SteadyPrecessionOfATopInEulerAngles) {
   const auto model = write_model("top_euler.yaml", kTop);
   Result r = run("trim " + model.string() + " --steady phi_dot,psi_dot");
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("steady state found by Levenberg–Marquardt"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("steady state found by Levenberg–Marquardt"), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("steady along the motion: max |da/dt| = 0"), std::string::npos)
       << r.output;
   const double cos_theta = (0.01 * 20 * 4.55 - 9.81 * 0.1) / ((0.006 - 0.01) * 4.55 * 4.55);

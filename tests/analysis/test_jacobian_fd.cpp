@@ -91,8 +91,13 @@ TEST_P(ExampleJacobian, MatchesCentralDifferences) {
   std::vector<std::string> parameters;  // every parameter as an input: B's columns too
   for (const auto& p : model->parameters) parameters.push_back(p.name);
   Analysed s = testing::analyse(std::move(model), parameters);
-  const StateJacobian J = s.jac->evaluate(*s.dyn, 0.0, s.q.data(), s.v.data());
-  const bool refused = !J.a_q.allFinite() || !J.a_v.allFinite();
+  bool refused = false;  // never a NaN: a removable 0/0 is its limit, a kink an error
+  try {
+    const StateJacobian J = s.jac->evaluate(*s.dyn, 0.0, s.q.data(), s.v.data());
+    EXPECT_TRUE(J.a_q.allFinite() && J.a_v.allFinite());
+  } catch (const NotDifferentiable&) {
+    refused = true;
+  }
   if (refused) {
     // Not differentiable at the initial state (a control law with |azimuth| at 0): refused.
     try {

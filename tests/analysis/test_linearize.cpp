@@ -136,6 +136,46 @@ bodies:
 
 // B for a model input equals B for a parameter that enters the same way; C and D of a model
 // output; the zero-order hold of the pendulum against cos/sin of ω dt.
+// docs/theory.md §5.1, "Limits": quadratic drag −c‖v‖v (a point's) and −c|θ̇|θ̇ (a coordinate's)
+// has the derivative 0 at rest, 0/0 on the tape as written. The pendulum with either drag,
+// linearised at rest at θ = 0.3, has the undamped pendulum's A: [0 1; −(g/l) cos θ 0].
+TEST(Linearize, QuadraticDragAtRestHasTheUndampedA) {
+  const std::string pendulum = R"(
+name: pendulum with drag
+parameters: {m: 1.0, l: 1.0, g: 9.81, c: 0.7}
+coordinates:
+  theta: {initial: 0.3, rate: 0}
+points:
+  bob: [l*sin(theta), -l*cos(theta), 0]
+particles:
+  - {point: bob, mass: m}
+gravity: [0, -g, 0]
+)";
+  const Eigen::Matrix2d undamped{{0.0, 1.0}, {-9.81 * std::cos(0.3), 0.0}};
+  for (const std::string drag : {"forces:\n  - {point: bob, force: -c*norm(vel(bob))*vel(bob)}\n",
+                                 "generalized_forces: {theta: -c*der(theta)*abs(der(theta))}\n"}) {
+    auto s = analyse_string(pendulum + drag);
+    const Eigen::MatrixXd A = s.linear().A;
+    ASSERT_EQ(A.rows(), 2) << drag;
+    EXPECT_LE((A - undamped).cwiseAbs().maxCoeff(), 1e-12) << drag << A;
+    EXPECT_EQ(A(1, 1), 0.0) << drag;  // the limit's rounding is not printed as damping
+  }
+}
+
+// |θ̇| alone has no derivative at θ̇ = 0 (±1 by the side): an error, not a NaN or a one-sided value.
+TEST(Linearize, AbsoluteRateAtRestIsNotDifferentiable) {
+  auto s = analyse_string(R"(
+name: dry friction
+parameters: {m: 1.0, c: 0.7}
+coordinates:
+  x: {initial: 0.0, rate: 0}
+kinetic: m/2*der(x)^2
+generalized_forces: {x: -c*abs(der(x))}
+)");
+  EXPECT_THROW(s.linear(), NotDifferentiable);
+  EXPECT_THROW(s.jac->evaluate(*s.dyn, 0.0, s.q.data(), s.v.data()), NotDifferentiable);
+}
+
 TEST(Linearize, InputsOutputsAndZeroOrderHold) {
   const std::string yaml = R"(
 name: pushed pendulum

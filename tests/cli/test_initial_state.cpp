@@ -96,5 +96,26 @@ TEST(InitialState, AProjectableStateIsProjectedAndSimulated) {
   EXPECT_NE(slurp(csv.string() + ".json").find("\"complete\""), std::string::npos);
 }
 
+// A damper whose points coincide at the start has no direction to act along (its rate is 0/0):
+// named at the damper (line 6), not as "the acceleration of 'x' is not finite"; apart, it runs.
+TEST(InitialState, ADamperAtZeroLengthIsNamed) {
+  ScratchDir dir("initial-damper");
+  const fs::path model = dir.path() / "start.yaml";
+  const auto write = [&](const std::string& x0) {
+    spit(model, "parameters: {m: 1, c: 0.5}\ncoordinates: {x: {initial: " + x0 +
+                    "}, y: {initial: 0}}\npoints: {anchor: [0, 0, 0], bob: [x, y, 0]}\n"
+                    "particles: {bob: m}\ndampers:\n  - {between: [anchor, bob], c: c}\n");
+  };
+  write("0");
+  const RunResult r = run_lagrange(dir.path(), {"check", model.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find(model.string() + ":6:5: error: the damper between 'anchor' and 'bob' has "
+                                        "length 0 at the initial state"),
+            std::string::npos)
+      << r.err;
+  write("0.5");
+  EXPECT_EQ(run_lagrange(dir.path(), {"check", model.string()}).exit_code, 0);
+}
+
 }  // namespace
 }  // namespace lagrange::hardening

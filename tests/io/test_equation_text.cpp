@@ -6,6 +6,9 @@
 #include <string>
 
 #include "io/equation_text.hpp"
+#include "lagrange/io.hpp"
+#include "lagrange/reader.hpp"
+#include "support/harness.hpp"
 #include "symbolic/expansion_bound.hpp"
 
 namespace lagrange::io {
@@ -46,6 +49,20 @@ TEST(EquationText, SmallExpressionsStillGetTheirShortestForm) {
   const GiNaC::symbol th("theta"), l("l");
   EXPECT_EQ(str(l * GiNaC::pow(GiNaC::sin(th), 2) + l * GiNaC::pow(GiNaC::cos(th), 2), Style::Text),
             "l");
+}
+
+// An element's equation names in LaTeX as the model's symbols are (issue 36 item 12): the
+// winch's T_drum and Q_drum.reeled_out with the whole subscript braced, not `T_drum`, which
+// renders as T_d rum.
+TEST(EquationText, ElementEquationNamesAreLatex) {
+  const Model model = read_model_file(testing::example_path("winch.yaml"));
+  const std::string tex = format_equations(derive(model), "latex");
+  EXPECT_NE(tex.find("T_{\\mathrm{drum}} &="), std::string::npos) << tex;
+  EXPECT_EQ(tex.find("T_drum"), std::string::npos) << tex;
+  // The winch's generated coordinate drum.reeled_out is one upright name, its _ no subscript.
+  EXPECT_NE(tex.find("\\mathrm{drum.reeled\\_out}"), std::string::npos) << tex;
+  EXPECT_EQ(tex.find("\\mathrm{drum.reeled}_"), std::string::npos) << tex;
+  EXPECT_NE(format_equations(derive(model), "text").find("T_drum = "), std::string::npos);
 }
 
 }  // namespace

@@ -199,6 +199,22 @@ struct BadBody {
 const std::string kBody = "bodies:\n  b:\n    mass: 1\n";
 const std::string kFreeBody = kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: {}\n";
 
+// `coordinates: {}` reads as an absent key: the free body's model, nothing else; and with
+// neither coordinates nor bodies, the model is refused as when the key is absent.
+TEST(ReaderBodies, EmptyCoordinatesMapIsAnAbsentKey) {
+  const Model m = read_model_string("coordinates: {}\n" + kFreeBody, "m.yaml");
+  EXPECT_TRUE(m.coordinates.empty());
+  ASSERT_EQ(m.bodies.size(), 1u);
+  EXPECT_TRUE(m.bodies[0].free);
+  try {
+    read_model_string("coordinates: {}\nparameters: {k: 1}\n", "m.yaml");
+    ADD_FAILURE() << "a model without coordinates was read";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected a 'coordinates' key"), std::string::npos)
+        << e.what();
+  }
+}
+
 std::vector<BadBody> bad_bodies() {
   return {
       {"unknown key", kBody + "    inertia: [1, 1, 1]\n    frme: free\n", "5:5",

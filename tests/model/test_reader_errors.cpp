@@ -155,6 +155,13 @@ std::vector<BadModel> bad_models() {
        "name: rock 'n roll\ncoordinates: {x: {initial: 1}}\nfoo: 1\n", "3:1", "unknown key 'foo'"},
       {"empty expression", kBase + "kinetic:   \"\"\n", "3:12",
        "expected an expression for kinetic, got ''"},
+      {"stop condition with <=", kBase + "stop_when: {down: x <= 0}\n", "3:19",
+       "got '<=' in 'x <= 0': a stop condition fires when its sides cross"},
+      {"stop condition with ==", kBase + "stop_when: {down: x == 0}\n", "3:19",
+       "write 'lhs < rhs' or 'lhs > rhs'"},
+      {"dot(x) for a rate", kBase + "kinetic: dot(x)^2\n", "3:10",
+       "a time derivative is written der(x)"},
+      {"x' for a rate", kBase + "kinetic: x'^2\n", "3:11", "a time derivative is written der(x)"},
   };
 }
 

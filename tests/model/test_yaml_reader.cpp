@@ -206,6 +206,10 @@ TEST(YamlReader, LatexNames) {
   EXPECT_EQ(latex_name("x"), "x");
   EXPECT_EQ(latex_name("l_arm"), "l_{\\mathrm{arm}}");
   EXPECT_EQ(latex_name("mass"), "\\mathrm{mass}");
+  // Element names (issue 36 item 12): the subscript braced whole, a dotted name one word.
+  EXPECT_EQ(latex_name("T_drum"), "T_{\\mathrm{drum}}");
+  EXPECT_EQ(latex_name("drum.reeled_out", "\\dot"), "\\dot{\\mathrm{drum.reeled\\_out}}");
+  EXPECT_EQ(latex_name("Q_drum.reeled_out"), "Q_{\\mathrm{drum.reeled\\_out}}");
   Model m = read_model_string("coordinates: {psi: {initial: 0}}\n", "l.yaml");
   std::ostringstream s;
   m.coordinates[0].v.print(GiNaC::print_latex(s));

@@ -4,6 +4,7 @@ nonlinear cart-pole stepped from Python."""
 
 import json
 import math
+import re
 import subprocess
 
 import numpy as np
@@ -163,3 +164,38 @@ def test_jacobian_matches_differences_and_the_implicit_form():
     # d(a, lam)/d(q, v, F) = -K^-1 Phi_x: the implicit form's sparse Jacobians give the same.
     X = -np.linalg.solve(J.K, J.Phi_x)
     assert np.allclose(X[:2], np.hstack([J.a_q, J.a_v, J.a_w]), atol=1e-12)
+
+
+# A pendulum at rest at theta = 0.3 with quadratic drag, on its bob or on theta.
+DRAG_PENDULUM = """
+parameters: {m: 1.0, l: 1.0, g: 9.81, c: 0.7}
+coordinates: {theta: {initial: 0.3, rate: 0}}
+points: {bob: [l*sin(theta), -l*cos(theta), 0]}
+particles: {bob: m}
+gravity: [0, -g, 0]
+"""
+
+
+def test_quadratic_drag_at_rest_has_the_undamped_derivatives():
+    # docs/theory.md §5.1, "Limits": d(|v| v)/dv = 0 at v = 0, 0/0 on the tape as written.
+    for drag in ("forces: [{point: bob, force: -c*norm(vel(bob))*vel(bob)}]\n",
+                 "generalized_forces: {theta: -c*der(theta)*abs(der(theta))}\n"):
+        m = lagrange.loads(DRAG_PENDULUM + drag, label="<drag pendulum>")
+        J = m.jacobian()
+        assert J.a_v[0, 0] == 0.0
+        assert J.a_q[0, 0] == pytest.approx(-9.81 * math.cos(0.3), rel=1e-12)
+        assert np.all(np.isfinite(J.Phi_x))
+        assert np.allclose(m.linearize().A, [[0, 1], [-9.81 * math.cos(0.3), 0]], rtol=0, atol=1e-12)
+    # |theta_dot| alone has no derivative at 0: raised, never NaN.
+    m = lagrange.loads(DRAG_PENDULUM + "generalized_forces: {theta: -c*abs(der(theta))}\n",
+                       label="<dry friction>")
+    with pytest.raises(lagrange.AnalysisError, match="not differentiable"):
+        m.jacobian()
+
+
+def test_trim_tolerance_is_the_command_lines(cli):
+    shown = subprocess.run([str(cli), "trim", "--help"], capture_output=True, text=True).stdout
+    command_line = float(re.search(r"max \|acceleration\| \(default ([-+.e0-9]+)\)", shown)[1])
+    m = lagrange.loads(DRAG_PENDULUM, label="<pendulum>")
+    python = float(re.search(r"tol: float = ([-+.e0-9]+)", m.trim.__doc__)[1])
+    assert python == command_line
