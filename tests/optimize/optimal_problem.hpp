@@ -10,6 +10,7 @@
 #include "lagrange/optimize.hpp"
 #include "lagrange/reader.hpp"
 #include "lagrange/simulation.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::testing {
 
