@@ -92,8 +92,9 @@ TEST(ProcessPool, AWorkersExceptionIsThrownHere) {
     pool.read = [&](size_t index) -> CaseRead {
       if ((getpid() != here) == in_the_fork)
         throw std::runtime_error(in_the_fork ? "refused in a worker" : "refused here");
-      // This process's cases wait, so that the forked worker, started after it, gets one.
-      if (in_the_fork) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      // The side that does not throw is slow, so that the side that does gets a case on a loaded
+      // machine too: the forked worker starts after this process, and may then run before it.
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
       return {s.inputs[index], {}, -1.0};
     };
     try {
