@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagrange/error.hpp"
@@ -76,6 +77,9 @@ struct OptimalControlSpec {
   /// the model with the controls at their guesses, or "" (simulation for constrained models,
   /// whose states a straight line would take off the constraints; linear otherwise).
   std::string guess;
+  /// `guess: {COORDINATE: expr(t), …}`: those coordinates start on the written paths, their rates
+  /// on the paths' time derivatives; the others interpolate linearly (docs/theory.md §10).
+  std::vector<std::pair<StateRef, GiNaC::ex>> guess_paths;
   int intervals = 50;  ///< collocation intervals N
   int degree = 3;      ///< Radau IIA collocation points per interval
   SourceLoc loc;

@@ -85,7 +85,9 @@ void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spe
     if (inner.find_first_not_of(' ') == std::string::npos)
       throw ModelError(src_.at(node, after), "expected an expression inside integral()");
     const GiNaC::ex L = parse_text(node, inner, kAll, "an integral of the objective").scalar;
-    const std::string name = fmt::format("_integral{}", integrals.size());
+    // Never longer than the shortest term it replaces, "integral(x)" (11 characters), for any
+    // count the reader's text limit allows.
+    const std::string name = fmt::format("_i{}", integrals.size());
     const GiNaC::symbol s(name);
     placeholders[name] = s;
     integrals.emplace_back(s, L);
@@ -210,11 +212,23 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   if (node["initial"]) spec.initial = boundary("initial");
   if (node["final"]) spec.final = boundary("final");
 
-  if (node["guess"]) {
+  if (node["guess"] && node["guess"].IsMap()) {
+    for (const auto& kv : node["guess"]) {
+      const StateRef s = state_ref(kv.first, "a guessed path");
+      if (s.velocity)
+        fail(kv.first, fmt::format("expected a coordinate in guess, got the rate '{}' (a rate "
+                                   "follows its coordinate's path: its time derivative)",
+                                   clip(kv.first.Scalar())));
+      spec.guess_paths.emplace_back(
+          s, scalar_expr(kv.second, kParams | kTime,
+                         fmt::format("the guessed path of '{}'", kv.first.Scalar())));
+    }
+  } else if (node["guess"]) {
     spec.guess = scalar(node["guess"], "guess");
     if (spec.guess != "linear" && spec.guess != "simulation")
       fail(node["guess"],
-           fmt::format("expected guess linear or simulation, got '{}'", clip(spec.guess)));
+           fmt::format("expected guess linear, simulation or a map COORDINATE: path(t), got '{}'",
+                       clip(spec.guess)));
   }
   auto count = [&](const char* key, int& out, int lo, int hi) {
     if (!node[key]) return;

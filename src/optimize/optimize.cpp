@@ -3,6 +3,8 @@
 
 #include "lagrange/optimize.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +16,11 @@
 namespace lagrange {
 
 namespace {
+
+// A final value the constraints imply, missed by more than this (relative to 1 + |value|) once the
+// final state is projected onto them: not reached (another branch, such as the pendulum hanging
+// instead of upright, misses it by O(1); the projection leaves ~1e-12 of the collocation's drift).
+constexpr double kImpliedTolerance = 1e-6;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -57,14 +64,6 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
                         const OptimalControlSpec& spec, const std::vector<double>& q0,
                         const std::vector<double>& v0, const OptimizeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  // The transcription takes constrained models (its derivatives are tested), but collocating the
-  // index-1 DAE holds C only at the acceleration level: the optimum can drift off the
-  // constraints near a free end (docs/theory.md §10, "Constrained models"). Refused until the
-  // position-level invariants are imposed.
-  if (cm->m > 0)
-    throw std::invalid_argument(
-        "optimize does not take models with constraints yet (the collocated index-1 DAE can "
-        "drift off them; docs/theory.md §10): write the model in independent coordinates");
   OptimizeResult r;
   r.intervals = options.intervals > 0 ? options.intervals : spec.intervals;
   r.degree = options.degree > 0 ? options.degree : spec.degree;
@@ -95,6 +94,22 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     if (v > r.violation || (i == 0 && v > 0)) {
       r.violation = v;
       r.worst_constraint = nlp.describe(i, x);
+    }
+  }
+  // A final value the constraints imply is checked, not imposed. Its gap includes the
+  // collocation's drift off the constraints; projected back onto them (the imposed final values
+  // kept), a gap that remains means another branch (docs/theory.md §10, "Constrained models").
+  for (const auto& implied : nlp.implied_final_gaps(x)) {
+    if (implied.gap > r.violation) {
+      r.violation = implied.gap;
+      r.worst_constraint = implied.what;
+    }
+    if (r.optimal && implied.projected > kImpliedTolerance * (1 + std::fabs(implied.value))) {
+      r.optimal = false;
+      r.status = fmt::format(
+          "optimal, but the {} is off by {:.3g}: another branch of the constraints (guess a path "
+          "near the target)",
+          implied.what, implied.projected);
     }
   }
   for (int k = 0; k < r.intervals; ++k)

@@ -25,6 +25,20 @@ std::vector<GiNaC::ex> point_functions(const OptimalControlSpec& spec) {
   return fs;
 }
 
+std::vector<GiNaC::ex> guessed_paths(const OptimalControlSpec& spec) {
+  std::vector<GiNaC::ex> fs;
+  for (const auto& [state, path] : spec.guess_paths) fs.push_back(path);
+  return fs;
+}
+
+/// Per coordinate, whether a projection keeps it (Dynamics::try_project's flags, which hold a
+/// coordinate and its rate together): kept when either is in `keep` (nq + nv flags).
+std::vector<bool> kept_coordinates(const std::vector<bool>& keep, size_t nq) {
+  std::vector<bool> flags(keep.begin(), keep.begin() + static_cast<long>(nq));
+  for (size_t i = nq; i < keep.size() && i - nq < nq; ++i) flags[i - nq] = flags[i - nq] || keep[i];
+  return flags;
+}
+
 /// Index in x = (q, v) of a state reference (plain coordinates: q index = v index).
 size_t state_index(const StateRef& s, size_t nq) {
   return s.velocity ? nq + s.coordinate : s.coordinate;
@@ -59,6 +73,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       free_T_(spec.free_horizon.has_value()),
       T_(spec.horizon),
       sign_(spec.maximize ? -1.0 : 1.0),
+      paths_(eq, *cm, guessed_paths(spec), {}),
       q0_(q0),
       v0_(v0) {
   if (intervals < 1) throw std::invalid_argument("expected at least 1 collocation interval");
@@ -76,19 +91,14 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
           "a free horizon needs dynamics that do not depend on t explicitly (through an input's "
           "expression or the equations); fix the horizon or make that input a control");
   }
-  size_t fixed = 0;
-  if (spec.initial)
-    for (const BoundaryValue& b : *spec.initial) fixed += b.fixed();
-  consistency_ = m_ > 0 && spec.initial.has_value() && fixed < nx_;
-
+  in_.assign(cm->input_count(), 0.0);
+  xp_.assign(nx_, 0.0);
+  choose_boundary_rows();
   block_ = static_cast<size_t>(d_) * (nx_ + m_) + nu_;
   first_ = free_T_ ? 1 : 0;
   n_ = first_ + static_cast<size_t>(N_) * block_ + nx_;
   path_rows_ = static_cast<size_t>(N_ * d_) * (nx_ + m_);
-  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + (consistency_ ? 2 * m_ : 0) +
-          (final_invariants_ ? 2 * m_ : 0);
-  in_.assign(cm->input_count(), 0.0);
-  xp_.assign(nx_, 0.0);
+  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
   guess_ = make_guess();
   const std::vector<double>& x0 = guess_;
@@ -147,7 +157,7 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
     for (size_t i = 0; i < nx_; ++i)
       xl[i + first_] = xu[i + first_] = i < nq_ ? q0_[i] : v0_[i - nq_];
   }
-  for (const BoundaryValue& b : spec_.final) fix(xi(N_, 0), b);
+  for (const BoundaryValue& b : final_) fix(xi(N_, 0), b);
   std::fill(gl, gl + rows_, 0.0);
   std::fill(gu, gu + rows_, 0.0);
   for (size_t p = 0; p < static_cast<size_t>(N_ * d_); ++p)
@@ -157,41 +167,142 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
     }
 }
 
+std::vector<double> Transcription::boundary_state(bool end) {
+  std::vector<double> x(nx_);
+  for (size_t i = 0; i < nx_; ++i) x[i] = i < nq_ ? q0_[i] : v0_[i - nq_];
+  std::vector<bool> keep(nx_, false);
+  const auto write = [&](const std::vector<BoundaryValue>& values) {
+    for (const BoundaryValue& b : values)
+      if (b.fixed()) {
+        x[state_index(b.state, nq_)] = b.bounds.lower;
+        keep[state_index(b.state, nq_)] = true;
+      }
+  };
+  if (spec_.initial) write(*spec_.initial);
+  if (end) write(spec_.final);
+  if (m_ > 0)
+    dyn_.try_project(end ? T_ : 0.0, x.data(), x.data() + nq_, kept_coordinates(keep, nq_));
+  return x;
+}
+
+// docs/theory.md §10, "Constrained models": at t = 0 the fixed initial values are exact and the
+// invariants C = 0, Ċ = 0 are imposed where those values leave them free; at t = T the dynamics
+// keep the invariants (to the collocation's accuracy), so a final value they imply is left out,
+// else the constraints' gradients would be (nearly) dependent. Rows are taken in order and kept
+// when independent of those before (Gram–Schmidt), at the boundary state.
+void Transcription::choose_boundary_rows() {
+  final_ = spec_.final;
+  if (m_ == 0) return;
+  std::vector<std::vector<double>> basis;
+  const auto independent = [&](std::vector<double> r) {
+    double size = 0.0;
+    for (double v : r) size = std::max(size, std::fabs(v));
+    if (!(size > 0.0)) return false;
+    for (int pass = 0; pass < 2; ++pass)
+      for (const std::vector<double>& b : basis) {
+        double dot = 0.0;
+        for (size_t i = 0; i < nx_; ++i) dot += r[i] * b[i];
+        for (size_t i = 0; i < nx_; ++i) r[i] -= dot * b[i];
+      }
+    double norm = 0.0;
+    for (double v : r) norm += v * v;
+    norm = std::sqrt(norm);
+    if (!(norm > 1e-8 * size)) return false;
+    for (double& v : r) v /= norm;
+    basis.push_back(std::move(r));
+    return true;
+  };
+  const auto unit = [&](const BoundaryValue& b) {
+    std::vector<double> r(nx_, 0.0);
+    r[state_index(b.state, nq_)] = 1.0;
+    return r;
+  };
+  const auto invariant_rows = [&](bool end) {
+    std::vector<std::vector<double>> rows(2 * m_, std::vector<double>(nx_, 0.0));
+    const std::vector<double> X = boundary_state(end);
+    invariant_gradients(end ? T_ : 0.0, X.data(),
+                        [&](size_t i, size_t c, double v) { rows[i][c] += v; });
+    return rows;
+  };
+  if (spec_.initial) {
+    size_t fixed = 0;
+    for (const BoundaryValue& b : *spec_.initial)
+      if (b.fixed()) fixed += independent(unit(b));
+    if (fixed < nx_) {
+      const auto rows = invariant_rows(false);
+      for (size_t i = 0; i < 2 * m_; ++i)
+        if (independent(rows[i])) start_rows_.push_back(i);
+    }
+  }
+  basis.clear();
+  for (const std::vector<double>& r : invariant_rows(true)) independent(r);
+  final_.clear();
+  for (const BoundaryValue& b : spec_.final)
+    (!b.fixed() || independent(unit(b)) ? final_ : implied_).push_back(b);
+}
+
+std::vector<double> Transcription::guessed_state(double t, const std::vector<double>& start,
+                                                 const std::vector<double>& end,
+                                                 const std::vector<bool>& keep) {
+  const double s = T_ > 0 ? t / T_ : 0.0;
+  std::vector<double> x(nx_);
+  for (size_t i = 0; i < nx_; ++i) x[i] = (1 - s) * start[i] + s * end[i];
+  if (!spec_.guess_paths.empty()) {
+    const std::vector<double> zero(std::max(nx_, nu_), 0.0);  // the paths depend on t alone
+    paths_.eval(load(t, zero.data(), zero.data()), out_);
+    const size_t count = paths_.count();
+    for (size_t f = 0; f < count; ++f) {
+      const size_t c = spec_.guess_paths[f].first.coordinate;
+      x[c] = out_[f];
+      x[nq_ + c] = 0.0;
+    }
+    for (size_t e = 0; e < paths_.pattern().size(); ++e) {
+      const auto [f, column] = paths_.pattern()[e];
+      if (column == 0) x[nq_ + spec_.guess_paths[f].first.coordinate] = out_[count + e];
+    }
+  }
+  if (m_ > 0) dyn_.try_project(t, x.data(), x.data() + nq_, kept_coordinates(keep, nq_));
+  return x;
+}
+
 std::vector<double> Transcription::make_guess() {
   std::vector<double> x(n_, 0.0), xl(n_), xu(n_), gl(rows_), gu(rows_);
   bounds(xl.data(), xu.data(), gl.data(), gu.data());
   if (free_T_) x[0] = T_;
-  std::vector<double> start(nx_), end(nx_);
-  for (size_t i = 0; i < nx_; ++i) start[i] = i < nq_ ? q0_[i] : v0_[i - nq_];
-  if (spec_.initial)
-    for (const BoundaryValue& b : *spec_.initial)
-      if (b.fixed()) start[state_index(b.state, nq_)] = b.bounds.lower;
-  end = start;  // free components keep their start value (clipped to the bounds below)
-  for (const BoundaryValue& b : spec_.final)
-    if (b.fixed()) end[state_index(b.state, nq_)] = b.bounds.lower;
+  const std::vector<double> start = boundary_state(false), end = boundary_state(true);
   auto clamp = [&](size_t i, double v) { return std::min(std::max(v, xl[i]), xu[i]); };
   std::vector<double> u0(nu_), times;
   for (size_t c = 0; c < nu_; ++c) u0[c] = clamp(ui(0) + c, spec_.controls[c].guess.value_or(0.0));
   for (int k = 0; k < N_; ++k)
     for (int j = 0; j < d_; ++j) times.push_back(T_ * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
   times.push_back(T_);
-  const bool simulated = spec_.guess == "simulation" || (spec_.guess.empty() && m_ > 0);
+  const bool simulated =
+      spec_.guess == "simulation" || (spec_.guess.empty() && spec_.guess_paths.empty() && m_ > 0);
   std::vector<std::vector<double>> states;
   if (simulated)
     states = simulated_states(
         dyn_, controls_, u0,
         std::vector<double>(start.begin(), start.begin() + static_cast<long>(nq_)),
         std::vector<double>(start.begin() + static_cast<long>(nq_), start.end()), times);
+  // The components a projection keeps: the fixed boundary values at the ends.
+  std::vector<bool> keep_start(nx_, false), keep_end(nx_, false), keep_none(nx_, false);
+  if (spec_.initial)
+    for (const BoundaryValue& b : *spec_.initial) keep_start[state_index(b.state, nq_)] = b.fixed();
+  for (const BoundaryValue& b : final_) keep_end[state_index(b.state, nq_)] = b.fixed();
   for (int k = 0; k < N_; ++k) {
     std::copy(u0.begin(), u0.end(), x.begin() + static_cast<long>(ui(k)));
     for (int j = 0; j <= d_; ++j) {
-      const double s = (k + rad_.tau[static_cast<size_t>(j)]) / N_;
       const size_t p = static_cast<size_t>(k * d_ + j);
+      const bool first = k == 0 && j == 0, last = k == N_ - 1 && j == d_;
+      const std::vector<double> guessed = states.empty() ? guessed_state(times[p], start, end,
+                                                                         first  ? keep_start
+                                                                         : last ? keep_end
+                                                                                : keep_none)
+                                                         : states[p];
       for (size_t i = 0; i < nx_; ++i)
-        // A simulated state stays as simulated (on the constraints; Ipopt moves it into the
-        // bounds itself), an interpolated one is clipped to them.
-        x[xi(k, j) + i] =
-            states.empty() ? clamp(xi(k, j) + i, (1 - s) * start[i] + s * end[i]) : states[p][i];
+        // A simulated or projected state stays as it is (on the constraints; Ipopt moves it
+        // into the bounds itself), an interpolated one is clipped to them.
+        x[xi(k, j) + i] = states.empty() && m_ == 0 ? clamp(xi(k, j) + i, guessed[i]) : guessed[i];
     }
   }
   // Multipliers from the forward dynamics at the guessed states (0 where it cannot solve).
@@ -307,15 +418,12 @@ void Transcription::constraint_values(const double* x, double* g) {
       std::copy(out_.begin() + 2, out_.begin() + 2 + static_cast<long>(np_),
                 g + path_rows_ + p * np_);
     }
-  size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
-  for (int end = 0; end < 2; ++end) {
-    if (!(end == 0 ? consistency_ : final_invariants_)) continue;
-    const int k = end == 0 ? 0 : N_ - 1;
-    for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, k)[c]);
-    const double* X = state(x, end == 0 ? 0 : N_, 0);
-    dyn_.constraints(end == 0 ? 0.0 : horizon(x), X, X + nq_, g + at, g + at + m_);
-    at += 2 * m_;
-  }
+  if (start_rows_.empty()) return;
+  const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
+  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
+  std::vector<double> C(2 * m_);
+  dyn_.constraints(0.0, state(x, 0, 0), state(x, 0, 0) + nq_, C.data(), C.data() + m_);
+  for (size_t r = 0; r < start_rows_.size(); ++r) g[at + r] = C[start_rows_[r]];
 }
 
 void Transcription::jacobian(const double* x, double* values) {
@@ -382,34 +490,57 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
         }
       }
     }
-  // C = 0, Ċ = 0 at t = 0 and t = T (constraints without explicit t: no ∂/∂T term).
-  size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
-  for (int end = 0; end < 2; ++end) {
-    if (!(end == 0 ? consistency_ : final_invariants_)) continue;
-    const int k = end == 0 ? 0 : N_ - 1;
-    const size_t base = xi(end == 0 ? 0 : N_, 0);
-    for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, k)[c]);
-    const double* X = x + base;
-    // G = ∂Ċ/∂v is a value, ∂C/∂q and ∂Ċ/∂q are derivatives on the Jacobian tape (at the inputs
-    // dyn.constraints loads); no KKT solve, so no singular-matrix stop.
-    std::vector<double> C(m_), Cdot(m_);
-    dyn_.constraints(end == 0 ? 0.0 : T, X, X + nq_, C.data(), Cdot.data());
-    const Tape& tape = jac_.tape();
-    out_.resize(tape.num_outputs());
-    std::vector<double> work(std::max<size_t>(tape.work_size(), 1));
-    tape.eval(dyn_.last_inputs().data(), out_.data(), work.data());
-    const CompiledModel& cm = *cm_;
-    for (size_t e = 0; e < cm.G_pattern.size(); ++e)
-      emit(at + m_ + cm.G_pattern[e].first, base + nq_ + cm.G_pattern[e].second,
-           out_[cm.G_out() + e]);
-    for (size_t e = 0; e < jac_.pattern().size(); ++e) {
-      const auto [r, col] = jac_.pattern()[e];
-      if (r >= cm.Cdot_out() && r < cm.Cq_out() && col < nq_)  // ∂Ċ/∂q, then ∂C/∂q
-        emit(at + (r < cm.C_out() ? m_ + r - cm.Cdot_out() : r - cm.C_out()), base + col,
-             out_[jac_.value_count() + e]);
-    }
-    at += 2 * m_;
+  // The invariants imposed at t = 0.
+  if (start_rows_.empty()) return;
+  std::vector<size_t> row_of(2 * m_, rows_);
+  for (size_t r = 0; r < start_rows_.size(); ++r)
+    row_of[start_rows_[r]] = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + r;
+  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
+  invariant_gradients(0.0, state(x, 0, 0), [&](size_t i, size_t col, double v) {
+    if (row_of[i] < rows_) emit(row_of[i], xi(0, 0) + col, v);
+  });
+}
+
+// G = ∂Ċ/∂v is a value, ∂C/∂q and ∂Ċ/∂q are derivatives on the Jacobian tape (at the inputs
+// dyn.constraints loads); no KKT solve, so no singular-matrix stop. Constraints without explicit
+// t: no ∂/∂T term.
+template <class Emit>
+void Transcription::invariant_gradients(double t, const double* X, Emit&& emit) {
+  std::vector<double> C(m_), Cdot(m_);
+  dyn_.constraints(t, X, X + nq_, C.data(), Cdot.data());
+  const Tape& tape = jac_.tape();
+  out_.resize(tape.num_outputs());
+  std::vector<double> work(std::max<size_t>(tape.work_size(), 1));
+  tape.eval(dyn_.last_inputs().data(), out_.data(), work.data());
+  const CompiledModel& cm = *cm_;
+  for (size_t e = 0; e < cm.G_pattern.size(); ++e)
+    emit(m_ + cm.G_pattern[e].first, nq_ + cm.G_pattern[e].second, out_[cm.G_out() + e]);
+  for (size_t e = 0; e < jac_.pattern().size(); ++e) {
+    const auto [r, col] = jac_.pattern()[e];
+    if (r >= cm.Cdot_out() && r < cm.Cq_out() && col < nq_)  // ∂Ċ/∂q, then ∂C/∂q
+      emit(r < cm.C_out() ? m_ + r - cm.Cdot_out() : r - cm.C_out(), col,
+           out_[jac_.value_count() + e]);
   }
+}
+
+std::vector<Transcription::ImpliedGap> Transcription::implied_final_gaps(const double* x) {
+  std::vector<ImpliedGap> gaps;
+  if (implied_.empty()) return gaps;
+  const CompiledModel& c = *cm_;
+  std::vector<double> end(state(x, N_, 0), state(x, N_, 0) + nx_);
+  std::vector<bool> keep(nx_, false);
+  for (const BoundaryValue& b : final_) keep[state_index(b.state, nq_)] = b.fixed();
+  for (size_t u = 0; u < nu_; ++u) dyn_.hold_input(controls_[u], control(x, N_ - 1)[u]);
+  dyn_.try_project(horizon(x), end.data(), end.data() + nq_, kept_coordinates(keep, nq_));
+  for (const BoundaryValue& b : implied_) {
+    const std::string name = b.state.velocity ? c.velocity_names[b.state.coordinate]
+                                              : c.coordinate_names[b.state.coordinate];
+    const size_t i = state_index(b.state, nq_);
+    gaps.push_back({fmt::format("final value of '{}' (implied by the constraints)", name),
+                    b.bounds.lower, std::fabs(state(x, N_, 0)[i] - b.bounds.lower),
+                    std::fabs(end[i] - b.bounds.lower)});
+  }
+  return gaps;
 }
 
 std::string Transcription::describe(size_t row, const double* x) const {
@@ -431,10 +562,9 @@ std::string Transcription::describe(size_t row, const double* x) const {
                        time(x, static_cast<int>(p) / d_, static_cast<int>(p) % d_ + 1));
   }
   row -= static_cast<size_t>(N_ * d_) * np_;
-  const bool final = !consistency_ || row >= 2 * m_;
-  return fmt::format("constraint '{}' {}at t = {}", c.constraint_names[row % m_],
-                     row % (2 * m_) < m_ ? "" : "rate ",
-                     final ? fmt::format("{:.6g}", horizon(x)) : "0");
+  const size_t i = start_rows_.at(row);
+  return fmt::format("constraint '{}' {}at t = 0", c.constraint_names[i % m_],
+                     i < m_ ? "" : "rate ");
 }
 
 }  // namespace lagrange::collocation

@@ -18,7 +18,9 @@ namespace lagrange::collocation {
 /// Variables: [T when free], then per interval k < N the state X_{k,0…d−1} (x = (q, v)), the
 /// multipliers Λ_{k,1…d} and the controls U_k, then X_{N,0}; X_{k,d} is X_{k+1,0}.
 /// Constraints: per interval and collocation point j the DAE residual (nq + nv + m rows) and the
-/// path constraints; then C = 0 and Ċ = 0 at t = 0 when the initial state is not all fixed.
+/// path constraints; then the invariants C = 0, Ċ = 0 at t = 0 that the fixed initial values do
+/// not already imply. Final values that the invariants imply (the dynamics keep them) are not
+/// imposed but checked (implied_final_gaps).
 class Transcription {
  public:
   Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
@@ -41,6 +43,14 @@ class Transcription {
   void jacobian(const double* x, double* values);
   /// What constraint `row` is and where, in words ("equation of motion of 'x_dot' at t = 0.25").
   std::string describe(size_t row, const double* x) const;
+  /// A final value left out because the invariants imply it (docs/theory.md §10, "Constrained
+  /// models"): its description, |x(T) − value|, and the same after x(T) is projected onto the
+  /// invariants keeping the imposed final values (the collocation's drift removed).
+  struct ImpliedGap {
+    std::string what;
+    double value = 0.0, gap = 0.0, projected = 0.0;
+  };
+  std::vector<ImpliedGap> implied_final_gaps(const double* x);
 
   // Reading a point of the NLP.
   int intervals() const { return N_; }
@@ -64,6 +74,21 @@ class Transcription {
   /// held: values into r (nq + nv + m).
   void residual(const double* x, int k, int j, double* r);
   std::vector<double> make_guess();
+  /// The guessed state at time t: the guessed paths (with their time derivatives) where written,
+  /// else linear between `start` and `end`; with constraints, projected onto C = 0, Ċ = 0 keeping
+  /// the components flagged in `keep`.
+  std::vector<double> guessed_state(double t, const std::vector<double>& start,
+                                    const std::vector<double>& end, const std::vector<bool>& keep);
+  /// The boundary state at t = 0 (`end` false) or T: the model's start with the fixed boundary
+  /// values written in, projected onto the invariants keeping them.
+  std::vector<double> boundary_state(bool end);
+  /// Rows of ∂(C, Ċ)/∂(q, v) at (t, X) as emit(invariant, column, value): invariant i < m is
+  /// C_i, m + i is Ċ_i; the last tape evaluation is dyn_'s.
+  template <class Emit>
+  void invariant_gradients(double t, const double* X, Emit&& emit);
+  /// Splits the boundary values into those imposed and those the invariants imply, and chooses
+  /// the invariants imposed at t = 0 (docs/theory.md §10, "Constrained models").
+  void choose_boundary_rows();
   /// Every Jacobian entry as emit(row, column, value), in a fixed order.
   template <class Emit>
   void walk_jacobian(const double* x, Emit&& emit);
@@ -80,8 +105,10 @@ class Transcription {
   bool free_T_;
   double T_;
   double sign_;
-  bool consistency_;               ///< C = 0, Ċ = 0 imposed at t = 0
-  bool final_invariants_ = false;  ///< C = 0, Ċ = 0 at t = T: not imposed (nearly redundant)
+  std::vector<size_t> start_rows_;    ///< invariants imposed at t = 0 (i < m: C_i, else Ċ_{i−m})
+  std::vector<BoundaryValue> final_;  ///< final values imposed as bounds
+  std::vector<BoundaryValue> implied_;  ///< final values the invariants imply, checked only
+  PointFunctions paths_;                ///< the guessed paths and their time derivatives
   std::vector<size_t> controls_;
   std::vector<double> q0_, v0_;
   size_t n_ = 0, rows_ = 0, block_ = 0, first_ = 0, path_rows_ = 0;

@@ -1,5 +1,5 @@
 // Optimal control against closed forms (docs/theory.md §10): minimum energy and minimum time of
-// the double integrator; the pendulum swing-up's convergence; constrained models refused.
+// the double integrator; the pendulum swing-up's convergence.
 
 #include <gtest/gtest.h>
 
@@ -41,19 +41,6 @@ TEST(OptimalControl, MinimumTimeDoubleIntegratorIsTwiceTheSquareRootOfTheDistanc
     EXPECT_NEAR(r.objective, r.horizon, 1e-12);
     EXPECT_NEAR(r.controls.front(), 1.0, 1e-5);
     EXPECT_NEAR(r.controls.back(), -1.0, 1e-5);
-  }
-}
-
-// A constrained model is refused, saying why (the Cartesian pendulum with its rod).
-TEST(OptimalControl, ConstrainedModelsAreRefusedSayingWhy) {
-  testing::OptimalProblem p("data/everything.yaml");
-  try {
-    p.solve(4, 2);
-    FAIL() << "a constrained model was accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("does not take models with constraints yet"),
-              std::string::npos)
-        << e.what();
   }
 }
 

@@ -85,5 +85,31 @@ TEST(OptimalControlErrors, ObjectiveSplitsIntoIntegrandAndTerminalTerms) {
   EXPECT_TRUE((m.optimal_control->terminal - x * x).expand().is_zero());
 }
 
+// Each integral(…) is renamed to a placeholder no longer than the text it replaces, for any count
+// (a longer one underflowed the padding from the 101st term on).
+TEST(OptimalControlErrors, TwoHundredIntegralTermsSum) {
+  std::string objective = "integral(x)";
+  for (int k = 1; k < 200; ++k) objective += "+integral(x)";
+  const Model m = read_model_string(
+      kModel + "  controls: {u: {}}\n  horizon: 1\n  minimize: " + objective + "\n", "di.yaml");
+  ASSERT_TRUE(m.optimal_control.has_value());
+  const GiNaC::symbol& x = m.coordinates[0].q;
+  EXPECT_TRUE((m.optimal_control->integrand - 200 * x).expand().is_zero());
+}
+
+// guess: a map of paths in t; a rate there is refused, saying it follows its coordinate.
+TEST(OptimalControlErrors, AGuessedPathIsACoordinateInT) {
+  const std::string ok = "  controls: {u: {}}\n  horizon: 1\n  minimize: integral(u^2)\n";
+  const Model m = read_model_string(kModel + ok + "  guess: {x: sin(t)}\n", "di.yaml");
+  ASSERT_EQ(m.optimal_control->guess_paths.size(), 1u);
+  EXPECT_EQ(m.optimal_control->guess_paths[0].first.coordinate, 0u);
+  const std::string rate = error_of(ok + "  guess: {x_dot: 1}\n");
+  EXPECT_NE(rate.find("di.yaml:12:11: error: expected a coordinate in guess, got the rate 'x_dot'"),
+            std::string::npos)
+      << rate;
+  const std::string word = error_of(ok + "  guess: straight\n");
+  EXPECT_NE(word.find("expected guess linear, simulation or a map"), std::string::npos) << word;
+}
+
 }  // namespace
 }  // namespace lagrange

@@ -79,17 +79,17 @@ TEST_P(NlpDerivatives, MatchCentralDifferences) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, NlpDerivatives,
-                         ::testing::Values("double_integrator_min_energy.yaml",
-                                           "double_integrator_min_time.yaml",
-                                           "cart_pole_swing_up.yaml",
-                                           "pendulum_swing_up_polar.yaml", "data/everything.yaml"),
-                         [](const auto& info) {
-                           std::string s = info.param.substr(0, info.param.size() - 5);
-                           for (char& c : s)
-                             if (c == '.' || c == '/') c = '_';
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Examples, NlpDerivatives,
+    ::testing::Values("double_integrator_min_energy.yaml", "double_integrator_min_time.yaml",
+                      "cart_pole_swing_up.yaml", "pendulum_swing_up_polar.yaml",
+                      "pendulum_swing_up_cartesian.yaml", "data/everything.yaml"),
+    [](const auto& info) {
+      std::string s = info.param.substr(0, info.param.size() - 5);
+      for (char& c : s)
+        if (c == '.' || c == '/') c = '_';
+      return s;
+    });
 
 }  // namespace
 }  // namespace lagrange
