@@ -214,6 +214,18 @@ class Model:
     ) -> SimpleNamespace:
         """The exact Jacobians at (q, v): a, qdot, lam, a_q, a_v, a_w, qdot_q, qdot_v, G, C_q,
         and the implicit form's K and Phi_x (dense), with d(a, lam)/dx = -K^-1 Phi_x."""
+    def optimize(
+        self,
+        intervals: Optional[int] = None,
+        degree: Optional[int] = None,
+        ipopt: Mapping[str, object] = {},
+        verify: bool = False,
+        verbose: bool = False,
+    ) -> SimpleNamespace:
+        """Solve the file's optimal_control problem as `lagrange optimize` does: optimal, status,
+        objective, horizon, controls (intervals x controls), control_names, run (a Run),
+        violation, worst_constraint, iterations, setup/solve/function seconds, and verify
+        (final_gap, largest_gap, message) or None."""
     def stepper(
         self,
         t_end: Optional[float] = None,

@@ -1,0 +1,95 @@
+#include "optimize.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include "cli/commands.hpp"
+#include "lagrange/error.hpp"
+#include "lagrange/optimize.hpp"
+#include "run.hpp"
+
+namespace py = pybind11;
+
+namespace lagrange::python {
+
+// docs/theory.md §10 through the library: the CLI's `optimize` and this share optimize() and
+// verify(), on a workspace of this call's own.
+py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::optional<int> degree,
+                          const std::map<std::string, py::object>& ipopt, bool verify_result,
+                          bool verbose) {
+  const cli::Prepared& p = *m.prepared;
+  if (!p.model->optimal_control)
+    throw py::value_error(p.model->name +
+                          " has no optimal_control section (docs/model-language.md, \"Optimal "
+                          "control\")");
+  if (p.equations.recursive)
+    throw py::value_error(
+        "optimize needs the Lagrangian form of the model: load it with "
+        "dynamics='lagrangian' (as `lagrange optimize` derives it)");
+  if ((intervals && *intervals < 1) || (degree && (*degree < 1 || *degree > 5)))
+    throw py::value_error("expected intervals >= 1 and degree from 1 to 5");
+  const OptimalControlSpec& spec = *p.model->optimal_control;
+  OptimizeOptions o;
+  o.intervals = intervals.value_or(0);
+  o.degree = degree.value_or(0);
+  o.verbose = verbose;
+  for (const auto& [key, value] : ipopt)
+    o.ipopt.emplace_back(key, py::str(value).cast<std::string>());
+  const SimulationOptions so = cli::simulation_options(*p.model, cli::RunSettings{});
+  Dynamics dynamics(p.compiled, p.dynamics->parameters());
+  dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
+  OptimizeResult r;
+  VerifyResult v;
+  {
+    py::gil_scoped_release release;
+    try {
+      r = optimize(p.equations, p.compiled, dynamics, spec, p.q, p.v, o);
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(spec.loc, e.what());
+    }
+    if (verify_result) {
+      SimulationOptions tight = so;
+      tight.integrator.rtol = 1e-10;
+      tight.integrator.atol = 1e-12;
+      v = verify(dynamics, spec, r, tight);
+    }
+  }
+  const size_t nu = r.control_names.size();
+  py::array_t<double> controls(
+      {static_cast<py::ssize_t>(r.intervals), static_cast<py::ssize_t>(nu)});
+  std::copy(r.controls.begin(), r.controls.end(), controls.mutable_data());
+  auto run = std::make_unique<Run>();
+  run->prepared = m.prepared;
+  run->integrator = "Radau IIA collocation";
+  run->wall_seconds = r.setup_seconds + r.solve_seconds;
+  run->trajectory = std::move(r.trajectory);
+  const py::object types = py::module_::import("types");
+  py::object verified = py::none();
+  if (verify_result)
+    verified = types.attr("SimpleNamespace")(py::arg("final_gap") = v.final_gap,
+                                             py::arg("largest_gap") = v.largest_gap,
+                                             py::arg("message") = v.message);
+  py::dict fields;
+  fields["optimal"] = r.optimal;
+  fields["status"] = r.status;
+  fields["objective"] = r.objective;
+  fields["horizon"] = r.horizon;
+  fields["intervals"] = r.intervals;
+  fields["degree"] = r.degree;
+  fields["iterations"] = r.iterations;
+  fields["violation"] = r.violation;
+  fields["worst_constraint"] = r.worst_constraint;
+  fields["control_names"] = r.control_names;
+  fields["controls"] = controls;
+  fields["run"] = py::cast(std::move(run));
+  fields["setup_seconds"] = p.derive_seconds + p.compile_seconds + r.setup_seconds;
+  fields["solve_seconds"] = r.solve_seconds;
+  fields["function_seconds"] = r.function_seconds;
+  fields["verify"] = verified;
+  return types.attr("SimpleNamespace")(**fields);
+}
+
+}  // namespace lagrange::python

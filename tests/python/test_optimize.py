@@ -1,0 +1,68 @@
+"""Model.optimize solves the file's optimal_control problem as `lagrange optimize` does: the same
+objective and the same collocated trajectory, bit for bit, and errors that say what is wrong."""
+
+import csv
+import subprocess
+
+import numpy as np
+import pytest
+
+import lagrange
+from conftest import SOURCE_DIR
+
+OPTIMAL = SOURCE_DIR / "examples" / "optimal"
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array([[float(x) for x in row] for row in rows[1:]])
+
+
+@pytest.mark.parametrize("name", ["cart_pole_swing_up.yaml", "pendulum_swing_up_cartesian.yaml"])
+def test_optimize_matches_the_cli(name, cli, tmp_path):
+    path = OPTIMAL / name
+    out = tmp_path / "opt.csv"
+    done = subprocess.run([cli, "optimize", str(path), "-o", str(out), "--intervals", "20"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    r = lagrange.load(str(path)).optimize(intervals=20)
+    assert r.optimal, r.status
+    assert f"objective          {r.objective:.10g}" in done.stdout
+    header, table = read_csv(out)
+    assert header == r.run.columns
+    got = np.column_stack([r.run[c] for c in header])
+    np.testing.assert_array_equal(got, table)
+    assert r.controls.shape == (20, len(r.control_names))
+    # The controls are the run's control column, one value per interval.
+    column = np.asarray(r.run[r.control_names[0]])
+    assert column[1] == r.controls[0, 0]
+
+
+def test_the_double_integrators_minimum_energy_is_the_closed_form():
+    # u constant on N intervals: J = 12 / (1 - 1/N^2) (docs/theory.md §10).
+    r = lagrange.load(str(OPTIMAL / "double_integrator_min_energy.yaml")).optimize(intervals=10)
+    assert r.optimal
+    assert r.objective == pytest.approx(12 / (1 - 1 / 100), rel=1e-9)
+
+
+def test_verify_re_simulates_onto_the_collocated_end():
+    r = lagrange.load(str(OPTIMAL / "pendulum_swing_up_polar.yaml")).optimize(verify=True)
+    assert r.verify.message == ""
+    assert r.verify.final_gap < 1e-2
+    assert lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(
+        intervals=10).verify is None
+
+
+def test_a_failure_is_a_result_not_an_exception():
+    r = lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(
+        intervals=10, ipopt={"max_iter": 2})
+    assert not r.optimal
+    assert "maximum number of iterations" in r.status
+
+
+def test_bad_requests_say_what_is_wrong(examples_dir):
+    with pytest.raises(ValueError, match="no optimal_control section"):
+        lagrange.load(str(examples_dir / "pendulum.yaml")).optimize()
+    with pytest.raises(ValueError, match="degree from 1 to 5"):
+        lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(degree=7)
