@@ -41,6 +41,9 @@ struct OptimizeResult {
   Trajectory trajectory;
   std::vector<double> controls;  ///< N × nu, row-major: the control on each interval
   int intervals = 0, degree = 0;
+  /// Ipopt had the exact Hessian of the Lagrangian (a fixed horizon and no option choosing
+  /// hessian_approximation), else its limited-memory approximation.
+  bool exact_hessian = false;
 };
 
 /// Solve `spec` for the model `eq` (compiled as `cm`) with workspace `dyn` (its parameters and

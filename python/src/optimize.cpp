@@ -80,6 +80,7 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["intervals"] = r.intervals;
   fields["degree"] = r.degree;
   fields["iterations"] = r.iterations;
+  fields["exact_hessian"] = r.exact_hessian;
   fields["violation"] = r.violation;
   fields["worst_constraint"] = r.worst_constraint;
   fields["control_names"] = r.control_names;

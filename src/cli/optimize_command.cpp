@@ -44,7 +44,8 @@ int run_optimize(const Options& opt) {
     fmt::print("{}: {} ({} iterations)\n", p.model->name, r.status, r.iterations);
     fmt::print("  objective          {:.10g}\n", r.objective);
     fmt::print("  horizon            {:.10g}{}\n", r.horizon, spec.free_horizon ? " (free)" : "");
-    fmt::print("  intervals, degree  {}, {} (Radau IIA)\n", r.intervals, r.degree);
+    fmt::print("  intervals, degree  {}, {} (Radau IIA), {} Hessian\n", r.intervals, r.degree,
+               r.exact_hessian ? "exact" : "limited-memory");
     fmt::print("  worst violation    {:.3g}{}\n", r.violation,
                r.worst_constraint.empty() ? "" : " (" + r.worst_constraint + ")");
     fmt::print(

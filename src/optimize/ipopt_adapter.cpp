@@ -61,7 +61,7 @@ class Adapter : public Ipopt::TNLP {
     n = static_cast<Index>(nlp_.variables());
     m = static_cast<Index>(nlp_.constraints());
     nnz_jac = static_cast<Index>(nlp_.jacobian_pattern().size());
-    nnz_h = 0;  // limited-memory quasi-Newton
+    nnz_h = static_cast<Index>(nlp_.has_hessian() ? nlp_.hessian_pattern().size() : 0);
     style = C_STYLE;
     return true;
   }
@@ -98,6 +98,18 @@ class Adapter : public Ipopt::TNLP {
       return true;
     }
     return timed([&] { nlp_.jacobian(x, values); });
+  }
+  bool eval_h(Index, const Number* x, bool, Number sigma, Index, const Number* y, bool, Index,
+              Index* rows, Index* cols, Number* values) override {
+    if (values == nullptr) {
+      const auto& nz = nlp_.hessian_pattern();
+      for (size_t e = 0; e < nz.size(); ++e) {
+        rows[e] = static_cast<Index>(nz[e].first);
+        cols[e] = static_cast<Index>(nz[e].second);
+      }
+      return true;
+    }
+    return timed([&] { nlp_.hessian(x, sigma, y, values); });
   }
   void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*,
                          const Number*, Index, const Number*, const Number*, Number,
@@ -147,13 +159,16 @@ IpoptOutcome solve_with_ipopt(Transcription& nlp,
   Ipopt::OptionsList& list = *app->Options();
   list.SetStringValue("sb", "yes");
   list.SetIntegerValue("print_level", verbose ? 5 : 0);
-  list.SetStringValue("hessian_approximation", "limited-memory");
+  list.SetStringValue("hessian_approximation", nlp.has_hessian() ? "exact" : "limited-memory");
   list.SetStringValue("linear_solver", "mumps");
   list.SetNumericValue("tol", 1e-8);
   list.SetIntegerValue("max_iter", 1000);
   for (const auto& [key, value] : options)
     if (!set_option(list, key, value))
       throw std::invalid_argument("Ipopt rejected the option " + key + "=" + value);
+  std::string approximation;
+  list.GetStringValue("hessian_approximation", approximation, "");
+  out.exact_hessian = approximation == "exact";
   if (app->Initialize() != Ipopt::Solve_Succeeded)
     throw std::runtime_error("Ipopt could not be initialised");
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = new Adapter(nlp, out);

@@ -16,6 +16,7 @@ struct IpoptOutcome {
   std::vector<double> x;  ///< the last iterate (the solution when optimal)
   int iterations = 0;
   double function_seconds = 0.0;  ///< spent in the transcription's functions
+  bool exact_hessian = false;     ///< Ipopt used the transcription's Hessian
 };
 
 /// Solve the NLP with Ipopt (MUMPS, limited-memory Hessian) from the transcription's guess,

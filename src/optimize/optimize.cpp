@@ -80,6 +80,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   r.optimal = out.optimal;
   r.status = out.status;
   r.iterations = out.iterations;
+  r.exact_hessian = out.exact_hessian;
   const double* x = out.x.data();
   r.horizon = nlp.horizon(x);
   r.objective = nlp.objective(x) * (nlp.maximize() ? -1.0 : 1.0);

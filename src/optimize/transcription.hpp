@@ -12,6 +12,7 @@
 #include "lagrange/optimal_control.hpp"
 #include "optimize/point_functions.hpp"
 #include "optimize/radau.hpp"
+#include "optimize/second_derivatives.hpp"
 
 namespace lagrange::collocation {
 
@@ -41,6 +42,13 @@ class Transcription {
   /// (row, column) of the Jacobian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& jacobian_pattern() const { return nz_; }
   void jacobian(const double* x, double* values);
+  /// Whether the exact Hessian of the Lagrangian is available (a fixed horizon; docs/theory.md
+  /// §10, "Hessian").
+  bool has_hessian() const { return hessian_ready_; }
+  /// (row, column), row ≥ column, of the Hessian's structural non-zeros, each once.
+  const std::vector<std::pair<size_t, size_t>>& hessian_pattern() const { return hnz_; }
+  /// σ∇²J + Σ y_r ∇²g_r at x, in hessian_pattern() order (y: one multiplier per constraint).
+  void hessian(const double* x, double sigma, const double* y, double* values);
   /// What constraint `row` is and where, in words ("equation of motion of 'x_dot' at t = 0.25").
   std::string describe(size_t row, const double* x) const;
   /// A final value left out because the invariants imply it (docs/theory.md §10, "Constrained
@@ -86,6 +94,12 @@ class Transcription {
   /// C_i, m + i is Ċ_i; the last tape evaluation is dyn_'s.
   template <class Emit>
   void invariant_gradients(double t, const double* X, Emit&& emit);
+  /// Compiles the second derivatives of the DAE, the point functions and the invariants, and
+  /// finds the Hessian's pattern (docs/theory.md §10, "Hessian").
+  void prepare_hessian();
+  /// Every Hessian entry as emit(row, column, value), row ≥ column, in a fixed order.
+  template <class Emit>
+  void walk_hessian(const double* x, double sigma, const double* y, Emit&& emit);
   /// Splits the boundary values into those imposed and those the invariants imply, and chooses
   /// the invariants imposed at t = 0 (docs/theory.md §10, "Constrained models").
   void choose_boundary_rows();
@@ -115,6 +129,13 @@ class Transcription {
   std::vector<std::pair<size_t, size_t>> nz_;
   std::vector<size_t> slot_;  ///< per emitted entry, its index in nz_
   std::vector<double> in_, out_, xp_, guess_;
+  // The Hessian: ∂² of Σ μ·(DAE residual) over (q, v, u, a, λ), of the weighted point
+  // functions over (q, v, u), of the weighted invariants over (q, v).
+  SecondDerivatives h_dae_, h_point_, h_invariants_;
+  bool hessian_ready_ = false;
+  std::vector<std::pair<size_t, size_t>> hnz_;
+  std::vector<size_t> hslot_;
+  std::vector<double> hin_, hout_;
 };
 
 }  // namespace lagrange::collocation

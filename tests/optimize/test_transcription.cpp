@@ -79,11 +79,65 @@ TEST_P(NlpDerivatives, MatchCentralDifferences) {
   }
 }
 
+// The Hessian of the Lagrangian σ∇²J + Σ y_r ∇²g_r against central differences of its gradient
+// σ∇J + Jᵀy (both exact and checked above), with random multipliers, every entry. A free horizon
+// has no exact Hessian (limited-memory instead).
+TEST_P(NlpDerivatives, HessianMatchesDifferencesOfTheLagrangiansGradient) {
+  testing::OptimalProblem p(GetParam());
+  collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
+  if (p.spec().free_horizon) {
+    EXPECT_FALSE(nlp.has_hessian());
+    return;
+  }
+  ASSERT_TRUE(nlp.has_hessian());
+  std::vector<double> x = nlp.guess();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> perturb(-0.3, 0.3), multiplier(-2.0, 2.0);
+  for (double& xi : x) xi += perturb(rng);
+  const size_t n = nlp.variables(), m = nlp.constraints();
+  std::vector<double> y(m);
+  for (double& yi : y) yi = multiplier(rng);
+  const double sigma = 0.7;
+  std::vector<double> J(nlp.jacobian_pattern().size()), grad(n);
+  const auto lagrangian_gradient = [&](std::vector<double>& out) {
+    nlp.gradient(x.data(), grad.data());
+    nlp.jacobian(x.data(), J.data());
+    for (size_t i = 0; i < n; ++i) out[i] = sigma * grad[i];
+    for (size_t e = 0; e < J.size(); ++e) {
+      const auto [r, c] = nlp.jacobian_pattern()[e];
+      out[c] += y[r] * J[e];
+    }
+  };
+  std::vector<double> H(nlp.hessian_pattern().size());
+  nlp.hessian(x.data(), sigma, y.data(), H.data());
+  std::vector<std::vector<double>> dense(n, std::vector<double>(n, 0.0));
+  for (size_t e = 0; e < H.size(); ++e) {
+    const auto [r, c] = nlp.hessian_pattern()[e];
+    ASSERT_GE(r, c);
+    dense[r][c] = dense[c][r] = H[e];
+  }
+  std::vector<double> lp(n), lm(n);
+  for (size_t c = 0; c < n; ++c) {
+    const double step = 1e-6 * std::max(1.0, std::fabs(x[c])), keep = x[c];
+    x[c] = keep + step;
+    lagrangian_gradient(lp);
+    x[c] = keep - step;
+    lagrangian_gradient(lm);
+    x[c] = keep;
+    for (size_t r = 0; r < n; ++r) {
+      const double fd = (lp[r] - lm[r]) / (2 * step);
+      ASSERT_NEAR(dense[r][c], fd, 2e-5 * std::max(1.0, std::fabs(fd)))
+          << "entry (" << r << ", " << c << ")";
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Examples, NlpDerivatives,
     ::testing::Values("double_integrator_min_energy.yaml", "double_integrator_min_time.yaml",
                       "cart_pole_swing_up.yaml", "pendulum_swing_up_polar.yaml",
-                      "pendulum_swing_up_cartesian.yaml", "data/everything.yaml"),
+                      "pendulum_swing_up_cartesian.yaml", "data/everything.yaml",
+                      "data/everything_fixed_horizon.yaml"),
     [](const auto& info) {
       std::string s = info.param.substr(0, info.param.size() - 5);
       for (char& c : s)

@@ -1,0 +1,32 @@
+#include "optimize/second_derivatives.hpp"
+
+#include <algorithm>
+
+namespace lagrange::collocation {
+
+SecondDerivatives::SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
+                                     const std::vector<size_t>& columns) {
+  std::vector<GiNaC::ex> outputs;
+  for (size_t a = 0; a < columns.size(); ++a) {
+    const GiNaC::symbol& x = inputs.at(columns[a]);
+    if (!s.has(x)) continue;
+    const GiNaC::ex first = s.diff(x);
+    for (size_t b = 0; b <= a; ++b) {
+      const GiNaC::symbol& y = inputs.at(columns[b]);
+      if (!first.has(y)) continue;
+      const GiNaC::ex second = first.diff(y);
+      if (second.is_zero()) continue;
+      pattern_.emplace_back(a, b);
+      outputs.push_back(second);
+    }
+  }
+  tape_ = Tape::compile(outputs, inputs);
+  work_.resize(std::max<size_t>(tape_.work_size(), 1));
+}
+
+void SecondDerivatives::eval(const std::vector<double>& in, std::vector<double>& out) const {
+  out.resize(tape_.num_outputs());
+  tape_.eval(in.data(), out.data(), work_.data());
+}
+
+}  // namespace lagrange::collocation

@@ -1,0 +1,31 @@
+#pragma once
+// The second derivatives of one scalar expression along chosen tape inputs, the structural
+// non-zeros of its lower triangle only, compiled onto one tape (docs/theory.md §10, "Hessian").
+
+#include <ginac/ginac.h>
+
+#include <utility>
+#include <vector>
+
+#include "lagrange/tape.hpp"
+
+namespace lagrange::collocation {
+
+/// ∂²s/∂c_a∂c_b for columns a ≥ b, where column a is input `columns[a]` of `inputs`.
+class SecondDerivatives {
+ public:
+  SecondDerivatives() = default;
+  SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
+                    const std::vector<size_t>& columns);
+  /// (a, b), a ≥ b, of each output, in output order.
+  const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
+  /// The derivatives at the tape input vector `in` into `out` (pattern().size() values).
+  void eval(const std::vector<double>& in, std::vector<double>& out) const;
+
+ private:
+  std::vector<std::pair<size_t, size_t>> pattern_;
+  Tape tape_;
+  mutable std::vector<double> work_;
+};
+
+}  // namespace lagrange::collocation

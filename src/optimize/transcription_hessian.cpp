@@ -1,0 +1,200 @@
+// The exact Hessian of the NLP's Lagrangian σ∇²J + Σ y_r ∇²g_r (docs/theory.md §10, "Hessian"):
+// at each collocation point the second derivatives of Σ μ·r(q, v, u, a, λ) for the DAE residual
+// r, with a = v' linear in the states (the collocation derivative), of the weighted objective
+// and path-constraint functions, and at t = 0 of the weighted invariants; compiled symbolically
+// like the first derivatives and scattered through the linear maps onto the NLP's variables.
+
+#include <map>
+
+#include "optimize/transcription.hpp"
+
+namespace lagrange::collocation {
+
+namespace {
+
+/// New symbols name0, name1, … (count of them).
+std::vector<GiNaC::symbol> symbols(const std::string& name, size_t count) {
+  std::vector<GiNaC::symbol> out;
+  for (size_t i = 0; i < count; ++i) out.emplace_back(name + std::to_string(i));
+  return out;
+}
+
+/// One variable of the NLP and its coefficient in a local column.
+struct Term {
+  size_t variable;
+  double coefficient;
+};
+
+/// H·∂z_a·∂z_b scattered onto the lower triangle: a local diagonal entry (a = b) gives each
+/// variable pair once; an off-diagonal one (a > b) stands for both (a, b) and (b, a), so it
+/// counts twice where its two variables coincide.
+template <class Emit>
+void scatter(bool diagonal, const std::vector<Term>& A, const std::vector<Term>& B, double H,
+             Emit& emit) {
+  for (const Term& a : A)
+    for (const Term& b : diagonal ? A : B) {
+      if (diagonal && a.variable < b.variable) continue;
+      const double v = H * a.coefficient * b.coefficient;
+      const double twice = !diagonal && a.variable == b.variable ? 2.0 : 1.0;
+      emit(std::max(a.variable, b.variable), std::min(a.variable, b.variable), twice * v);
+    }
+}
+
+}  // namespace
+
+void Transcription::prepare_hessian() {
+  const Equations& eq = eq_;
+  const CompiledModel& cm = *cm_;
+  const std::vector<GiNaC::ex> out = dynamics_expressions(eq, cm);
+  const std::vector<GiNaC::symbol> base = eq.tape_inputs();
+  std::vector<size_t> state_columns;  // q, v, then the controls
+  for (size_t i = 0; i < nx_; ++i) state_columns.push_back(cm.q_offset() + i);
+  for (size_t c : controls_) state_columns.push_back(cm.u_offset() + c);
+
+  // Σ μ_r r_r (docs/theory.md §4.3): r_q = q' − q̇ (q' linear: no second derivative),
+  // r_v = M a + Gᵀλ − (h + Q), r_λ = G a + c + 2αĊ + α²C.
+  {
+    const std::vector<GiNaC::symbol> a = symbols("hess_a", nv_), lam = symbols("hess_l", m_),
+                                     mu = symbols("hess_mu", nx_ + m_);
+    const GiNaC::symbol alpha("hess_alpha");
+    GiNaC::ex s = 0;
+    for (size_t i = 0; i < nq_; ++i) s -= mu[i] * out[cm.qdot_out() + i];
+    for (size_t i = 0; i < nv_; ++i) s -= mu[nq_ + i] * out[cm.rhs_out() + i];
+    for (size_t e = 0; e < cm.M_pattern.size(); ++e) {  // upper triangle of the symmetric M
+      const auto [i, j] = cm.M_pattern[e];
+      s += out[e] * mu[nq_ + i] * a[j];
+      if (i != j) s += out[e] * mu[nq_ + j] * a[i];
+    }
+    for (size_t k = 0; k < m_; ++k)
+      s += mu[nx_ + k] * (out[cm.c_out() + k] + 2 * alpha * out[cm.Cdot_out() + k] +
+                          alpha * alpha * out[cm.C_out() + k]);
+    for (size_t e = 0; e < cm.G_pattern.size(); ++e) {
+      const auto [k, j] = cm.G_pattern[e];
+      s += out[cm.G_out() + e] * (mu[nq_ + j] * lam[k] + mu[nx_ + k] * a[j]);
+    }
+    std::vector<GiNaC::symbol> in = base;
+    std::vector<size_t> columns = state_columns;
+    for (const std::vector<GiNaC::symbol>* group : {&a, &lam})
+      for (const GiNaC::symbol& x : *group) {
+        columns.push_back(in.size());
+        in.push_back(x);
+      }
+    in.push_back(alpha);
+    in.insert(in.end(), mu.begin(), mu.end());
+    h_dae_ = SecondDerivatives(s, in, columns);
+  }
+  // w₀ L + w₁ Φ + Σ w_p g_p.
+  {
+    const std::vector<GiNaC::symbol> w = symbols("hess_w", fun_.count());
+    std::vector<GiNaC::ex> fs{spec_.integrand, spec_.terminal};
+    for (const PathConstraintSpec& p : spec_.path) fs.push_back(p.expr);
+    GiNaC::ex s = 0;
+    for (size_t f = 0; f < fs.size(); ++f) s += w[f] * fs[f];
+    std::vector<GiNaC::symbol> in = base;
+    in.insert(in.end(), w.begin(), w.end());
+    h_point_ = SecondDerivatives(s, in, state_columns);
+  }
+  // Σ ν_i C_i + Σ ν_{m+i} Ċ_i.
+  if (!start_rows_.empty()) {
+    const std::vector<GiNaC::symbol> nu = symbols("hess_nu", 2 * m_);
+    GiNaC::ex s = 0;
+    for (size_t k = 0; k < m_; ++k)
+      s += nu[k] * out[cm.C_out() + k] + nu[m_ + k] * out[cm.Cdot_out() + k];
+    std::vector<GiNaC::symbol> in = base;
+    in.insert(in.end(), nu.begin(), nu.end());
+    h_invariants_ = SecondDerivatives(
+        s, in, std::vector<size_t>(state_columns.begin(), state_columns.begin() + nx_));
+  }
+  // The pattern: one walk, entries merged by position.
+  std::vector<double> ones(rows_, 1.0);
+  std::map<std::pair<size_t, size_t>, size_t> where;
+  walk_hessian(guess_.data(), 1.0, ones.data(), [&](size_t r, size_t c, double) {
+    auto [it, added] = where.emplace(std::make_pair(r, c), hnz_.size());
+    if (added) hnz_.emplace_back(r, c);
+    hslot_.push_back(it->second);
+  });
+  hessian_ready_ = true;
+}
+
+void Transcription::hessian(const double* x, double sigma, const double* y, double* values) {
+  std::fill(values, values + hnz_.size(), 0.0);
+  size_t e = 0;
+  walk_hessian(x, sigma, y, [&](size_t, size_t, double v) { values[hslot_[e++]] += v; });
+}
+
+template <class Emit>
+void Transcription::walk_hessian(const double* x, double sigma, const double* y, Emit&& emit) {
+  const double h = horizon(x) / N_;
+  const size_t nr = nx_ + m_;
+  std::vector<Term> A, B;
+  // The NLP variables of local column `col` at point (k, j): q, v, u, then a = v' and λ.
+  const auto terms = [&](int k, int j, size_t col, std::vector<Term>& t) {
+    t.clear();
+    if (col < nx_) {
+      t.push_back({xi(k, j) + col, 1.0});
+    } else if (col < nx_ + nu_) {
+      t.push_back({ui(k) + col - nx_, 1.0});
+    } else if (col < nx_ + nu_ + nv_) {
+      for (int l = 0; l <= d_; ++l)
+        t.push_back({xi(k, l) + nq_ + col - nx_ - nu_, rad_.derivative(j, l) / h});
+    } else {
+      t.push_back({li(k, j) + col - nx_ - nu_ - nv_, 1.0});
+    }
+  };
+  const auto scatter_all = [&](const SecondDerivatives& sd, int k, int j) {
+    sd.eval(hin_, hout_);
+    for (size_t e = 0; e < sd.pattern().size(); ++e) {
+      const auto [a, b] = sd.pattern()[e];
+      terms(k, j, a, A);
+      terms(k, j, b, B);
+      scatter(a == b, A, B, hout_[e], emit);
+    }
+  };
+  for (int k = 0; k < N_; ++k)
+    for (int j = 1; j <= d_; ++j) {
+      const size_t p = static_cast<size_t>(k * d_ + j - 1);
+      const double* X = state(x, k, j);
+      // The DAE residual: inputs, a = v', λ, α, μ.
+      hin_ = load(time(x, k, j), X, control(x, k));
+      for (size_t i = 0; i < nv_; ++i) {
+        double a = 0.0;
+        for (int l = 0; l <= d_; ++l) a += rad_.derivative(j, l) / h * state(x, k, l)[nq_ + i];
+        hin_.push_back(a);
+      }
+      hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
+      hin_.push_back(dyn_.baumgarte());
+      hin_.insert(hin_.end(), y + p * nr, y + (p + 1) * nr);
+      scatter_all(h_dae_, k, j);
+      // The integrand (Radau weight) and the path constraints.
+      hin_ = load(time(x, k, j), X, control(x, k));
+      hin_.push_back(sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)]);
+      hin_.push_back(0.0);
+      for (size_t i = 0; i < np_; ++i) hin_.push_back(y[path_rows_ + p * np_ + i]);
+      scatter_all(h_point_, k, j);
+    }
+  // The terminal term at (T, X_{N,0}, U_{N−1}): the point's columns are the end state's.
+  hin_ = load(horizon(x), state(x, N_, 0), control(x, N_ - 1));
+  hin_.push_back(0.0);
+  hin_.push_back(sigma * sign_);
+  hin_.resize(hin_.size() + np_, 0.0);
+  h_point_.eval(hin_, hout_);
+  for (size_t e = 0; e < h_point_.pattern().size(); ++e) {
+    const auto [a, b] = h_point_.pattern()[e];
+    const auto end_terms = [&](size_t col, std::vector<Term>& t) {
+      t.assign(1, {col < nx_ ? xi(N_, 0) + col : ui(N_ - 1) + col - nx_, 1.0});
+    };
+    end_terms(a, A);
+    end_terms(b, B);
+    scatter(a == b, A, B, hout_[e], emit);
+  }
+  // The invariants imposed at t = 0, on X_{0,0}.
+  if (start_rows_.empty()) return;
+  hin_ = load(0.0, state(x, 0, 0), control(x, 0));
+  const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
+  std::vector<double> nu(2 * m_, 0.0);
+  for (size_t r = 0; r < start_rows_.size(); ++r) nu[start_rows_[r]] = y[at + r];
+  hin_.insert(hin_.end(), nu.begin(), nu.end());
+  scatter_all(h_invariants_, 0, 0);
+}
+
+}  // namespace lagrange::collocation
