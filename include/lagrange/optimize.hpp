@@ -44,6 +44,9 @@ struct OptimizeResult {
   /// Ipopt had the exact Hessian of the Lagrangian (a fixed horizon and no option choosing
   /// hessian_approximation), else its limited-memory approximation.
   bool exact_hessian = false;
+  /// What looks wrong in the problem but does not stop it, each a located line
+  /// ("model.yaml:12:5: warning: control 'G' is used by no equation …").
+  std::vector<std::string> warnings;
 };
 
 /// Solve `spec` for the model `eq` (compiled as `cm`) with workspace `dyn` (its parameters and

@@ -57,6 +57,8 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
       v = verify(dynamics, spec, r, tight);
     }
   }
+  for (const std::string& w : r.warnings)
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();
   const size_t nu = r.control_names.size();
   py::array_t<double> controls(
       {static_cast<py::ssize_t>(r.intervals), static_cast<py::ssize_t>(nu)});

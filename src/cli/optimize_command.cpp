@@ -39,6 +39,7 @@ int run_optimize(const Options& opt) {
   } catch (const std::invalid_argument& e) {
     throw ModelError(spec.loc, e.what());
   }
+  for (const std::string& w : r.warnings) fmt::print(stderr, "{}\n", w);
   if (!opt.csv.empty()) write_trajectory_csv(r.trajectory, opt.csv);
   if (!opt.quiet) {
     fmt::print("{}: {} ({} iterations)\n", p.model->name, r.status, r.iterations);

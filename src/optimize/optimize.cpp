@@ -22,6 +22,26 @@ namespace {
 // instead of upright, misses it by O(1); the projection leaves ~1e-12 of the collocation's drift).
 constexpr double kImpliedTolerance = 1e-6;
 
+/// Controls that no equation of motion, objective term or path constraint uses: the optimiser
+/// can move nothing with them (their values are arbitrary within the bounds).
+std::vector<std::string> unused_controls(const Equations& eq, const CompiledModel& cm,
+                                         const OptimalControlSpec& spec) {
+  std::vector<GiNaC::ex> used = dynamics_expressions(eq, cm);
+  used.push_back(spec.integrand);
+  used.push_back(spec.terminal);
+  for (const PathConstraintSpec& p : spec.path) used.push_back(p.expr);
+  std::vector<std::string> warnings;
+  for (const ControlSpec& c : spec.controls) {
+    const Input& input = eq.model->inputs.at(c.input);
+    if (std::none_of(used.begin(), used.end(), [&](const GiNaC::ex& e) { return e.has(input.u); }))
+      warnings.push_back(fmt::format(
+          "{}: warning: control '{}' is used by no equation of motion, objective term or path "
+          "constraint: the optimiser can move nothing with it, and its values are arbitrary",
+          c.loc.str(), input.name));
+  }
+  return warnings;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -65,6 +85,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
                         const std::vector<double>& v0, const OptimizeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   OptimizeResult r;
+  r.warnings = unused_controls(eq, *cm, spec);
   r.intervals = options.intervals > 0 ? options.intervals : spec.intervals;
   r.degree = options.degree > 0 ? options.degree : spec.degree;
   for (const ControlSpec& c : spec.controls)

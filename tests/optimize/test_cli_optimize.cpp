@@ -56,6 +56,28 @@ TEST(OptimizeCommand, InfeasibleProblemExitsThreeNamingTheMostViolatedConstraint
   std::filesystem::remove(yaml);
 }
 
+// A control that nothing uses is solved around, with a located warning naming it.
+TEST(OptimizeCommand, AnUnusedControlIsALocatedWarning) {
+  const std::string yaml = (std::filesystem::temp_directory_path() / "unused.yaml").string();
+  {
+    std::ifstream src(kDir + "double_integrator_min_energy.yaml");
+    std::ofstream dst(yaml);
+    for (std::string line; std::getline(src, line);) {
+      if (line == "  u: 0") line = "  u: 0\n  w: 0";
+      if (line == "    u: {}") line = "    u: {}\n    w: {lower: -1, upper: 1}";
+      dst << line << "\n";
+    }
+  }
+  const auto r = testing::run_shell("optimize " + yaml + " --intervals 4");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("unused.yaml:17:5: warning: control 'w' is used by no equation of "
+                          "motion, objective term or path constraint"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("control 'u' is used by no"), std::string::npos) << r.output;
+  std::filesystem::remove(yaml);
+}
+
 TEST(OptimizeCommand, ModelWithoutAProblemIsAUsageError) {
   const auto r = testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) +
                                     "/examples/pendulum.yaml");
