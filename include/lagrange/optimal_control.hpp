@@ -73,6 +73,10 @@ struct OptimalControlSpec {
   /// bounded.
   std::optional<std::vector<BoundaryValue>> initial;
   std::vector<BoundaryValue> final;
+  /// x(T) = x(0) for these components (`periodic: true`: every coordinate and rate); with
+  /// constraints only those the invariants leave independent are imposed (docs/theory.md §10,
+  /// "Periodic problems").
+  std::vector<StateRef> periodic;
   /// The starting point: "linear" interpolation between the boundary states, a "simulation" of
   /// the model with the controls at their guesses, or "" (simulation for constrained models,
   /// whose states a straight line would take off the constraints; linear otherwise).

@@ -116,7 +116,7 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   expect_map(node, "optimal_control");
   check_keys(node,
              {"controls", "horizon", "minimize", "maximize", "bounds", "path", "initial", "final",
-              "guess", "intervals", "degree"},
+              "periodic", "guess", "intervals", "degree"},
              "optimal_control");
   OptimalControlSpec spec;
   spec.loc = src_.at(node);
@@ -210,6 +210,25 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
     return out;
   };
   if (node["initial"]) spec.initial = boundary("initial");
+  if (const YAML::Node p = node["periodic"]; p) {
+    if (p.IsScalar() && (p.Scalar() == "true" || p.Scalar() == "false")) {
+      if (p.Scalar() == "true") {
+        for (const Body& b : m_.bodies)
+          if (b.free)
+            fail(p, fmt::format("expected periodic as a list of coordinates and rates for a "
+                                "model with the free body '{}' (periodic: true covers the "
+                                "coordinates and their rates, not a body's R and ω)",
+                                b.name));
+        for (size_t c = 0; c < m_.coordinates.size(); ++c)
+          for (const bool rate : {false, true}) spec.periodic.push_back({c, rate, src_.at(p)});
+      }
+    } else {
+      expect_seq(p, "periodic (true, or a list of coordinates and rates NAME_dot)");
+      for (const auto& item : p) spec.periodic.push_back(state_ref(item, "a periodic component"));
+    }
+    // A periodic orbit starts where it ends: the initial state is free unless written.
+    if (!spec.periodic.empty() && !spec.initial) spec.initial.emplace();
+  }
   if (node["final"]) spec.final = boundary("final");
 
   if (node["guess"] && node["guess"].IsMap()) {

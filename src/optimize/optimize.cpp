@@ -22,10 +22,11 @@ namespace {
 // instead of upright, misses it by O(1); the projection leaves ~1e-12 of the collocation's drift).
 constexpr double kImpliedTolerance = 1e-6;
 
-/// Controls that no equation of motion, objective term or path constraint uses: the optimiser
-/// can move nothing with them (their values are arbitrary within the bounds).
-std::vector<std::string> unused_controls(const Equations& eq, const CompiledModel& cm,
-                                         const OptimalControlSpec& spec) {
+/// What looks wrong but does not stop the solve: controls that no equation of motion, objective
+/// term or path constraint uses (the optimiser can move nothing with them), and a periodic orbit
+/// of free period whose phase nothing fixes (a family of solutions: Ipopt may wander along it).
+std::vector<std::string> problem_warnings(const Equations& eq, const CompiledModel& cm,
+                                          const OptimalControlSpec& spec) {
   std::vector<GiNaC::ex> used = dynamics_expressions(eq, cm);
   used.push_back(spec.integrand);
   used.push_back(spec.terminal);
@@ -39,6 +40,13 @@ std::vector<std::string> unused_controls(const Equations& eq, const CompiledMode
           "constraint: the optimiser can move nothing with it, and its values are arbitrary",
           c.loc.str(), input.name));
   }
+  if (!spec.periodic.empty() && spec.free_horizon && spec.initial &&
+      std::none_of(spec.initial->begin(), spec.initial->end(),
+                   [](const BoundaryValue& b) { return b.fixed(); }))
+    warnings.push_back(fmt::format(
+        "{}: warning: the phase of this periodic orbit is free (a free period and no fixed "
+        "initial value): fix one initial value, such as a rate that is 0 at a turning point",
+        spec.loc.str()));
   return warnings;
 }
 
@@ -85,7 +93,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
                         const std::vector<double>& v0, const OptimizeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   OptimizeResult r;
-  r.warnings = unused_controls(eq, *cm, spec);
+  r.warnings = problem_warnings(eq, *cm, spec);
   r.intervals = options.intervals > 0 ? options.intervals : spec.intervals;
   r.degree = options.degree > 0 ? options.degree : spec.degree;
   for (const ControlSpec& c : spec.controls)

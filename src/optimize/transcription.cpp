@@ -98,7 +98,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   first_ = free_T_ ? 1 : 0;
   n_ = first_ + static_cast<size_t>(N_) * block_ + nx_;
   path_rows_ = static_cast<size_t>(N_ * d_) * (nx_ + m_);
-  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
+  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size();
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
   guess_ = make_guess();
   const std::vector<double>& x0 = guess_;
@@ -193,7 +193,10 @@ std::vector<double> Transcription::boundary_state(bool end) {
 // when independent of those before (Gram–Schmidt), at the boundary state.
 void Transcription::choose_boundary_rows() {
   final_ = spec_.final;
-  if (m_ == 0) return;
+  if (m_ == 0) {
+    for (const StateRef& s : spec_.periodic) periodic_.push_back(state_index(s, nq_));
+    return;
+  }
   std::vector<std::vector<double>> basis;
   const auto independent = [&](std::vector<double> r) {
     double size = 0.0;
@@ -234,6 +237,15 @@ void Transcription::choose_boundary_rows() {
       for (size_t i = 0; i < 2 * m_; ++i)
         if (independent(rows[i])) start_rows_.push_back(i);
     }
+  }
+  // x(T) − x(0) in a direction of the invariants is kept by the dynamics: periodic rows are taken
+  // after the invariants at the start state.
+  basis.clear();
+  for (const std::vector<double>& r : invariant_rows(false)) independent(r);
+  for (const StateRef& s : spec_.periodic) {
+    std::vector<double> r(nx_, 0.0);
+    r[state_index(s, nq_)] = 1.0;
+    if (independent(r)) periodic_.push_back(state_index(s, nq_));
   }
   basis.clear();
   for (const std::vector<double>& r : invariant_rows(true)) independent(r);
@@ -419,6 +431,9 @@ void Transcription::constraint_values(const double* x, double* g) {
       std::copy(out_.begin() + 2, out_.begin() + 2 + static_cast<long>(np_),
                 g + path_rows_ + p * np_);
     }
+  const size_t periodic_at = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
+  for (size_t r = 0; r < periodic_.size(); ++r)
+    g[periodic_at + r] = state(x, N_, 0)[periodic_[r]] - state(x, 0, 0)[periodic_[r]];
   if (start_rows_.empty()) return;
   const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
@@ -491,6 +506,12 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
         }
       }
     }
+  // x(T) − x(0) of the periodic components.
+  const size_t periodic_at = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
+  for (size_t r = 0; r < periodic_.size(); ++r) {
+    emit(periodic_at + r, xi(N_, 0) + periodic_[r], 1.0);
+    emit(periodic_at + r, xi(0, 0) + periodic_[r], -1.0);
+  }
   // The invariants imposed at t = 0.
   if (start_rows_.empty()) return;
   std::vector<size_t> row_of(2 * m_, rows_);
@@ -563,6 +584,11 @@ std::string Transcription::describe(size_t row, const double* x) const {
                        time(x, static_cast<int>(p) / d_, static_cast<int>(p) % d_ + 1));
   }
   row -= static_cast<size_t>(N_ * d_) * np_;
+  if (row >= start_rows_.size()) {
+    const size_t i = periodic_.at(row - start_rows_.size());
+    return fmt::format("periodicity of '{}'",
+                       i < nq_ ? c.coordinate_names[i] : c.velocity_names[i - nq_]);
+  }
   const size_t i = start_rows_.at(row);
   return fmt::format("constraint '{}' {}at t = 0", c.constraint_names[i % m_],
                      i < m_ ? "" : "rate ");

@@ -20,8 +20,9 @@ namespace lagrange::collocation {
 /// multipliers Λ_{k,1…d} and the controls U_k, then X_{N,0}; X_{k,d} is X_{k+1,0}.
 /// Constraints: per interval and collocation point j the DAE residual (nq + nv + m rows) and the
 /// path constraints; then the invariants C = 0, Ċ = 0 at t = 0 that the fixed initial values do
-/// not already imply. Final values that the invariants imply (the dynamics keep them) are not
-/// imposed but checked (implied_final_gaps).
+/// not already imply; then x(T) − x(0) for the periodic components the invariants leave
+/// independent. Final values that the invariants imply (the dynamics keep them) are not imposed
+/// but checked (implied_final_gaps).
 class Transcription {
  public:
   Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
@@ -122,6 +123,7 @@ class Transcription {
   std::vector<size_t> start_rows_;    ///< invariants imposed at t = 0 (i < m: C_i, else Ċ_{i−m})
   std::vector<BoundaryValue> final_;  ///< final values imposed as bounds
   std::vector<BoundaryValue> implied_;  ///< final values the invariants imply, checked only
+  std::vector<size_t> periodic_;        ///< state components with x(T) = x(0) imposed
   PointFunctions paths_;                ///< the guessed paths and their time derivatives
   std::vector<size_t> controls_;
   std::vector<double> q0_, v0_;

@@ -124,5 +124,39 @@ TEST(OptimalFormulations, CartPoleCostConvergesAtSecondOrder) {
   EXPECT_LT(ratio, 5.5) << a.objective << " " << b.objective << " " << c.objective;
 }
 
+// A periodic problem with a free period and nothing to optimise finds the Van der Pol limit cycle
+// (μ = 1): its period 6.6632868593 (Andersen and Geer 1982), converging at the collocation's
+// order 2d − 1 = 5.
+TEST(OptimalFormulations, VanDerPolPeriodIsTheKnownValue) {
+  testing::OptimalProblem vdp("van_der_pol_limit_cycle.yaml");
+  const double period = 6.6632868593;
+  const OptimizeResult coarse = vdp.solve(40, 3), fine = vdp.solve(80, 3);
+  ASSERT_TRUE(coarse.optimal && fine.optimal) << coarse.status << fine.status;
+  EXPECT_NEAR(coarse.horizon, period, 2e-5);
+  EXPECT_LT(std::fabs(fine.horizon - period), std::fabs(coarse.horizon - period) / 8);
+}
+
+// The same on a constrained model: the Cartesian pendulum's free oscillation, whose period is
+// 4 K(sin(θ₀/2)) √(l/g) (K by the arithmetic–geometric mean), with y and its rate on the rod.
+TEST(OptimalFormulations, CartesianPendulumPeriodIsTheEllipticIntegral) {
+  testing::OptimalProblem pendulum("data/pendulum_period_cartesian.yaml");
+  const double k = std::sin(0.5);
+  double a = 1.0, b = std::sqrt(1 - k * k);
+  for (int i = 0; i < 40; ++i) {
+    const double next = (a + b) / 2;
+    b = std::sqrt(a * b);
+    a = next;
+  }
+  const double period = 4 * (M_PI / (2 * a)) * std::sqrt(1.0 / 9.81);
+  const OptimizeResult coarse = pendulum.solve(30, 3), fine = pendulum.solve(60, 3);
+  ASSERT_TRUE(coarse.optimal && fine.optimal) << coarse.status << fine.status;
+  EXPECT_NEAR(coarse.horizon, period, 2e-6);
+  EXPECT_LT(std::fabs(fine.horizon - period), std::fabs(coarse.horizon - period) / 16);
+  // The orbit closes: x(T) = x(0) imposed, y(T) = y(0) on the rod.
+  const Trajectory& traj = fine.trajectory;
+  const size_t y = column(traj, "y"), cols = traj.columns.size();
+  EXPECT_NEAR(traj.data[(traj.rows() - 1) * cols + y], traj.data[y], 1e-6);
+}
+
 }  // namespace
 }  // namespace lagrange

@@ -107,6 +107,15 @@ TEST(OptimalControlErrors, AGuessedPathIsACoordinateInT) {
   EXPECT_NE(rate.find("di.yaml:12:11: error: expected a coordinate in guess, got the rate 'x_dot'"),
             std::string::npos)
       << rate;
+  const std::string periodic = error_of(ok + "  periodic: [z]\n");
+  EXPECT_NE(periodic.find("di.yaml:12:14: error: expected a coordinate or its rate NAME_dot for a "
+                          "periodic component, got 'z'"),
+            std::string::npos)
+      << periodic;
+  const Model p = read_model_string(kModel + ok + "  periodic: true\n", "di.yaml");
+  EXPECT_EQ(p.optimal_control->periodic.size(), 2u);    // x and x_dot
+  ASSERT_TRUE(p.optimal_control->initial.has_value());  // free: the orbit starts where it ends
+  EXPECT_TRUE(p.optimal_control->initial->empty());
   const std::string word = error_of(ok + "  guess: straight\n");
   EXPECT_NE(word.find("expected guess linear, simulation or a map"), std::string::npos) << word;
 }
