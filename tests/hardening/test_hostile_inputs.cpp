@@ -333,6 +333,8 @@ TEST(HostileCommands, EachGivesItsExitCodeAndMessageAndWritesNothing) {
   const std::map<std::string, std::string> values{
       {"pendulum", source + "/examples/pendulum.yaml"},
       {"double_pendulum", source + "/examples/double_pendulum.yaml"},
+      {"elastic_pendulum", source + "/examples/elastic_pendulum.yaml"},
+      {"cartesian_pendulum", source + "/examples/cartesian_pendulum.yaml"},
       {"dir", dir.path().string()}};
   std::istringstream table(slurp(source + "/tests/hardening/data/hostile_commands.txt"));
   size_t cases = 0;
