@@ -263,11 +263,14 @@ SimulationOptions simulation_options(const Model& model, const RunSettings& give
 
 // docs/theory.md §8, machine code: `on` compiles before the run (and says at once when it cannot),
 // `auto` runs the interpreter while a large model compiles in the background.
-bool choose_evaluation(Dynamics& dynamics, const std::string& mode) {
+bool choose_evaluation(Dynamics& dynamics, const std::string& mode,
+                       std::function<bool()> interrupted) {
   if (mode == "off") return true;
   if (mode != "on" && mode != "auto")
     throw UsageError("compile: expected auto, on or off, got '" + mode + "'");
-  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background);
+  MachineCodeOptions options;
+  options.interrupted = std::move(interrupted);
+  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background, options);
   return mode != "on" || dynamics.uses_machine_code();
 }
 

@@ -175,10 +175,13 @@ void choose_evaluation(const Options& opt, Study& s, bool build) {
   if (opt.compile == "off") return;
   s.evaluation = Evaluation::SharedMachineCode;
   if (!build) return;
-  s.prepared.dynamics->set_evaluation(Evaluation::SharedMachineCode);
+  MachineCodeOptions options;  // Ctrl-C stops the compiler; the study then ends keeping its rows
+  const auto interrupted = [&] { return opt.interrupt != nullptr && opt.interrupt->load(); };
+  options.interrupted = interrupted;
+  s.prepared.dynamics->set_evaluation(Evaluation::SharedMachineCode, options);
   if (s.prepared.dynamics->uses_machine_code()) return;
   s.evaluation = Evaluation::Interpreter;
-  if (opt.compile == "on")
+  if (opt.compile == "on" && !interrupted())
     fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
                s.prepared.dynamics->machine_code_error());
 }
@@ -426,9 +429,10 @@ int run_sweep(const Options& opt) {
   Study s;
   set_up(opt, s);
   std::unique_ptr<StudyLock> lock;
-  // From here an interrupted study keeps its finished cases, and a compile under way finishes
-  // (a compiler killed by _exit would stay behind, with its source in the cache); before, while
-  // the study derives, Ctrl-C ends it at once with 130, as simulate (issue 37 item 10).
+  // From here an interrupted study keeps its finished cases, and a compile under way is stopped
+  // and cleaned up (a compiler left by _exit would stay behind, with its source in the cache);
+  // before, while the study derives, Ctrl-C ends it at once with 130, as simulate (issue 37
+  // item 10).
   const KeepWorkOnInterrupt keep;
   const auto summary = open_summary(opt, s, lock);
   choose_evaluation(opt, s, true);
