@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -351,6 +352,30 @@ int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
   return 0;
 }
 
+constexpr int kWorkerDied = 4;  // the exit code of a study whose worker process died
+
+// A worker process that died (issue 37 item 20): which case it was running, why, and what is
+// kept; exit 4 (docs/errors.md).
+int worker_died(const Options& opt, const Study& s, const Progress& progress,
+                const sweep::WorkerDied& e) {
+  progress.clear();
+  std::string running;
+  if (e.index)
+    for (const auto& [name, value] : s.plan.cases.at(*e.index).values)
+      running += fmt::format("{}{} = {:g}", running.empty() ? " (" : ", ", name, value);
+  if (!running.empty()) running += ")";
+  fmt::print(stderr,
+             "lagrange: the study stopped: {}{}; {} of {} cases are in {}; run the same command "
+             "with --resume to run the others{}\n",
+             e.what(), running, progress.done(), s.plan.cases.size(),
+             (fs::path(opt.study) / "summary.csv").string(),
+             e.signal == SIGKILL
+                 ? " (SIGKILL comes from outside the process: the kernel's out-of-memory killer, "
+                   "say)"
+                 : "");
+  return kWorkerDied;
+}
+
 #ifdef LAGRANGE_HAVE_MPI
 // Under mpirun: every rank sets the study up (the same checks, so a mistake stops them all
 // alike; rank 0 alone reports it); rank 0 hands out the cases, runs cases itself between
@@ -467,8 +492,12 @@ int run_sweep(const Options& opt) {
                            (fs::path(opt.study) / fmt::format("case_{}.csv", index)).string());
     };
   // Worker processes (threads when one): docs/sweeps.md, "Speed".
-  sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
-                            pool);
+  try {
+    sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
+                              pool);
+  } catch (const sweep::WorkerDied& e) {
+    return end_process(worker_died(opt, s, progress, e));
+  }
   return end_process(
       conclude(opt, s, *summary, progress, already,
                fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading));
