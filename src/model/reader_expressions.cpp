@@ -62,7 +62,8 @@ std::vector<const Parameter*> parameters_in(const GiNaC::ex& e,
       found.push_back(named->second.index);
       continue;
     }
-    if (named != names.end()) continue;             // a coordinate, an input, …
+    if (named != names.end() && named->second.kind != NameKind::Parameter)
+      continue;                                     // a coordinate, an input, …
     for (size_t i = 0; i < parameters.size(); ++i)  // a parameter an element declared
       if (GiNaC::ex(parameters[i].sym).is_equal(sym)) found.push_back(i);
   }
