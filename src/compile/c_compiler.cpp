@@ -28,6 +28,34 @@ namespace {
 
 constexpr double kDefaultTimeout = 300.0;
 
+/// The process groups of the compilers running now (0: a free slot), for
+/// kill_running_c_compilers; a compile finds no free slot only beyond kSlots at once.
+constexpr size_t kSlots = 64;
+std::atomic<pid_t> g_running[kSlots];
+static_assert(std::atomic<pid_t>::is_always_lock_free, "read from a signal handler");
+
+/// Holds `pid` in a slot of g_running while it lives.
+class RunningCompiler {
+ public:
+  explicit RunningCompiler(pid_t pid) {
+    for (auto& slot : g_running) {
+      pid_t expected = 0;
+      if (slot.compare_exchange_strong(expected, pid)) {
+        slot_ = &slot;
+        return;
+      }
+    }
+  }
+  ~RunningCompiler() {
+    if (slot_ != nullptr) slot_->store(0);
+  }
+  RunningCompiler(const RunningCompiler&) = delete;
+  RunningCompiler& operator=(const RunningCompiler&) = delete;
+
+ private:
+  std::atomic<pid_t>* slot_ = nullptr;
+};
+
 std::string env(const char* name) {
   const char* v = std::getenv(name);
   return v != nullptr ? std::string(v) : std::string();
@@ -59,6 +87,11 @@ std::string resolve_c_compiler(const std::string& preferred) {
   }
   throw MachineCodeError(
       fmt::format("no C compiler: '{}' is not on PATH (install one, or set LAGRANGE_CC)", name));
+}
+
+void kill_running_c_compilers() {
+  for (auto& slot : g_running)
+    if (const pid_t pid = slot.load(); pid > 0) ::kill(-pid, SIGKILL);
 }
 
 double c_compiler_timeout() {
@@ -95,6 +128,7 @@ void run_c_compiler(const std::string& compiler, const std::vector<std::string>&
   if (rc != 0)
     throw MachineCodeError(
         fmt::format("cannot start the C compiler '{}': {}", compiler, std::strerror(rc)));
+  const RunningCompiler running(pid);  // until it is reaped below
   const double limit = watch.timeout > 0 ? watch.timeout : c_compiler_timeout();
   const auto start = std::chrono::steady_clock::now();
   int status = 0;

@@ -29,4 +29,8 @@ double c_compiler_timeout();
 void run_c_compiler(const std::string& compiler, const std::vector<std::string>& arguments,
                     const std::string& log_file, const CompilerWatch& watch = {});
 
+/// Kills the process group of every compiler run_c_compiler is running (async-signal-safe): for
+/// a SIGINT handler that ends the process with _exit, which would leave them running.
+void kill_running_c_compilers();
+
 }  // namespace lagrange

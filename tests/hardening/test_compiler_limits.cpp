@@ -1,6 +1,6 @@
 // A C compiler that never returns (issue 37 item 10): its time limit ends it and the run goes on
-// in the interpreter, saying so; Ctrl-C while it runs ends `simulate` and `sweep` with 130. Either
-// way no compiler process is left behind and no source stays in the cache.
+// in the interpreter, saying so; Ctrl-C while it runs ends `simulate`, `sweep` and `export --fmu`
+// with 130. Either way no compiler process is left behind and no source stays in the cache.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -151,6 +151,22 @@ TEST(CompilerLimits, CtrlCWhileASweepCompilesEndsAt130) {
   EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
   expect_no_compiler_left(group);
   EXPECT_EQ(leftovers(dir), std::vector<std::string>{});
+}
+
+// export --fmu compiles while Ctrl-C still ends the process at once (nothing is written yet):
+// the compiler, in a process group of its own that the terminal's ^C does not reach, is killed
+// by the handler before the process ends.
+TEST(CompilerLimits, CtrlCWhileAnFmuCompilesLeavesNoCompiler) {
+  ScratchDir dir("cc-sigint-fmu");
+  const CompilerEnvironment env(dir, hung_compiler(dir), nullptr);
+  Child child(dir.path(), {"export", kPendulum, "--fmu", (dir.path() / "p.fmu").string()});
+  const pid_t group = compiler_group(dir, std::chrono::seconds(60));
+  ASSERT_GT(group, 0) << "the compiler never started";
+  child.signal(SIGINT);
+  const RunResult r = child.wait(std::chrono::seconds(60));
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "p.fmu"));
+  expect_no_compiler_left(group);
 }
 
 }  // namespace
