@@ -78,10 +78,14 @@ FUZZ_RUNS ?=
 FUZZ_RUNS_MODEL ?=
 FUZZ_RUNS_EXPRESSION ?=
 FUZZ_RUNS_URDF ?=
+FUZZ_RUNS_SWEEP_SPEC ?=
+FUZZ_RUNS_METRIC ?=
 fuzz: asan-configure
-	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression fuzz_urdf
+	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target fuzz_model fuzz_expression fuzz_urdf \
+	  fuzz_sweep_spec fuzz_metric
 	@FUZZ_RUNS=$(FUZZ_RUNS) FUZZ_RUNS_MODEL=$(FUZZ_RUNS_MODEL) FUZZ_RUNS_EXPRESSION=$(FUZZ_RUNS_EXPRESSION) \
-	  FUZZ_RUNS_URDF=$(FUZZ_RUNS_URDF) \
+	  FUZZ_RUNS_URDF=$(FUZZ_RUNS_URDF) FUZZ_RUNS_SWEEP_SPEC=$(FUZZ_RUNS_SWEEP_SPEC) \
+	  FUZZ_RUNS_METRIC=$(FUZZ_RUNS_METRIC) \
 	  ./fuzz/run.sh $(ASAN_BUILD) $(FUZZ_SECONDS)
 
 clean:

@@ -3,7 +3,7 @@
 # Inputs that crash, hang (> 10 s) or use more than 2 GB are written to BUILD_DIR/fuzz/artifacts/;
 # the script fails if any target found one. New corpus entries stay in BUILD_DIR/fuzz/corpus/.
 # With FUZZ_RUNS=N each target instead executes exactly N inputs from seed 1 (FUZZ_RUNS_MODEL,
-# FUZZ_RUNS_EXPRESSION and FUZZ_RUNS_URDF set N per target: a model input costs ten times an
+# FUZZ_RUNS_EXPRESSION, FUZZ_RUNS_URDF, FUZZ_RUNS_SWEEP_SPEC and FUZZ_RUNS_METRIC set N per target: a model input costs ten times an
 # expression, a URDF input, written to a file and read back, more still) with address
 # randomisation off (GiNaC's term order, hence coverage, depends on load addresses): the same
 # build and corpus then explore the same inputs, so CI's short run is reproducible.
@@ -13,7 +13,7 @@ build=${1:?usage: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]}
 seconds=${2:?usage: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]}
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(model expression urdf)
+[ ${#targets[@]} -gt 0 ] || targets=(model expression urdf sweep_spec metric)
 export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 mkdir -p "$build/fuzz/artifacts"

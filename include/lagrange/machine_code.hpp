@@ -4,6 +4,7 @@
 // an entry is loaded only from a private directory and when its recorded SHA-256 matches.
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,12 @@ struct MachineCodeOptions {
   std::string cache_dir;  ///< empty: $LAGRANGE_CACHE_DIR, else $XDG_CACHE_HOME/lagrange or
                           ///< ~/.cache/lagrange
   const std::atomic<bool>* cancel = nullptr;  ///< when set, a running compiler is stopped
+  /// Polled every 10 ms by a compile on the caller's thread (never by a background one): true
+  /// stops the compiler, MachineCodeError "compilation interrupted" (Ctrl-C).
+  std::function<bool()> interrupted;
+  /// Seconds the compiler may run before it is stopped (MachineCodeError); 0: $LAGRANGE_CC_TIMEOUT,
+  /// else 300.
+  double timeout = 0.0;
   /// When not empty (one offset per tape), tape i is compiled as Tape::to_shared_c reading its
   /// constants from work[constants_at[i] …]: the library serves every tape of its structure.
   std::vector<size_t> constants_at;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -212,10 +213,21 @@ void run_pool(const std::shared_ptr<const CompiledModel>& model,
               const std::vector<CaseInput>& inputs, const std::vector<size_t>& pending,
               const std::vector<Metric>& metrics, const PoolOptions& options);
 
+/// A worker process that died from a signal (SIGKILL from the out-of-memory killer, say): the case
+/// it was running, if any, and the signal; run_pool_processes throws it after the other workers
+/// have finished their cases.
+struct WorkerDied : std::runtime_error {
+  WorkerDied(const std::string& what, std::optional<size_t> running, int signal)
+      : std::runtime_error(what), index(running), signal(signal) {}
+  std::optional<size_t> index;  ///< the case it was running (none: it died between cases)
+  int signal;
+};
+
 /// As run_pool, each worker a process forked from this one (docs/sweeps.md, "Speed"): a
 /// single-threaded worker allocates without glibc's locks, as a lone run does. `read` and `keep`
-/// run in the workers, `done` here; a worker's exception, its death or `done`'s exception stops
-/// the others after their case and is thrown here as std::runtime_error; this process's
+/// run in the workers, `done` here; a worker's exception, its death (WorkerDied) or `done`'s
+/// exception stops the others after their case and is thrown here (else std::runtime_error); this
+/// process's
 /// interrupt is passed on to them. run_pool (threads) for fewer than two workers, or when this
 /// process has other threads (whose locks a fork would copy held).
 void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,

@@ -13,6 +13,7 @@
 #include "arrays.hpp"
 #include "cli/commands.hpp"
 #include "errors.hpp"
+#include "evaluation.hpp"
 #include "lagrange/io.hpp"
 #include "optimize.hpp"
 #include "run.hpp"
@@ -85,11 +86,7 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
   // A workspace of its own, so that runs of one model on several threads never share scratch.
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
   dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
-  if (!cli::choose_evaluation(dynamics, compile)) {
-    const std::string why =
-        "machine code: " + dynamics.machine_code_error() + "; the tape interpreter runs instead";
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, why.c_str(), 1) != 0) throw py::error_already_set();
-  }
+  choose_evaluation(dynamics, compile);
   auto run = std::make_unique<Run>();
   run->prepared = m.prepared;
   run->integrator = so.integrator.method;

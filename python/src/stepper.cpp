@@ -7,6 +7,7 @@
 
 #include "arrays.hpp"
 #include "errors.hpp"
+#include "evaluation.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/stepper.hpp"
 #include "run.hpp"
@@ -110,11 +111,7 @@ py::object make_stepper(const PyModel& m, std::optional<double> t_end,
   s->prepared = m.prepared;
   s->integrator = so.integrator.method;
   s->stepper = std::make_unique<Stepper>(std::move(dynamics), so, p.q, p.v);
-  if (!cli::choose_evaluation(s->stepper->dynamics(), compile)) {
-    const std::string why = "machine code: " + s->stepper->dynamics().machine_code_error() +
-                            "; the tape interpreter runs instead";
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, why.c_str(), 1) != 0) throw py::error_already_set();
-  }
+  choose_evaluation(s->stepper->dynamics(), compile);
   return py::cast(std::move(s));
 }
 

@@ -222,9 +222,19 @@ int run_simulate(const Options& opt) {
   if (!p.initial.was_consistent && !opt.quiet) fmt::print(stderr, "note: {}\n", p.initial.note());
   so.interrupt = opt.interrupt;
   so.progress = progress_line(opt, so.t_end);
-  if (!choose_evaluation(*p.dynamics, opt.compile))
-    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
-               p.dynamics->machine_code_error());
+  {
+    // Ctrl-C while `--compile on` compiles stops the compiler, so that none is left running
+    // with its source in the cache (issue 37 item 10); then the process ends with 130.
+    const KeepWorkOnInterrupt keep;
+    const auto interrupted = [&] { return opt.interrupt != nullptr && opt.interrupt->load(); };
+    if (!choose_evaluation(*p.dynamics, opt.compile, interrupted) && !interrupted())
+      fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
+                 p.dynamics->machine_code_error());
+    if (interrupted()) {
+      fmt::print(stderr, "\nlagrange: interrupted\n");
+      return 130;
+    }
+  }
   // cvode:jacobian and auto integrate on the exact Jacobian, derived once per model; simulate()
   // builds it for its workspace (docs/theory.md §5.6).
   so.jacobian_source = jacobian_source(p, so.integrator.method);

@@ -4,6 +4,8 @@
 
 #include <csignal>
 
+#include "compile/c_compiler.hpp"
+
 namespace lagrange::cli {
 
 namespace {
@@ -13,6 +15,7 @@ std::atomic<bool> g_keep_work{false};
 
 extern "C" void on_sigint(int) {
   if (!g_keep_work.load()) {
+    kill_running_c_compilers();  // in process groups of their own: the terminal's ^C misses them
     static const char message[] = "\nlagrange: interrupted\n";
     (void)!write(STDERR_FILENO, message, sizeof message - 1);
     _exit(130);  // async-signal-safe; nothing has been written that needs finishing

@@ -64,6 +64,18 @@ struct GivenState {
   std::string option;
 };
 
+/// Whether the state checks pass at the model file's own initial state.
+bool accepts_own_state(const Prepared& p) {
+  std::vector<double> q = p.compiled->q0, v = p.compiled->v0;
+  try {
+    (void)require_consistent_initial_state(*p.model, *p.dynamics, q, v);
+    require_regular_initial_state(*p.model, p.equations, *p.dynamics, q, v);
+    return true;
+  } catch (const ModelError&) {
+    return false;
+  }
+}
+
 Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overrides,
                       const GivenState& initial, const std::string& dynamics) {
   Prepared p;
@@ -87,8 +99,19 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   p.q = p.compiled->q0;
   p.v = p.compiled->v0;
   apply_initial(*p.compiled, initial.values, initial.option, p.q, p.v);
-  p.initial = require_consistent_initial_state(*p.model, *p.dynamics, p.q, p.v);
-  require_regular_initial_state(*p.model, p.equations, *p.dynamics, p.q, p.v);
+  try {
+    p.initial = require_consistent_initial_state(*p.model, *p.dynamics, p.q, p.v);
+    require_regular_initial_state(*p.model, p.equations, *p.dynamics, p.q, p.v);
+  } catch (const ModelError& e) {
+    // A state the file's own initial values pass is the command line's mistake (issue 37 item
+    // 18): `--at l=0` is not an error at the file's line.
+    if (initial.values.empty() || !accepts_own_state(p)) throw;
+    std::string given;
+    for (const auto& [name, value] : initial.values)
+      given += fmt::format("{}{}={:g}", given.empty() ? "" : ",", name, value);
+    throw UsageError(fmt::format("{} {}: the model does not accept this state: {} (found at {})",
+                                 initial.option, given, e.detail(), e.loc().str()));
+  }
   return p;
 }
 
@@ -240,11 +263,14 @@ SimulationOptions simulation_options(const Model& model, const RunSettings& give
 
 // docs/theory.md §8, machine code: `on` compiles before the run (and says at once when it cannot),
 // `auto` runs the interpreter while a large model compiles in the background.
-bool choose_evaluation(Dynamics& dynamics, const std::string& mode) {
+bool choose_evaluation(Dynamics& dynamics, const std::string& mode,
+                       std::function<bool()> interrupted) {
   if (mode == "off") return true;
   if (mode != "on" && mode != "auto")
     throw UsageError("compile: expected auto, on or off, got '" + mode + "'");
-  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background);
+  MachineCodeOptions options;
+  options.interrupted = std::move(interrupted);
+  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background, options);
   return mode != "on" || dynamics.uses_machine_code();
 }
 

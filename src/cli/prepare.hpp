@@ -2,6 +2,7 @@
 // Everything a command does before it writes anything: read the model (with --set values),
 // derive, compile, and make the initial state consistent and regular.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -106,7 +107,9 @@ SimulationOptions simulation_options(const Model& model, const RunSettings& give
 
 /// What evaluates the tapes (docs/theory.md §8): "off" the interpreter, "on" machine code at once
 /// (false when it could not be had, evaluation_note() says why), "auto" machine code compiled in
-/// the background for large tapes; UsageError for another word.
-bool choose_evaluation(Dynamics& dynamics, const std::string& mode);
+/// the background for large tapes; UsageError for another word. `interrupted`, polled while "on"
+/// compiles, stops the compiler when it returns true (MachineCodeOptions::interrupted).
+bool choose_evaluation(Dynamics& dynamics, const std::string& mode,
+                       std::function<bool()> interrupted = nullptr);
 
 }  // namespace lagrange::cli

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -175,10 +176,13 @@ void choose_evaluation(const Options& opt, Study& s, bool build) {
   if (opt.compile == "off") return;
   s.evaluation = Evaluation::SharedMachineCode;
   if (!build) return;
-  s.prepared.dynamics->set_evaluation(Evaluation::SharedMachineCode);
+  MachineCodeOptions options;  // Ctrl-C stops the compiler; the study then ends keeping its rows
+  const auto interrupted = [&] { return opt.interrupt != nullptr && opt.interrupt->load(); };
+  options.interrupted = interrupted;
+  s.prepared.dynamics->set_evaluation(Evaluation::SharedMachineCode, options);
   if (s.prepared.dynamics->uses_machine_code()) return;
   s.evaluation = Evaluation::Interpreter;
-  if (opt.compile == "on")
+  if (opt.compile == "on" && !interrupted())
     fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
                s.prepared.dynamics->machine_code_error());
 }
@@ -348,6 +352,30 @@ int conclude(const Options& opt, const Study& s, sweep::SummaryFile& summary,
   return 0;
 }
 
+constexpr int kWorkerDied = 4;  // the exit code of a study whose worker process died
+
+// A worker process that died (issue 37 item 20): which case it was running, why, and what is
+// kept; exit 4 (docs/errors.md).
+int worker_died(const Options& opt, const Study& s, const Progress& progress,
+                const sweep::WorkerDied& e) {
+  progress.clear();
+  std::string running;
+  if (e.index)
+    for (const auto& [name, value] : s.plan.cases.at(*e.index).values)
+      running += fmt::format("{}{} = {:g}", running.empty() ? " (" : ", ", name, value);
+  if (!running.empty()) running += ")";
+  fmt::print(stderr,
+             "lagrange: the study stopped: {}{}; {} of {} cases are in {}; run the same command "
+             "with --resume to run the others{}\n",
+             e.what(), running, progress.done(), s.plan.cases.size(),
+             (fs::path(opt.study) / "summary.csv").string(),
+             e.signal == SIGKILL
+                 ? " (SIGKILL comes from outside the process: the kernel's out-of-memory killer, "
+                   "say)"
+                 : "");
+  return kWorkerDied;
+}
+
 #ifdef LAGRANGE_HAVE_MPI
 // Under mpirun: every rank sets the study up (the same checks, so a mistake stops them all
 // alike; rank 0 alone reports it); rank 0 hands out the cases, runs cases itself between
@@ -426,9 +454,10 @@ int run_sweep(const Options& opt) {
   Study s;
   set_up(opt, s);
   std::unique_ptr<StudyLock> lock;
-  // From here an interrupted study keeps its finished cases, and a compile under way finishes
-  // (a compiler killed by _exit would stay behind, with its source in the cache); before, while
-  // the study derives, Ctrl-C ends it at once with 130, as simulate (issue 37 item 10).
+  // From here an interrupted study keeps its finished cases, and a compile under way is stopped
+  // and cleaned up (a compiler left by _exit would stay behind, with its source in the cache);
+  // before, while the study derives, Ctrl-C ends it at once with 130, as simulate (issue 37
+  // item 10).
   const KeepWorkOnInterrupt keep;
   const auto summary = open_summary(opt, s, lock);
   choose_evaluation(opt, s, true);
@@ -463,8 +492,12 @@ int run_sweep(const Options& opt) {
                            (fs::path(opt.study) / fmt::format("case_{}.csv", index)).string());
     };
   // Worker processes (threads when one): docs/sweeps.md, "Speed".
-  sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
-                            pool);
+  try {
+    sweep::run_pool_processes(s.prepared.compiled, {}, pending_cases(s, *summary), s.plan.metrics,
+                              pool);
+  } catch (const sweep::WorkerDied& e) {
+    return end_process(worker_died(opt, s, progress, e));
+  }
   return end_process(
       conclude(opt, s, *summary, progress, already,
                fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading));

@@ -171,10 +171,11 @@ void write_file(const std::string& path, const std::string& text) {
 
 /// Runs the compiler with kFlags on `c_file` into `so_file`, its output going to `log_file`.
 void run_compiler(const Plan& p, const std::string& c_file, const std::string& so_file,
-                  const std::string& log_file, const std::atomic<bool>* cancel) {
+                  const std::string& log_file, const MachineCodeOptions& options) {
   std::vector<std::string> args(std::begin(kFlags), std::end(kFlags));
   args.insert(args.end(), {"-o", so_file, c_file, "-lm"});
-  run_c_compiler(p.compiler, args, log_file, cancel);
+  run_c_compiler(p.compiler, args, log_file,
+                 CompilerWatch{options.cancel, options.interrupted, options.timeout});
 }
 
 }  // namespace
@@ -272,7 +273,7 @@ std::shared_ptr<const MachineCode> MachineCode::build(const std::vector<const Ta
                     record_file = stem + ".sha256.part";
   try {
     write_file(c_file, p.source);
-    run_compiler(p, c_file, so_file, log_file, options.cancel);
+    run_compiler(p, c_file, so_file, log_file, options);
     std::string bytes;
     const int fd = ::open(so_file.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0 || !read_all(fd, bytes))

@@ -84,6 +84,7 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
   // (set_parameters joins the worker first, but a copy keeps the thread independent of it).
   std::vector<Tape> copies;
   for (const Tape* t : tapes) copies.push_back(*t);
+  opts.interrupted = nullptr;  // the caller's poll is not for this thread; reset() cancels
   worker = std::thread([this, copies = std::move(copies), opts]() {
     std::vector<const Tape*> ptrs;
     for (const Tape& t : copies) ptrs.push_back(&t);

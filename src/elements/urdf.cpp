@@ -12,6 +12,7 @@
 #include <set>
 
 #include "elements/links.hpp"
+#include "model/bounded_file.hpp"
 #include "model/decimal_number.hpp"
 #include "model/model_reader.hpp"
 
@@ -146,10 +147,9 @@ std::string xml_error_words(const tinyxml2::XMLDocument& doc) {
 LinkChain read_urdf(const std::string& path) {
   UrdfReader u(path);
   tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) {
-    if (doc.ErrorID() == tinyxml2::XML_ERROR_FILE_NOT_FOUND ||
-        doc.ErrorID() == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED)
-      throw ModelError(SourceLoc{path}, "cannot open the URDF file");
+  // Read as model files are, up to 16 MiB (issue 37 item 13: a 300 MB file was read whole).
+  const std::string text = model::read_bounded_file(path, "URDF file");
+  if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     throw ModelError(SourceLoc{path, doc.ErrorLineNum(), 0},
                      "expected well-formed XML: " + xml_error_words(doc));
   }
@@ -335,6 +335,13 @@ void declare_urdf(model::ModelReader& r, const YAML::Node& node, LinkChain& chai
     r.fail(file,
            fmt::format("cannot open the URDF file '{}': {}", model::clip(p.string(), 200),
                        std::filesystem::exists(p, ec) ? "not a regular file" : "no such file"));
+  // One too large is too, before it is read (issue 37 item 13).
+  if (const auto bytes = std::filesystem::file_size(p, ec);
+      !ec && bytes > model::kMaxModelBytes &&
+      std::filesystem::path(r.source().file()).extension() != ".urdf")
+    r.fail(file, fmt::format("expected a URDF file of at most {} MiB, got '{}' of {:.1f} MiB",
+                             model::kMaxModelBytes >> 20, model::clip(p.string(), 200),
+                             static_cast<double>(bytes) / (1 << 20)));
   chain = read_urdf(p.lexically_normal().string());
   // A URDF given on its own (model/yaml_reader.cpp) is named after its <robot name>.
   if (std::filesystem::path(r.source().file()).extension() == ".urdf" && !chain.robot.empty())

@@ -1,14 +1,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 
 #include "elements/elements.hpp"
 #include "lagrange/reader.hpp"
+#include "model/bounded_file.hpp"
 #include "model/model_reader.hpp"
 
 namespace lagrange {
@@ -34,9 +32,6 @@ const std::vector<std::string>& top_level_keys() {
   }();
   return all;
 }
-
-/// The largest model file read (a model of 2000 coordinates is a few hundred KiB).
-constexpr size_t kMaxModelBytes = size_t{16} << 20;
 
 /// A section's node, or nothing when the key is absent or has no value.
 std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
@@ -157,23 +152,7 @@ Model read_file(const std::string& path, const ParameterOverrides& overrides, Re
                     quoted(file.stem().string()), quoted(file.filename().string())),
         path, overrides, trace);
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw ModelError(SourceLoc{path},
-                     fmt::format("cannot open the model file: {}", std::strerror(errno)));
-  // Read at most kMaxModelBytes: /dev/zero or a runaway file would
-  // otherwise be read until memory runs out (issue 25 item 6).
-  std::string text;
-  char chunk[1 << 16];
-  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
-    text.append(chunk, static_cast<size_t>(in.gcount()));
-    if (text.size() > model::kMaxModelBytes)
-      throw ModelError(SourceLoc{path},
-                       fmt::format("expected a model file of at most {} MiB, got more",
-                                   model::kMaxModelBytes >> 20));
-  }
-  if (in.bad()) throw ModelError(SourceLoc{path}, "cannot read the model file");
-  return read_model_string(text, path, overrides, trace);
+  return read_model_string(model::read_bounded_file(path, "model file"), path, overrides, trace);
 }
 
 }  // namespace

@@ -36,8 +36,8 @@ struct Shared {
 static_assert(std::atomic<size_t>::is_always_lock_free && std::atomic<bool>::is_always_lock_free,
               "the counter must work across processes");
 
-// A message from a worker: a case's result, or the error that stopped the worker.
-enum class Kind : std::uint32_t { Result, Error };
+// A message from a worker: the case it starts, a case's result, or the error that stopped it.
+enum class Kind : std::uint32_t { Started, Result, Error };
 
 struct Header {
   Kind kind;
@@ -103,6 +103,12 @@ CaseResult run_slot(Dynamics& dyn, size_t index, const std::vector<CaseInput>& i
       return shared.stop.load() || (options.interrupt && options.interrupt->load());
     };
     for (size_t slot = shared.next++; slot < pending.size() && !stopped(); slot = shared.next++) {
+      CaseResult started;  // so that a death in this case names it (issue 37 item 20)
+      started.index = pending[slot];
+      if (!send(fd, message(Kind::Started, started, ""))) {
+        code = 1;
+        break;
+      }
       const CaseResult result = run_slot(dyn, pending[slot], inputs, metrics, options, traj);
       if (result.status == Trajectory::Status::Interrupted) break;
       if (!send(fd, message(Kind::Result, result, result.reason))) {
@@ -137,6 +143,7 @@ struct Worker {
   pid_t pid = -1;
   int fd = -1;
   std::string buffer;
+  std::optional<size_t> running;  // the case it said it started and has not sent
 };
 
 // The whole messages at the front of `w.buffer`, handed to `result` or `error` and removed.
@@ -152,7 +159,10 @@ void take_messages(Worker& w, OnResult result, OnError error) {
     const std::string text(body + h.metrics * sizeof(double), h.text);
     if (h.kind == Kind::Error) {
       error(text);
+    } else if (h.kind == Kind::Started) {
+      w.running = h.index;
     } else {
+      w.running.reset();
       CaseResult r;
       r.index = h.index;
       r.status = static_cast<Trajectory::Status>(h.status);
@@ -170,17 +180,22 @@ void take_messages(Worker& w, OnResult result, OnError error) {
   w.buffer.erase(0, at);
 }
 
-// Waits for worker `pid` to end; `stop` is told why when it died or stopped with an error.
+// Waits for worker `w` to end; `stop` is told why when it died (WorkerDied) or stopped with an
+// error.
 template <class Stop>
-void reap(pid_t pid, Stop stop) {
+void reap(const Worker& w, Stop stop) {
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  while (::waitpid(w.pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (WIFSIGNALED(status) && WTERMSIG(status) != SIGINT)
-    stop(std::string("a worker process died (") + strsignal(WTERMSIG(status)) +
-         "); the cases it finished are kept");
-  else if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
-    stop("a worker process stopped with an error");
+  if (WIFSIGNALED(status) && WTERMSIG(status) != SIGINT) {
+    const int sig = WTERMSIG(status);
+    std::string why = std::string("a worker process (pid ") + std::to_string(w.pid) +
+                      ") died from signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+    why += w.running ? " while running case " + std::to_string(*w.running) : " between cases";
+    stop(std::make_exception_ptr(WorkerDied(why, w.running, sig)));
+  } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    stop(std::make_exception_ptr(std::runtime_error("a worker process stopped with an error")));
+  }
 }
 
 }  // namespace
@@ -195,13 +210,16 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
   if (memory == MAP_FAILED) return run_pool(model, inputs, pending, metrics, options);
   Shared* shared = new (memory) Shared;
   std::vector<Worker> workers;
-  std::string error;  // the first: a worker's exception, a worker's death, or `done`'s
+  std::exception_ptr error;  // the first: a worker's exception, a worker's death, or `done`'s
   // n − 1 worker processes; this one is the n-th, taking their results between its cases.
   const pid_t parent = ::getpid();
-  for (size_t i = 1; i < n && error.empty(); ++i) {
+  const auto failure = [](const std::string& why) {
+    return std::make_exception_ptr(std::runtime_error(why));
+  };
+  for (size_t i = 1; i < n && !error; ++i) {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {
-      error = std::string("cannot make a pipe for a worker: ") + std::strerror(errno);
+      error = failure(std::string("cannot make a pipe for a worker: ") + std::strerror(errno));
       break;
     }
     const pid_t pid = ::fork();
@@ -216,17 +234,18 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
     ::close(fds[1]);
     if (pid < 0) {
       ::close(fds[0]);
-      error = std::string("cannot start a worker process: ") + std::strerror(errno);
+      error = failure(std::string("cannot start a worker process: ") + std::strerror(errno));
       break;
     }
-    workers.push_back({pid, fds[0], {}});
+    workers.push_back({pid, fds[0], {}, {}});
   }
-  if (!error.empty()) shared->stop = true;
+  if (error) shared->stop = true;
   bool forwarded = false;  // this process's interrupt, passed on to the workers
-  const auto stop_with = [&](const std::string& why) {
-    if (error.empty()) error = why;
+  const auto stop_for = [&](std::exception_ptr why) {
+    if (!error) error = std::move(why);
     shared->stop = true;
   };
+  const auto stop_with = [&](const std::string& why) { stop_for(failure(why)); };
   const auto on_result = [&](const CaseResult& r) {
     if (!options.done || shared->stop) return;
     try {
@@ -267,7 +286,7 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
       ::close(w.fd);
       w.fd = -1;
       --open;
-      reap(w.pid, stop_with);
+      reap(w, stop_for);
     }
   };
   // This process's own cases (its workspace and caches are warm, and it is not a third process
@@ -275,7 +294,7 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
   const auto stopped = [&] {
     return shared->stop.load() || (options.interrupt && options.interrupt->load());
   };
-  if (error.empty()) {
+  if (!error) {
     try {
       std::optional<Dynamics> own;
       Dynamics& dyn =
@@ -296,7 +315,7 @@ void run_pool_processes(const std::shared_ptr<const CompiledModel>& model,
   while (open > 0) take_results(100);
   shared->~Shared();
   munmap(memory, sizeof(Shared));
-  if (!error.empty()) throw std::runtime_error(error);
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace lagrange::sweep

@@ -3,6 +3,7 @@
 #include "lagrange/error.hpp"
 #include "lagrange/rigid_body.hpp"
 #include "model/vec3_algebra.hpp"
+#include "symbolic/expansion_bound.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
 
@@ -31,8 +32,11 @@ Vec3 body_angular_velocity(const Kinematics& kin, const Body& body) {
   auto Omega = [&](size_t i, size_t j) {
     return R[0][i] * Rd[0][j] + R[1][i] * Rd[1][j] + R[2][i] * Rd[2][j];
   };
-  return {simplify((Omega(2, 1) - Omega(1, 2)) / 2), simplify((Omega(0, 2) - Omega(2, 0)) / 2),
-          simplify((Omega(1, 0) - Omega(0, 1)) / 2)};
+  // Simplified (sin² + cos² = 1) within kDerivationTerms (issue 37 item 12): the normal form of
+  // a rotation composed of many turns grows exponentially; beyond, ω is kept as RᵀṘ gives it.
+  const auto simplified = [](const GiNaC::ex& e) { return simplify_within(e, kDerivationTerms); };
+  return {simplified((Omega(2, 1) - Omega(1, 2)) / 2), simplified((Omega(0, 2) - Omega(2, 0)) / 2),
+          simplified((Omega(1, 0) - Omega(0, 1)) / 2)};
 }
 
 // The one component of ω that is not identically zero (z for a body posed by rot_z(q)), if any.

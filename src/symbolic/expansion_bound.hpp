@@ -13,6 +13,10 @@
 
 namespace lagrange::symbolic {
 
+/// The most terms an expansion or normal form may have that the derivation asks for on its own
+/// (issue 37 item 12; docs/theory.md §4.1): beyond it, the expression is used as written.
+constexpr size_t kDerivationTerms = 10000;
+
 /// An upper bound on the number of terms of e.expand(), saturating at `cap`: a sum adds its
 /// operands' bounds, a product multiplies them, a positive integer power raises to it; anything
 /// else (a symbol, a function, a negative power) counts as one term. Linear in the size of e's

@@ -58,9 +58,10 @@ constexpr bool kUnderAddressSanitizer = false;
 
 /// What a finished run of the command left behind.
 struct RunResult {
-  int exit_code = -1;   ///< exit status, or 128 + signal number when killed
-  double seconds = 0;   ///< wall time from start to exit (or to the kill at the limit)
-  long max_rss_kb = 0;  ///< the child's peak resident memory
+  int exit_code = -1;      ///< exit status, or 128 + signal number when killed
+  double seconds = 0;      ///< wall time from start to exit (or to the kill at the limit)
+  long max_rss_kb = 0;     ///< the child's peak resident memory
+  double cpu_seconds = 0;  ///< the child's user and system time (steadier than wall time)
   std::string out, err;
 };
 
@@ -124,6 +125,8 @@ class Child {
     RunResult r;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     r.max_rss_kb = usage.ru_maxrss;
+    r.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                    1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     r.out = slurp(dir_ / "stdout.txt");
     r.err = slurp(dir_ / "stderr.txt");

@@ -13,6 +13,7 @@
 
 #include "support/test_paths.hpp"
 #include "../fuzz/model_budget.hpp"
+#include "../fuzz/sweep_input.hpp"
 #include "../fuzz/urdf_input.hpp"
 #include "hardening/cli_runner.hpp"
 #include "lagrange/compiled_model.hpp"
@@ -101,6 +102,31 @@ TEST(FuzzRegressions, SeedCorporaReplay) {
   for (const auto& file : expressions) EXPECT_EQ(replay_expression(slurp(file)), "ok") << file;
 }
 
+// fuzz_sweep_spec's and fuzz_metric's seeds (issue 37): the well-formed ones parse, expand and
+// evaluate; the hostile ones are diagnosed, naming what is wrong.
+TEST(FuzzRegressions, SweepSpecAndMetricSeedsReplay) {
+  const fs::path specs = kSource / "fuzz/corpus/sweep_spec",
+                 metrics = kSource / "fuzz/corpus/metric";
+  ASSERT_GE(inputs_in(specs).size(), 8u);
+  ASSERT_GE(inputs_in(metrics).size(), 8u);
+  replay_all(inputs_in(specs), fuzz::parse_sweep_spec);
+  replay_all(inputs_in(metrics), fuzz::evaluate_metric_spec);
+  const auto spec = [&](const char* name) { return fuzz::parse_sweep_spec(slurp(specs / name)); };
+  const auto metric = [&](const char* name) {
+    return fuzz::evaluate_metric_spec(slurp(metrics / name));
+  };
+  for (const char* ok : {"grid", "list", "normal", "uniform", "lognormal"})
+    EXPECT_EQ(spec(ok), "ok") << ok;
+  EXPECT_NE(spec("lognormal_overflow").find("is inf, not a finite number"), std::string::npos);
+  EXPECT_NE(spec("range_overflow").find("STOP - START overflows a double"), std::string::npos);
+  EXPECT_NE(spec("count_1e300").find("COUNT must be a whole number"), std::string::npos);
+  for (const char* ok : {"max_abs", "named_window", "final_dotted", "drift_window",
+                         "mean_parameters", "min_sqrt", "initial"})
+    EXPECT_EQ(metric(ok), "ok") << ok;
+  EXPECT_NE(metric("unknown_aggregate").find("unknown aggregate 'bogus'"), std::string::npos);
+  EXPECT_NE(metric("unknown_name").find("'nope'"), std::string::npos) << metric("unknown_name");
+}
+
 TEST(FuzzRegressions, UrdfSeedsReplay) {
   // fuzz_urdf's seeds: the bundled robots read, the hostile ones diagnosed (number bombs, hex,
   // a cycle, a mimic joint, deep nesting, entities, a truncated file, a link that is a point mass).
@@ -122,8 +148,8 @@ TEST(FuzzRegressions, AHugeUrdfAngleIsALocatedErrorNotACast) {
   // static_cast<long>(round(x / (pi/2))), undefined behaviour. It is refused, located.
   ScratchDir dir("fuzz-urdf-angle");
   const std::string path = (dir.path() / "robot.urdf").string();
-  const std::string joint = fuzz::read_urdf_bytes(
-      slurp(kSource / "fuzz/corpus/urdf/huge_angle.urdf"), path);
+  const std::string joint =
+      fuzz::read_urdf_bytes(slurp(kSource / "fuzz/corpus/urdf/huge_angle.urdf"), path);
   EXPECT_NE(joint.find("robot.urdf:12"), std::string::npos) << joint;
   EXPECT_NE(joint.find("expected an angle of magnitude at most 1e+06 rad for the origin rpy of "
                        "joint 'shoulder', got 1e+67"),
