@@ -45,6 +45,18 @@ struct ReadTrace {
   std::string opaque;
 };
 
+/// A value written outside a model file (`--set`, `--initial`, `--vary`, Python) that the model
+/// language does not read as a finite number; the message says what and at which character.
+class ValueTextError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// `text` read as the model file reads a value (docs/model-language.md): numbers, `pi`, the
+/// built-in functions and the `names` given (parameters' values); ValueTextError otherwise.
+double evaluate_value_text(const std::string& text,
+                           const std::map<std::string, double>& names = {});
+
 /// Read a model file. Throws ModelError naming file, line, column and what was expected.
 /// `overrides` replace parameter values before anything else is evaluated, so that initial
 /// values, checks and settings written as expressions of parameters see them.

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "cli/commands.hpp"
 #include "cli/initial_state.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
+#include "lagrange/reader.hpp"
 
 namespace lagrange::cli {
 
@@ -58,11 +60,19 @@ void apply_initial(const CompiledModel& cm,
   }
 }
 
-/// The state given on the command line (`--initial` or `--state`) and its option's name.
+/// The state given on the command line (`--initial` or `--state`) as NAME and value text, and
+/// its option's name.
 struct GivenState {
-  std::vector<std::pair<std::string, double>> values;
+  std::vector<std::pair<std::string, std::string>> values;
   std::string option;
 };
+
+/// The model's parameters by name at their values (after --set): what a start value may name.
+std::map<std::string, double> parameter_values(const Model& model) {
+  std::map<std::string, double> out;
+  for (const Parameter& p : model.parameters) out[p.name] = p.value;
+  return out;
+}
 
 Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overrides,
                       const GivenState& initial, const std::string& dynamics) {
@@ -86,7 +96,9 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   p.compile_seconds = seconds_since(t1);
   p.q = p.compiled->q0;
   p.v = p.compiled->v0;
-  apply_initial(*p.compiled, initial.values, initial.option, p.q, p.v);
+  apply_initial(*p.compiled,
+                evaluate_assignments(initial.values, initial.option, parameter_values(*p.model)),
+                initial.option, p.q, p.v);
   p.initial = require_consistent_initial_state(*p.model, *p.dynamics, p.q, p.v);
   require_regular_initial_state(*p.model, p.equations, *p.dynamics, p.q, p.v);
   return p;
@@ -138,24 +150,35 @@ Formulation formulation(const Model& model, const std::string& dynamics) {
   return why.empty() ? Formulation::Recursive : Formulation::Lagrangian;
 }
 
-std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
-                                                              const std::string& option) {
-  std::vector<std::pair<std::string, double>> out;
+std::vector<std::pair<std::string, std::string>> split_assignments(
+    const std::vector<std::string>& args, const std::string& option) {
+  std::vector<std::pair<std::string, std::string>> out;
   for (const auto& s : args) {
     const auto eq = s.find('=');
     if (eq == std::string::npos) throw UsageError(option + " expects NAME=VALUE, got '" + s + "'");
-    const std::string name = s.substr(0, eq), text = s.substr(eq + 1);
+    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> evaluate_assignments(
+    const std::vector<std::pair<std::string, std::string>>& given, const std::string& option,
+    const std::map<std::string, double>& names) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [name, text] : given) {
     try {
-      size_t used = 0;
-      const double value = std::stod(text, &used);
-      if (used != text.size() || !std::isfinite(value)) throw std::invalid_argument(s);
-      out.emplace_back(name, value);
-    } catch (const std::exception&) {
-      throw UsageError(option + ": expected a finite number after '" + name + "=', got '" + text +
-                       "'");
+      out.emplace_back(name, evaluate_value_text(text, names));
+    } catch (const ValueTextError& e) {
+      throw UsageError(fmt::format("{}: expected a finite number after '{}=', got '{}': {}", option,
+                                   name, text, e.what()));
     }
   }
   return out;
+}
+
+std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
+                                                              const std::string& option) {
+  return evaluate_assignments(split_assignments(args, option), option, {});
 }
 
 ParameterOverrides parse_sets(const std::vector<std::string>& sets) {
@@ -168,7 +191,7 @@ Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::vector<std::string>& initial, const std::string& initial_option,
                  const std::string& dynamics) {
   const ParameterOverrides overrides = parse_sets(sets);
-  const GivenState initial_values{parse_assignments(initial, initial_option), initial_option};
+  const GivenState initial_values{split_assignments(initial, initial_option), initial_option};
   std::string given;
   for (const auto& s : sets) given += (given.empty() ? "--set " : " --set ") + s;
   return prepare_checked(ModelSource{path, std::nullopt}, overrides, initial_values, dynamics,
@@ -184,10 +207,13 @@ Prepared prepare_source(const ModelSource& source, const ParameterOverrides& ove
       throw UsageError(fmt::format("set {}={}: expected a finite number", name, value));
     given += fmt::format("{}{}={}", given.empty() ? "set " : ", ", name, value);
   }
-  for (const auto& [name, value] : initial)
+  GivenState given_initial{{}, "initial"};
+  for (const auto& [name, value] : initial) {
     if (!std::isfinite(value))
       throw UsageError(fmt::format("initial {}={}: expected a finite number", name, value));
-  return prepare_checked(source, overrides, GivenState{initial, "initial"}, dynamics, "set", given);
+    given_initial.values.emplace_back(name, fmt::format("{:.17g}", value));  // read back exactly
+  }
+  return prepare_checked(source, overrides, given_initial, dynamics, "set", given);
 }
 
 void check_output(const std::string& path, const std::string& option) {
