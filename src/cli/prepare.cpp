@@ -78,7 +78,9 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
                       const GivenState& initial, const std::string& dynamics) {
   Prepared p;
   const auto t0 = Clock::now();
-  p.model = std::make_unique<const Model>(source.read(overrides));
+  // The start values go to the reader, so that what it builds from them (a tether's nodes)
+  // follows; apply_initial sets them again with those it leaves (a free body's position).
+  p.model = std::make_unique<const Model>(source.read(overrides, initial.values));
   const Formulation form = formulation(*p.model, dynamics);
   try {
     p.equations = derive(*p.model, form);
@@ -122,6 +124,8 @@ Prepared prepare_checked(const ModelSource& source, const ParameterOverrides& ov
     return prepare_with(source, overrides, initial, dynamics);
   } catch (const ParameterOverrideError& e) {
     throw UsageError(fmt::format("{}: {}", option, e.what()));
+  } catch (const ValueTextError& e) {
+    throw UsageError(fmt::format("{}: {}", initial.option, e.what()));
   } catch (const ModelError& e) {
     // The file's own mistake stays a model error; a value only the caller brings is its.
     if (overrides.empty() || !prepares_as_written(source, dynamics)) throw;
@@ -224,8 +228,9 @@ void check_output(const std::string& path, const std::string& option) {
   }
 }
 
-Model ModelSource::read(const ParameterOverrides& overrides) const {
-  return text ? read_model_string(*text, path, overrides) : read_model_file(path, overrides);
+Model ModelSource::read(const ParameterOverrides& overrides, const StartValues& start) const {
+  return text ? read_model_string(*text, path, overrides, nullptr, start)
+              : read_model_file(path, overrides, start);
 }
 
 SimulationOptions simulation_options(const Model& model, const RunSettings& given) {

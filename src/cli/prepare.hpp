@@ -50,8 +50,9 @@ JacobianSource jacobian_source(const Prepared& p, const std::string& method,
 struct ModelSource {
   std::string path;
   std::optional<std::string> text;
-  /// read_model_file(path) or read_model_string(*text, path) with `overrides`.
-  Model read(const ParameterOverrides& overrides) const;
+  /// read_model_file(path) or read_model_string(*text, path) with `overrides`, starting from
+  /// `start`.
+  Model read(const ParameterOverrides& overrides, const StartValues& start = {}) const;
 };
 
 /// check_writable(path) as a command-line mistake: UsageError "OPTION: cannot write …" (exit 2)
