@@ -248,29 +248,31 @@ double evaluate(const Metric& metric, const Trajectory& traj,
 }
 
 // docs/theory.md §9.2: max and min between samples. The extremum the samples show at row r
-// lies in [t(r−1), t(r+1)] when both neighbours are in the window; golden-section search there
-// on the metric of rows integrated from sample r − 1 finds it to 1e-10 (1 + |t|) in time.
+// lies in [t(r−1), t(r+1)], cut to the window and the run; golden-section search there on the
+// metric of rows integrated from the sample before finds it to 1e-10 (1 + |t|) in time (at a
+// window's edge, the value there).
 double evaluate(const Metric& metric, const Trajectory& traj, const std::vector<double>& parameters,
                 const RowAt& row_at) {
   size_t r = 0;
   const double sampled = aggregate(metric, traj, parameters, r);
   const bool max = metric.aggregate == Metric::Aggregate::Max;
-  if ((!max && metric.aggregate != Metric::Aggregate::Min) || std::isnan(sampled) || r == 0 ||
-      r + 1 >= traj.rows())
-    return sampled;
+  if ((!max && metric.aggregate != Metric::Aggregate::Min) || std::isnan(sampled)) return sampled;
   const size_t nc = traj.columns.size(), tcol = traj.column_index("t");
   const auto t_of = [&](size_t row) { return traj.data[row * nc + tcol]; };
-  if (!in_window(metric, t_of(r - 1)) || !in_window(metric, t_of(r + 1))) return sampled;
+  const size_t from = r > 0 ? r - 1 : r;
+  double a = t_of(from), b = t_of(r + 1 < traj.rows() ? r + 1 : r);
+  if (metric.after) a = std::max(a, *metric.after);
+  if (metric.before) b = std::min(b, *metric.before);
+  if (!(b > a)) return sampled;
   std::vector<double> in(nc + parameters.size()), work(metric.tape->work_size());
   std::copy(parameters.begin(), parameters.end(), in.begin() + static_cast<long>(nc));
   // The value to maximise: the metric, or minus it for min.
   const auto f = [&](double t) {
-    const std::vector<double> row = row_at(r - 1, t);
+    const std::vector<double> row = row_at(from, t);
     const double x = metric_at(metric, row.data(), nc, in, work);
     return max ? x : -x;
   };
   const double g = (std::sqrt(5.0) - 1) / 2;  // 1/φ
-  double a = t_of(r - 1), b = t_of(r + 1);
   double c = b - g * (b - a), d = a + g * (b - a), fc = f(c), fd = f(d);
   for (int it = 0; it < 200 && b - a > 1e-10 * (1 + std::abs(b)); ++it) {
     if (fc >= fd) {

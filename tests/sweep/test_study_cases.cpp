@@ -205,18 +205,22 @@ gravity: [0, -g, 0]
   so.t_end = 2.0;
   so.output_step = 0.1;
   const Trajectory traj = simulate(dyn, so, cm->q0, cm->v0);
-  std::vector<Metric> metrics{parse_metric("apex=max(y)"),
-                              parse_metric("slowest=min(x_dot^2 + y_dot^2)"),
-                              parse_metric("first=max(y, t < 0.5)")};
+  std::vector<Metric> metrics{
+      parse_metric("apex=max(y)"), parse_metric("slowest=min(x_dot^2 + y_dot^2)"),
+      parse_metric("first=max(y, t < 0.45)"), parse_metric("late=max(y, t > 1.5)")};
   bind_metrics(metrics, traj.columns, cm->parameter_names);
   const RowAt row_at = rows_between_samples(dyn, so, traj);
   const double apex = 100 / (2 * 9.81);
   EXPECT_GT(apex - evaluate(metrics[0], traj, cm->parameter_defaults), 1e-3);  // samples only
   EXPECT_NEAR(evaluate(metrics[0], traj, cm->parameter_defaults, row_at), apex, 1e-9);
   EXPECT_NEAR(evaluate(metrics[1], traj, cm->parameter_defaults, row_at), 1.0, 1e-9);
-  // Rising all through the window: the last sample in it, t = 0.4.
-  EXPECT_DOUBLE_EQ(evaluate(metrics[2], traj, cm->parameter_defaults, row_at),
-                   10 * 0.4 - 9.81 / 2 * 0.16);
+  // Rising all through the window, falling all through the other: the value at its edge, which
+  // lies between samples (0.45 and 1.5 against samples 0.4, 0.5 and 1.6).
+  const auto y = [](double t) { return 10 * t - 9.81 / 2 * t * t; };
+  EXPECT_LT(evaluate(metrics[2], traj, cm->parameter_defaults), y(0.45) - 0.2);
+  EXPECT_NEAR(evaluate(metrics[2], traj, cm->parameter_defaults, row_at), y(0.45), 1e-9);
+  EXPECT_LT(evaluate(metrics[3], traj, cm->parameter_defaults), y(1.5) - 0.5);
+  EXPECT_NEAR(evaluate(metrics[3], traj, cm->parameter_defaults, row_at), y(1.5), 1e-9);
 }
 
 }  // namespace
