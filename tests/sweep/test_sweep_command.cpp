@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::hardening {
 namespace {
