@@ -155,7 +155,18 @@ Formulation formulation(const Model& model, const std::string& dynamics) {
 }
 
 std::vector<std::pair<std::string, std::string>> split_assignments(
-    const std::vector<std::string>& args, const std::string& option) {
+    const std::vector<std::string>& given, const std::string& option) {
+  // The options split their values at commas: a piece inside a function's parentheses
+  // (`theta=atan2(1`, `2)`) is joined back to the value it belongs to.
+  std::vector<std::string> args;
+  int depth = 0;
+  for (const auto& piece : given) {
+    if (depth > 0 && !args.empty())
+      args.back() += "," + piece;
+    else
+      args.push_back(piece);
+    for (char c : piece) depth += c == '(' || c == '[' ? 1 : c == ')' || c == ']' ? -1 : 0;
+  }
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& s : args) {
     const auto eq = s.find('=');

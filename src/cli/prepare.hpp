@@ -64,7 +64,8 @@ void check_output(const std::string& path, const std::string& option);
 /// not a finite number.
 ParameterOverrides parse_sets(const std::vector<std::string>& sets);
 
-/// `NAME=VALUE` arguments of `option` as (NAME, VALUE text) in order; UsageError for a missing '='.
+/// `NAME=VALUE` arguments of `option` as (NAME, VALUE text) in order, pieces of one value that a
+/// comma-separated option split inside parentheses joined again; UsageError for a missing '='.
 std::vector<std::pair<std::string, std::string>> split_assignments(
     const std::vector<std::string>& args, const std::string& option);
 

@@ -89,6 +89,14 @@ TEST(ValueExpressions, InitialEqualsTheSameValueWrittenInTheFile) {
   ASSERT_EQ(written.exit_code, 0) << written.err;
   const Csv ca = read_csv(a), cb = read_csv(b);
   EXPECT_DOUBLE_EQ(ca.at(0, "theta"), kPi / 3);
+  // A function of two arguments survives the option's split at commas.
+  const fs::path c = dir.path() / "c.csv";
+  const RunResult two = run_lagrange(
+      dir.path(), {"simulate", model.string(), "--initial",
+                   "theta=atan2(sqrt(3),1),theta_dot=4*atan2(1,1)", "-q", "-o", c.string()});
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_DOUBLE_EQ(read_csv(c).at(0, "theta"), kPi / 3);
+  EXPECT_DOUBLE_EQ(read_csv(c).at(0, "theta_dot"), kPi);
   ASSERT_EQ(ca.rows.size(), cb.rows.size());
   for (size_t i = 0; i < ca.rows.size(); ++i) EXPECT_EQ(ca.rows[i], cb.rows[i]) << "row " << i;
 }
