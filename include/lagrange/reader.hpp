@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagrange/model.hpp"
@@ -45,6 +46,24 @@ struct ReadTrace {
   std::string opaque;
 };
 
+/// A value written outside a model file (`--set`, `--initial`, `--vary`, Python) that the model
+/// language does not read as a finite number; the message says what and at which character.
+class ValueTextError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// `text` read as the model file reads a value (docs/model-language.md): numbers, `pi`, the
+/// built-in functions and the `names` given (parameters' values); ValueTextError otherwise.
+double evaluate_value_text(const std::string& text,
+                           const std::map<std::string, double>& names = {});
+
+/// Start values a caller gives (`--initial`, Python `initial=`), in order: a coordinate's name (a
+/// generated one too, `line.node1.x`) or its rate NAME_dot, and the value's text in the model
+/// language (numbers, pi, parameters). The reader starts from them, so that what it builds from
+/// the start (a tether's nodes) follows; names it does not know are left to the caller.
+using StartValues = std::vector<std::pair<std::string, std::string>>;
+
 /// Read a model file. Throws ModelError naming file, line, column and what was expected.
 /// `overrides` replace parameter values before anything else is evaluated, so that initial
 /// values, checks and settings written as expressions of parameters see them.
@@ -54,8 +73,13 @@ Model read_model_file(const std::string& path, const ParameterOverrides& overrid
 Model read_model_file(const std::string& path, const ParameterOverrides& overrides,
                       ReadTrace& trace);
 
+/// The same, starting from `start` (ValueTextError, naming the value, for one that does not read).
+Model read_model_file(const std::string& path, const ParameterOverrides& overrides,
+                      const StartValues& start);
+
 /// Read a model from YAML text; `file_label` is used in error messages.
 Model read_model_string(const std::string& yaml_text, const std::string& file_label,
-                        const ParameterOverrides& overrides = {}, ReadTrace* trace = nullptr);
+                        const ParameterOverrides& overrides = {}, ReadTrace* trace = nullptr,
+                        const StartValues& start = {});
 
 }  // namespace lagrange

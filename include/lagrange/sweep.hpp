@@ -113,6 +113,19 @@ std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
 double evaluate(const Metric& metric, const Trajectory& traj,
                 const std::vector<double>& parameters = {});
 
+/// A trajectory's row (its columns) at time t between samples, integrated from sample `row`.
+using RowAt = std::function<std::vector<double>(size_t row, double t)>;
+
+/// Rows between the samples of `traj`, a run of `dyn` with `options`: re-integrated from the
+/// sample before with the run's integrator and tolerances, as stop conditions are located.
+RowAt rows_between_samples(Dynamics& dyn, const SimulationOptions& options, const Trajectory& traj);
+
+/// evaluate() with `max` and `min` located between samples (docs/theory.md §9.2): where the
+/// samples peak inside the window, the extremum over the two intervals around that sample, by
+/// golden-section search on rows from `row_at`, to 1e-10 (1 + |t|) in time.
+double evaluate(const Metric& metric, const Trajectory& traj, const std::vector<double>& parameters,
+                const RowAt& row_at);
+
 /// What one case needs besides the shared compiled model.
 struct CaseInput {
   std::vector<double> parameters, q0, v0;

@@ -184,11 +184,20 @@ class Model:
         outputs: Sequence[str] = (),
         discrete: Optional[float] = None,
         t: float = 0.0,
+        values: Mapping[str, float] = ...,
+        at_trim: bool = False,
+        free: Sequence[str] = (),
+        fix: Sequence[str] = (),
+        steady: Sequence[str] = (),
+        tol: float = 1e-9,
     ) -> SimpleNamespace:
         """The linear model about (q, v) (default: the initial state) on the constraint
         manifold, as `lagrange linearize`: A, B, C, D (numpy), states, inputs, outputs, modes
         (dicts: eigenvalue, frequency_hz, damping, time_constant, shape), full_states, basis,
-        dependent, equilibrium_residual, dt (discrete > 0: the zero-order-hold model), q, v."""
+        dependent, equilibrium_residual, dt (discrete > 0: the zero-order-hold model), q, v,
+        trim. values sets parameters and model inputs at the operating point; at_trim=True
+        trims first with free, fix, steady and tol (as `linearize --at-trim`), and trim is
+        then a namespace: iterations, residual, tolerance, inputs (found), steady, drift."""
     def trim(
         self,
         q: Optional[ArrayLike] = None,

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "analysis/jacobian_limit.hpp"
@@ -65,6 +66,35 @@ void operating_point(const cli::Prepared& p, Dynamics& dyn, double t,
     throw py::value_error("the operating point cannot be put on the constraints: " + ic.note());
 }
 
+/// Parameters and model inputs at the caller's `values` in `dyn` (inputs held, as a trimmed input
+/// is); a name that is neither is a ValueError listing both.
+void apply_values(Dynamics& dyn, const std::map<std::string, double>& values) {
+  const CompiledModel& cm = dyn.model();
+  std::vector<double> params = dyn.parameters();
+  const auto index = [](const std::vector<std::string>& names, const std::string& name) {
+    return static_cast<size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  const auto listed = [](const std::vector<std::string>& names) {
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out.empty() ? std::string("none") : out;
+  };
+  for (const auto& [name, value] : values) {
+    if (!std::isfinite(value))
+      throw py::value_error("values: expected a finite number for '" + name + "'");
+    if (const size_t i = index(cm.parameter_names, name); i < cm.parameter_names.size()) {
+      params[i] = value;
+    } else if (const size_t j = index(cm.input_names, name); j < cm.input_names.size()) {
+      dyn.hold_input(j, value);
+    } else {
+      throw py::value_error("values: no parameter or model input '" + name +
+                            "' (parameters: " + listed(cm.parameter_names) +
+                            "; inputs: " + listed(cm.input_names) + ")");
+    }
+  }
+  if (params != dyn.parameters()) dyn.set_parameters(params);
+}
+
 py::object mode_dicts(const std::vector<Mode>& ms) {
   py::list out;
   for (const Mode& mode : ms) {
@@ -89,8 +119,11 @@ py::object namespace_of(const py::dict& fields) {
 py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
                            std::optional<py::object> v_in, const std::vector<std::string>& inputs,
                            const std::vector<std::string>& outputs, std::optional<double> discrete,
-                           double t) {
+                           double t, const std::map<std::string, double>& values,
+                           const TrimFirst& first) {
   if (discrete && !(*discrete > 0)) throw py::value_error("discrete: expected a positive dt");
+  if (!first.at_trim && (!first.free.empty() || !first.fix.empty() || !first.steady.empty()))
+    throw py::value_error("free, fix and steady choose what trim varies: give at_trim=True too");
   const cli::Prepared& p = *m.prepared;
   LagrangianForm f = lagrangian_form(p);
   std::vector<std::string> model_outputs;  // only the named model outputs are differentiated
@@ -104,8 +137,28 @@ py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
   } catch (const std::invalid_argument& e) {
     throw py::value_error(std::string("inputs: ") + e.what());
   }
+  apply_values(*f.dynamics, values);
   std::vector<double> q, v;
   operating_point(p, *f.dynamics, t, q_in, v_in, q, v);
+  py::object trimmed = py::none();
+  if (first.at_trim) {  // as run_linearize: trim on the same Jacobian, free inputs held after it
+    cli::Options opt;
+    opt.free = first.free;
+    opt.fix = first.fix;
+    opt.steady = first.steady;
+    opt.tol = first.tol;
+    const TrimOptions options = cli::trim_options(*f.compiled, q, v, opt, jac->input_names());
+    const TrimResult r = trim(*jac, *f.dynamics, t, q, v, options);
+    q = r.q;
+    v = r.v;
+    py::dict found;
+    for (size_t k = 0, j = 0; j < options.free_inputs.size(); ++j)
+      if (options.free_inputs[j]) found[py::str(jac->input_names()[j])] = r.inputs[k++];
+    trimmed = namespace_of(
+        py::dict(py::arg("iterations") = r.iterations, py::arg("residual") = r.residual,
+                 py::arg("tolerance") = r.tolerance, py::arg("inputs") = found,
+                 py::arg("steady") = !first.steady.empty(), py::arg("drift") = r.drift));
+  }
   LinearModel lin;
   try {
     lin = linearize(*jac, *f.dynamics, t, q.data(), v.data(), outputs);
@@ -121,7 +174,7 @@ py::object linearize_model(const PyModel& m, std::optional<py::object> q_in,
       py::arg("modes") = mode_dicts(ms), py::arg("full_states") = lin.full_state_names,
       py::arg("basis") = lin.basis, py::arg("dependent") = lin.dependent,
       py::arg("equilibrium_residual") = lin.equilibrium_residual, py::arg("q") = to_array(q),
-      py::arg("v") = to_array(v)));
+      py::arg("v") = to_array(v), py::arg("trim") = trimmed));
 }
 
 // docs/theory.md §5.5 through the library, as `lagrange trim` (the same option handling,

@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,13 +13,24 @@
 
 namespace lagrange::python {
 
+/// What `linearize` trims first, as `lagrange linearize --at-trim --free … --fix … --steady …`.
+struct TrimFirst {
+  bool at_trim = false;
+  std::vector<std::string> free, fix, steady;
+  double tol = 0.0;
+};
+
 /// A, B, C, D (numpy), names, modes and the basis at (q, v) (default: the model's consistent
-/// initial state), as a types.SimpleNamespace; `discrete` > 0 gives the zero-order hold.
+/// initial state) with parameters and model inputs at `values`, after a trim when `first` asks
+/// for one (its result as `trim`), as a types.SimpleNamespace; `discrete` > 0 gives the
+/// zero-order hold.
 pybind11::object linearize_model(const PyModel& m, std::optional<pybind11::object> q,
                                  std::optional<pybind11::object> v,
                                  const std::vector<std::string>& inputs,
                                  const std::vector<std::string>& outputs,
-                                 std::optional<double> discrete, double t);
+                                 std::optional<double> discrete, double t,
+                                 const std::map<std::string, double>& values,
+                                 const TrimFirst& first);
 
 /// An equilibrium or, with `steady` rates held at their values in v (default: the initial
 /// rates), a steady state from q, varying `free` minus `fix` as `lagrange trim` does: q, v,

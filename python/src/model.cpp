@@ -246,14 +246,31 @@ void bind_model(py::module_& m) {
       .def("forward_batch", &forward_batch, py::arg("Q"), py::arg("V"), py::arg("t") = 0.0,
            "forward for each row of Q (rows × nq) and V (rows × nv) with the GIL released: "
            "rows × nv accelerations, or (accelerations, rows × m multipliers).")
-      .def("linearize", &linearize_model, py::arg("q") = py::none(), py::arg("v") = py::none(),
-           py::arg("inputs") = std::vector<std::string>{},
-           py::arg("outputs") = std::vector<std::string>{}, py::arg("discrete") = py::none(),
-           py::arg("t") = 0.0,
-           "The linear model about (q, v) (default: the initial state) on the constraint "
-           "manifold, as `lagrange linearize`: a namespace with A, B, C, D (numpy), states, "
-           "inputs (model inputs or parameters), outputs, modes, basis, dt (discrete > 0: "
-           "zero-order hold). Raises AnalysisError when the KKT matrix is singular.")
+      .def(
+          "linearize",
+          [](const PyModel& pm, std::optional<py::object> q, std::optional<py::object> v,
+             const std::vector<std::string>& inputs, const std::vector<std::string>& outputs,
+             std::optional<double> discrete, double t, const std::map<std::string, double>& values,
+             bool at_trim, const std::vector<std::string>& free,
+             const std::vector<std::string>& fix, const std::vector<std::string>& steady,
+             double tol) {
+            return linearize_model(pm, std::move(q), std::move(v), inputs, outputs, discrete, t,
+                                   values, TrimFirst{at_trim, free, fix, steady, tol});
+          },
+          py::arg("q") = py::none(), py::arg("v") = py::none(),
+          py::arg("inputs") = std::vector<std::string>{},
+          py::arg("outputs") = std::vector<std::string>{}, py::arg("discrete") = py::none(),
+          py::arg("t") = 0.0, py::arg("values") = std::map<std::string, double>{},
+          py::arg("at_trim") = false, py::arg("free") = std::vector<std::string>{},
+          py::arg("fix") = std::vector<std::string>{},
+          py::arg("steady") = std::vector<std::string>{}, py::arg("tol") = cli::Options{}.tol,
+          "The linear model about (q, v) (default: the initial state) on the constraint "
+          "manifold, as `lagrange linearize`: a namespace with A, B, C, D (numpy), states, "
+          "inputs (model inputs or parameters), outputs, modes, basis, dt (discrete > 0: "
+          "zero-order hold), trim. values={'F': 10.7} sets parameters and model inputs there; "
+          "at_trim=True trims first with free, fix, steady and tol as `lagrange trim` (as "
+          "`linearize --at-trim`), and trim then says how (iterations, residual, inputs found). "
+          "Raises AnalysisError when the KKT matrix is singular.")
       .def("trim", &trim_model, py::arg("q") = py::none(),
            py::arg("free") = std::vector<std::string>{},
            py::arg("fix") = std::vector<std::string>{}, py::arg("tol") = cli::Options{}.tol,

@@ -281,9 +281,10 @@ int run_simulate(const Options& opt) {
       if (shown < cm->nq) last += fmt::format(", … ({} more in the CSV)", cm->nq - shown);
       fmt::print("  final state: {}\n", last);
       std::string values;
+      const sweep::RowAt row_at = sweep::rows_between_samples(*p.dynamics, so, traj);
       for (const sweep::Metric& m : metrics)
         values += fmt::format("{}{} = {:.10g}", values.empty() ? "" : ", ", m.name,
-                              sweep::evaluate(m, traj, p.dynamics->parameters()));
+                              sweep::evaluate(m, traj, p.dynamics->parameters(), row_at));
       if (!values.empty()) fmt::print("  metrics: {}\n", values);
       if (!traj.stopped_by.empty()) {
         const StopSpec* fired = nullptr;

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "cli/commands.hpp"
 #include "cli/initial_state.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
+#include "lagrange/reader.hpp"
 
 namespace lagrange::cli {
 
@@ -58,9 +60,10 @@ void apply_initial(const CompiledModel& cm,
   }
 }
 
-/// The state given on the command line (`--initial` or `--state`) and its option's name.
+/// The state given on the command line (`--initial` or `--state`) as NAME and value text, and
+/// its option's name.
 struct GivenState {
-  std::vector<std::pair<std::string, double>> values;
+  std::vector<std::pair<std::string, std::string>> values;
   std::string option;
 };
 
@@ -76,11 +79,20 @@ bool accepts_own_state(const Prepared& p) {
   }
 }
 
+/// The model's parameters by name at their values (after --set): what a start value may name.
+std::map<std::string, double> parameter_values(const Model& model) {
+  std::map<std::string, double> out;
+  for (const Parameter& p : model.parameters) out[p.name] = p.value;
+  return out;
+}
+
 Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overrides,
                       const GivenState& initial, const std::string& dynamics) {
   Prepared p;
   const auto t0 = Clock::now();
-  p.model = std::make_unique<const Model>(source.read(overrides));
+  // The start values go to the reader, so that what it builds from them (a tether's nodes)
+  // follows; apply_initial sets them again with those it leaves (a free body's position).
+  p.model = std::make_unique<const Model>(source.read(overrides, initial.values));
   const Formulation form = formulation(*p.model, dynamics);
   try {
     p.equations = derive(*p.model, form);
@@ -98,7 +110,9 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
   p.compile_seconds = seconds_since(t1);
   p.q = p.compiled->q0;
   p.v = p.compiled->v0;
-  apply_initial(*p.compiled, initial.values, initial.option, p.q, p.v);
+  apply_initial(*p.compiled,
+                evaluate_assignments(initial.values, initial.option, parameter_values(*p.model)),
+                initial.option, p.q, p.v);
   try {
     p.initial = require_consistent_initial_state(*p.model, *p.dynamics, p.q, p.v);
     require_regular_initial_state(*p.model, p.equations, *p.dynamics, p.q, p.v);
@@ -108,7 +122,7 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
     if (initial.values.empty() || !accepts_own_state(p)) throw;
     std::string given;
     for (const auto& [name, value] : initial.values)
-      given += fmt::format("{}{}={:g}", given.empty() ? "" : ",", name, value);
+      given += fmt::format("{}{}={}", given.empty() ? "" : ",", name, value);
     throw UsageError(fmt::format("{} {}: the model does not accept this state: {} (found at {})",
                                  initial.option, given, e.detail(), e.loc().str()));
   }
@@ -133,6 +147,8 @@ Prepared prepare_checked(const ModelSource& source, const ParameterOverrides& ov
     return prepare_with(source, overrides, initial, dynamics);
   } catch (const ParameterOverrideError& e) {
     throw UsageError(fmt::format("{}: {}", option, e.what()));
+  } catch (const ValueTextError& e) {
+    throw UsageError(fmt::format("{}: {}", initial.option, e.what()));
   } catch (const ModelError& e) {
     // The file's own mistake stays a model error; a value only the caller brings is its.
     if (overrides.empty() || !prepares_as_written(source, dynamics)) throw;
@@ -161,24 +177,46 @@ Formulation formulation(const Model& model, const std::string& dynamics) {
   return why.empty() ? Formulation::Recursive : Formulation::Lagrangian;
 }
 
-std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
-                                                              const std::string& option) {
-  std::vector<std::pair<std::string, double>> out;
+std::vector<std::pair<std::string, std::string>> split_assignments(
+    const std::vector<std::string>& given, const std::string& option) {
+  // The options split their values at commas: a piece inside a function's parentheses
+  // (`theta=atan2(1`, `2)`) is joined back to the value it belongs to.
+  std::vector<std::string> args;
+  int depth = 0;
+  for (const auto& piece : given) {
+    if (depth > 0 && !args.empty())
+      args.back() += "," + piece;
+    else
+      args.push_back(piece);
+    for (char c : piece) depth += c == '(' || c == '[' ? 1 : c == ')' || c == ']' ? -1 : 0;
+  }
+  std::vector<std::pair<std::string, std::string>> out;
   for (const auto& s : args) {
     const auto eq = s.find('=');
     if (eq == std::string::npos) throw UsageError(option + " expects NAME=VALUE, got '" + s + "'");
-    const std::string name = s.substr(0, eq), text = s.substr(eq + 1);
+    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> evaluate_assignments(
+    const std::vector<std::pair<std::string, std::string>>& given, const std::string& option,
+    const std::map<std::string, double>& names) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [name, text] : given) {
     try {
-      size_t used = 0;
-      const double value = std::stod(text, &used);
-      if (used != text.size() || !std::isfinite(value)) throw std::invalid_argument(s);
-      out.emplace_back(name, value);
-    } catch (const std::exception&) {
-      throw UsageError(option + ": expected a finite number after '" + name + "=', got '" + text +
-                       "'");
+      out.emplace_back(name, evaluate_value_text(text, names));
+    } catch (const ValueTextError& e) {
+      throw UsageError(fmt::format("{}: expected a finite number after '{}=', got '{}': {}", option,
+                                   name, text, e.what()));
     }
   }
   return out;
+}
+
+std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
+                                                              const std::string& option) {
+  return evaluate_assignments(split_assignments(args, option), option, {});
 }
 
 ParameterOverrides parse_sets(const std::vector<std::string>& sets) {
@@ -191,7 +229,7 @@ Prepared prepare(const std::string& path, const std::vector<std::string>& sets,
                  const std::vector<std::string>& initial, const std::string& initial_option,
                  const std::string& dynamics) {
   const ParameterOverrides overrides = parse_sets(sets);
-  const GivenState initial_values{parse_assignments(initial, initial_option), initial_option};
+  const GivenState initial_values{split_assignments(initial, initial_option), initial_option};
   std::string given;
   for (const auto& s : sets) given += (given.empty() ? "--set " : " --set ") + s;
   return prepare_checked(ModelSource{path, std::nullopt}, overrides, initial_values, dynamics,
@@ -207,10 +245,13 @@ Prepared prepare_source(const ModelSource& source, const ParameterOverrides& ove
       throw UsageError(fmt::format("set {}={}: expected a finite number", name, value));
     given += fmt::format("{}{}={}", given.empty() ? "set " : ", ", name, value);
   }
-  for (const auto& [name, value] : initial)
+  GivenState given_initial{{}, "initial"};
+  for (const auto& [name, value] : initial) {
     if (!std::isfinite(value))
       throw UsageError(fmt::format("initial {}={}: expected a finite number", name, value));
-  return prepare_checked(source, overrides, GivenState{initial, "initial"}, dynamics, "set", given);
+    given_initial.values.emplace_back(name, fmt::format("{:.17g}", value));  // read back exactly
+  }
+  return prepare_checked(source, overrides, given_initial, dynamics, "set", given);
 }
 
 void check_output(const std::string& path, const std::string& option) {
@@ -221,8 +262,9 @@ void check_output(const std::string& path, const std::string& option) {
   }
 }
 
-Model ModelSource::read(const ParameterOverrides& overrides) const {
-  return text ? read_model_string(*text, path, overrides) : read_model_file(path, overrides);
+Model ModelSource::read(const ParameterOverrides& overrides, const StartValues& start) const {
+  return text ? read_model_string(*text, path, overrides, nullptr, start)
+              : read_model_file(path, overrides, start);
 }
 
 SimulationOptions simulation_options(const Model& model, const RunSettings& given) {

@@ -3,6 +3,7 @@
 // derive, compile, and make the initial state consistent and regular.
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,8 +51,9 @@ JacobianSource jacobian_source(const Prepared& p, const std::string& method,
 struct ModelSource {
   std::string path;
   std::optional<std::string> text;
-  /// read_model_file(path) or read_model_string(*text, path) with `overrides`.
-  Model read(const ParameterOverrides& overrides) const;
+  /// read_model_file(path) or read_model_string(*text, path) with `overrides`, starting from
+  /// `start`.
+  Model read(const ParameterOverrides& overrides, const StartValues& start = {}) const;
 };
 
 /// check_writable(path) as a command-line mistake: UsageError "OPTION: cannot write …" (exit 2)
@@ -63,8 +65,19 @@ void check_output(const std::string& path, const std::string& option);
 /// not a finite number.
 ParameterOverrides parse_sets(const std::vector<std::string>& sets);
 
-/// `NAME=VALUE` arguments of `option` in order; UsageError for a missing '=' or a value that is
-/// not a finite number.
+/// `NAME=VALUE` arguments of `option` as (NAME, VALUE text) in order, pieces of one value that a
+/// comma-separated option split inside parentheses joined again; UsageError for a missing '='.
+std::vector<std::pair<std::string, std::string>> split_assignments(
+    const std::vector<std::string>& args, const std::string& option);
+
+/// Each VALUE text read as the model file reads a value (evaluate_value_text: numbers, pi,
+/// functions and `names`); UsageError naming `option`, the NAME and what is wrong otherwise.
+std::vector<std::pair<std::string, double>> evaluate_assignments(
+    const std::vector<std::pair<std::string, std::string>>& given, const std::string& option,
+    const std::map<std::string, double>& names);
+
+/// `NAME=VALUE` arguments of `option` in order, each VALUE an expression of numbers and pi
+/// (`pi/10`); UsageError for a missing '=' or a value that is not a finite number.
 std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<std::string>& args,
                                                               const std::string& option);
 
@@ -72,7 +85,8 @@ std::vector<std::pair<std::string, double>> parse_assignments(const std::vector<
 /// initial state (ModelError for a mistake in the file). A --set naming no parameter, or one whose
 /// value makes the model invalid when the file alone is not, is a UsageError (exit 2) that
 /// names the --set and says what the model rejected and where it uses the value. `initial`
-/// (NAME=VALUE of the option `initial_option`) replaces the file's initial value of a coordinate
+/// (NAME=VALUE of the option `initial_option`, VALUE an expression of numbers, pi and the
+/// model's parameters) replaces the file's initial value of a coordinate
 /// or of a velocity `NAME_dot` before the state is made consistent; an unknown name is a
 /// UsageError naming it. `dynamics` chooses the Formulation: "lagrangian", "recursive" (a
 /// UsageError saying why when the model cannot take it) or "auto" (recursive where it applies:

@@ -15,12 +15,34 @@ namespace lagrange::cli {
 
 namespace {
 
-std::string yaml_block(const CompiledModel& cm, const std::vector<double>& q,
+/// A coordinate an element made (a tether's node `line.node1.x`, a winch's length, a joint of
+/// `links:` or a URDF): the file sets its start in the `initial:` section, not in coordinates:.
+bool generated(const Model& model, const std::string& name) {
+  if (name.find('.') != std::string::npos) return true;
+  const int i = model.coordinate_index(name);
+  return std::any_of(model.tree.begin(), model.tree.end(),
+                     [i](const TreeJoint& j) { return i >= 0 && j.coordinate == i; });
+}
+
+// The state found as the model file writes a start: coordinates: for those written there, an
+// `initial:` section for generated ones, and every plain one as --initial would take it.
+std::string yaml_block(const Model& model, const CompiledModel& cm, const std::vector<double>& q,
                        const std::vector<double>& v) {
-  std::string out = "coordinates:\n";
-  for (size_t i = 0; i < cm.plain; ++i)
-    out += fmt::format("  {}: {{initial: {:.17g}, rate: {:.17g}}}\n", cm.coordinate_names[i],
-                       q[i] + 0.0, v[i] + 0.0);
+  std::string written, made, option;
+  for (size_t i = 0; i < cm.plain; ++i) {
+    const std::string& name = cm.coordinate_names[i];
+    if (generated(model, name))
+      made += fmt::format("  {}: {:.17g}\n  {}_dot: {:.17g}\n", name, q[i] + 0.0, name, v[i] + 0.0);
+    else
+      written +=
+          fmt::format("  {}: {{initial: {:.17g}, rate: {:.17g}}}\n", name, q[i] + 0.0, v[i] + 0.0);
+    option += fmt::format("{}{}={:.17g},{}_dot={:.17g}", option.empty() ? "" : ",", name,
+                          q[i] + 0.0, name, v[i] + 0.0);
+  }
+  std::string out = "# as --initial: " + option + "\n";
+  if (!written.empty()) out += "coordinates:\n" + written;
+  if (!made.empty())
+    out += "initial:  # coordinates the model's elements generate (tether nodes, joints)\n" + made;
   if (cm.rotations.empty()) return out;
   out += "bodies:  # the free bodies' initial state (merge into each body's entry)\n";
   for (size_t iR : cm.rotations) {
@@ -54,7 +76,7 @@ int run_trim(const Options& opt) {
     for (double c : C) worst = std::max(worst, std::abs(c));
     fmt::print("# on the constraints: max |C| = {:.3g}\n", worst);
   }
-  fmt::print("{}", yaml_block(cm, r.q, r.v));
+  fmt::print("{}", yaml_block(*p.model, cm, r.q, r.v));
   // The free inputs found, as the model file's parameters (or inputs) would give them.
   for (const bool parameters : {true, false}) {
     std::string block;

@@ -76,7 +76,14 @@ void declare_winches(ModelReader& r, const YAML::Node& node, ElementContext& ctx
                                                  "reeled-out {:g} in {}, got {:g}",
                                                  w.initial, what, *total));
     }
-    r.add_coordinate(w.name + ".reeled_out", w.initial, w.rate, key);
+    // A start value given for the coordinate (--initial drum.reeled_out=…) is the winch's.
+    const Coordinate& c = r.add_coordinate(w.name + ".reeled_out", w.initial, w.rate, key);
+    if (!(c.initial > 0))
+      r.fail(key, fmt::format("expected a positive reeled-out length of {}, got {:g} as the start "
+                              "value of '{}'",
+                              what, c.initial, c.name));
+    w.initial = c.initial;
+    w.rate = c.rate;
     r.model().coordinates.back().fixed = w.fixed;
     w.coordinate = r.model().coordinates.size() - 1;
     ctx.winches.push_back(w);

@@ -57,7 +57,7 @@ class ModelReader {
  public:
   /// `trace`, when given, records how the model depends on the watched parameters' values.
   ModelReader(const SourceText& src, const ParameterOverrides& overrides,
-              ReadTrace* trace = nullptr);
+              ReadTrace* trace = nullptr, const StartValues& start = {});
   Model read(const YAML::Node& root);
 
   // The methods below are also the interface of the element readers (src/elements/), which
@@ -141,8 +141,18 @@ class ModelReader {
   /// Warns at `node` when `e` evaluates to a value implausible for `q` (kg/m³, rad, m/s²).
   void warn_implausible(const GiNaC::ex& e, const YAML::Node& node, Quantity q,
                         const std::string& what) const;
-  /// Warns for each parameter above one turn that enters only as an angle (sin(p), cos(q + p), …).
+  /// Warns for each parameter, and each coordinate's start value, above one turn that enters only
+  /// as an angle (sin(p), cos(q + p), …).
   void warn_angle_parameters() const;
+
+  // read_start.cpp — start values: the file's `initial:` section and the caller's (which win).
+  /// Evaluates both at the parameters' values (a located error, or ValueTextError for the
+  /// caller's); `section` is the file's `initial:` map, if written.
+  void read_start_values(const std::optional<YAML::Node>& section);
+  /// The start value given for a coordinate or rate `name`, or `otherwise`.
+  double start_value(const std::string& name, double otherwise);
+  /// A located error at the first name of the file's `initial:` that named no coordinate or rate.
+  void check_start_values_used() const;
 
   // read_declarations.cpp
   void read_parameters(const YAML::Node& node);
@@ -241,6 +251,15 @@ class ModelReader {
   const SourceText& src_;
   const ParameterOverrides& overrides_;
   ReadTrace* trace_ = nullptr;
+  const StartValues& given_start_;
+  /// A start value by name; `key` is its name in the file's `initial:` when `in_file`.
+  struct Start {
+    double value = 0.0;
+    YAML::Node key;
+    bool in_file = false;
+    bool used = false;
+  };
+  std::map<std::string, Start> start_;
   /// The symbols whose values a trace follows (watched parameters, then coordinates' q or v).
   std::vector<GiNaC::symbol> traced_symbols_;
   /// evaluate(e) without recording anything in a trace.

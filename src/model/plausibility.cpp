@@ -3,6 +3,7 @@
 // stderr says what looks wrong and what SI value was probably meant.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -113,7 +114,16 @@ void ModelReader::warn_angle_parameters() const {
   std::vector<const Parameter*> candidates;
   for (const Parameter& p : m_.parameters)
     if (beyond_turn(p.value) || traced(p.sym)) candidates.push_back(&p);
-  if (candidates.empty()) return;
+  // Coordinates starting beyond a turn; a joint of links:/urdf: only when a start value set it
+  // (the joint's own `initial:` is checked where it is read).
+  std::vector<const Coordinate*> coordinates;
+  for (const Coordinate& c : m_.coordinates) {
+    const int i = static_cast<int>(&c - m_.coordinates.data());
+    const bool joint = std::any_of(m_.tree.begin(), m_.tree.end(),
+                                   [i](const TreeJoint& j) { return j.coordinate == i; });
+    if (beyond_turn(c.initial) && (!joint || start_.count(c.name) != 0)) coordinates.push_back(&c);
+  }
+  if (candidates.empty() && coordinates.empty()) return;
   TrigScan scan;
   auto visit3 = [&](const Vec3& v) {
     for (const GiNaC::ex& e : v) scan.walk(e);
@@ -144,6 +154,20 @@ void ModelReader::warn_angle_parameters() const {
                               "cos or tan) and is {:.3g} turns: angles are in radians "
                               "({:g}° = {:.6g} rad)",
                               p->name, p->value, p->value / kTurn, p->value, p->value * kPi / 180));
+  }
+  for (const Coordinate* c : coordinates) {
+    if (scan.outside(c->q) || !scan.angle(c->q)) continue;
+    const auto given = start_.find(c->name);
+    const bool by_caller = given != start_.end() && !given->second.in_file;
+    const std::string message = fmt::format(
+        "initial value of coordinate '{}' is {:g}{} and it enters only as an angle (inside sin, "
+        "cos or tan), {:.3g} turns: angles are in radians ({:g}° = {:.6g} rad)",
+        c->name, c->initial, by_caller ? ", given to the run," : "", c->initial / kTurn, c->initial,
+        c->initial * kPi / 180);
+    if (by_caller)
+      fmt::print(stderr, "warning: {}\n", message);
+    else
+      print_warning(given != start_.end() ? src_.at(given->second.key) : c->loc, message);
   }
 }
 

@@ -53,10 +53,21 @@ void ModelReader::read_coordinates(const YAML::Node& node) {
                  false,
                  src_.at(kv.first)};
     if (!spec["initial"]) fail(kv.first, fmt::format("expected 'initial' in {}, got none", what));
-    c.initial =
-        coordinate_number(spec["initial"], fmt::format("initial value of {}", what), c, false);
-    if (spec["rate"])
+    // A start value given (`initial:` section, --initial) replaces the one written here, which
+    // is still read for its mistakes but not traced (a study would replay it).
+    const std::string initial_what = fmt::format("initial value of {}", what);
+    if (start_.count(name) != 0) {
+      (void)scalar_expr(spec["initial"], kParams, initial_what);
+      c.initial = start_value(name, 0.0);
+    } else {
+      c.initial = coordinate_number(spec["initial"], initial_what, c, false);
+    }
+    if (start_.count(name + "_dot") != 0) {
+      if (spec["rate"]) (void)scalar_expr(spec["rate"], kParams, fmt::format("rate of {}", what));
+      c.rate = start_value(name + "_dot", 0.0);
+    } else if (spec["rate"]) {
       c.rate = coordinate_number(spec["rate"], fmt::format("rate of {}", what), c, true);
+    }
     if (spec["fixed"]) c.fixed = boolean(spec["fixed"], fmt::format("'fixed' of {}", what));
     m_.coordinates.push_back(c);
   }

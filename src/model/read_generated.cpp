@@ -40,8 +40,8 @@ const Coordinate& ModelReader::add_coordinate(const std::string& name, double in
                GiNaC::symbol(name, latex_name(name)),
                GiNaC::symbol(name + "_dot", latex_name(name, "\\dot")),
                GiNaC::symbol(name + "_ddot", latex_name(name, "\\ddot")),
-               initial,
-               rate,
+               start_value(name, initial),
+               start_value(name + "_dot", rate),
                false,
                loc};
   m_.coordinates.push_back(c);

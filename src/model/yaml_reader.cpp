@@ -22,7 +22,7 @@ const std::vector<std::string>& top_level_keys() {
       "points",      "particles",  "gravity",     "kinetic",   "potential",
       "generalized_forces",        "forces",      "torques",   "springs",
       "dampers",     "constraints", "outputs",    "stabilization", "simulate",
-      "stop_when",   "metrics",    "visual",    "optimal_control"};  // visual: read into Model::visual, drawn by the report
+      "stop_when",   "metrics",    "visual",    "optimal_control", "initial"};  // visual: read into Model::visual, drawn by the report
   // clang-format on
   static const std::vector<std::string> all = [] {
     std::vector<std::string> k = keys;
@@ -43,8 +43,8 @@ std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
 }  // namespace
 
 ModelReader::ModelReader(const SourceText& src, const ParameterOverrides& overrides,
-                         ReadTrace* trace)
-    : src_(src), overrides_(overrides), trace_(trace) {}
+                         ReadTrace* trace, const StartValues& start)
+    : src_(src), overrides_(overrides), trace_(trace), given_start_(start) {}
 
 Model ModelReader::read(const YAML::Node& root) {
   if (!root.IsMap())
@@ -60,6 +60,7 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "parameters")) read_parameters(*n);
   check_overrides();
   watch_parameters();
+  read_start_values(section(root, "initial"));
   if (auto n = section(root, "coordinates")) read_coordinates(*n);
   if (auto n = section(root, "inputs")) read_inputs(*n);
   if (auto n = section(root, "bodies")) read_bodies(*n);
@@ -96,6 +97,7 @@ Model ModelReader::read(const YAML::Node& root) {
   if (auto n = section(root, "metrics")) read_metrics(*n);
   if (auto n = section(root, "visual")) read_visual(*n);
   if (auto n = section(root, "optimal_control")) read_optimal_control(*n);
+  check_start_values_used();
   warn_angle_parameters();
   return m_;
 }
@@ -103,7 +105,8 @@ Model ModelReader::read(const YAML::Node& root) {
 }  // namespace model
 
 Model read_model_string(const std::string& yaml_text, const std::string& file_label,
-                        const ParameterOverrides& overrides, ReadTrace* trace) {
+                        const ParameterOverrides& overrides, ReadTrace* trace,
+                        const StartValues& start) {
   if (yaml_text.size() > model::kMaxModelBytes)  // a file is cut off at read; text given whole
     throw ModelError(SourceLoc{file_label},
                      fmt::format("expected a model of at most {} MiB, got {}",
@@ -124,7 +127,7 @@ Model read_model_string(const std::string& yaml_text, const std::string& file_la
     throw ModelError(at, fmt::format("expected valid YAML, got a syntax error: {}", e.msg));
   }
   try {
-    return model::ModelReader(src, overrides, trace).read(root);
+    return model::ModelReader(src, overrides, trace, start).read(root);
   } catch (const YAML::Exception& e) {
     throw ModelError(src.at(e.mark), fmt::format("expected a well-formed model, got: {}", e.msg));
   }
@@ -132,7 +135,8 @@ Model read_model_string(const std::string& yaml_text, const std::string& file_la
 
 namespace {
 
-Model read_file(const std::string& path, const ParameterOverrides& overrides, ReadTrace* trace) {
+Model read_file(const std::string& path, const ParameterOverrides& overrides, ReadTrace* trace,
+                const StartValues& start = {}) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ModelError(SourceLoc{path}, "expected a model file, got a directory");
@@ -150,9 +154,10 @@ Model read_file(const std::string& path, const ParameterOverrides& overrides, Re
     return read_model_string(
         fmt::format("name: '{}'\nurdf: '{}'\ngravity: [0, 0, -9.81]\n",
                     quoted(file.stem().string()), quoted(file.filename().string())),
-        path, overrides, trace);
+        path, overrides, trace, start);
   }
-  return read_model_string(model::read_bounded_file(path, "model file"), path, overrides, trace);
+  return read_model_string(model::read_bounded_file(path, "model file"), path, overrides, trace,
+                           start);
 }
 
 }  // namespace
@@ -164,6 +169,11 @@ Model read_model_file(const std::string& path, const ParameterOverrides& overrid
 Model read_model_file(const std::string& path, const ParameterOverrides& overrides,
                       ReadTrace& trace) {
   return read_file(path, overrides, &trace);
+}
+
+Model read_model_file(const std::string& path, const ParameterOverrides& overrides,
+                      const StartValues& start) {
+  return read_file(path, overrides, nullptr, start);
 }
 
 }  // namespace lagrange

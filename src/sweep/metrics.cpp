@@ -179,9 +179,25 @@ std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
   return metrics;
 }
 
-// docs/theory.md §9.2: the aggregate over the samples in the window, in time order.
-double evaluate(const Metric& metric, const Trajectory& traj,
-                const std::vector<double>& parameters) {
+namespace {
+
+/// The metric's value on one row of `nc` columns, with the parameters already in `in`.
+double metric_at(const Metric& metric, const double* row, size_t nc, std::vector<double>& in,
+                 std::vector<double>& work) {
+  std::copy_n(row, nc, in.begin());
+  double x = 0.0;
+  metric.tape->eval(in.data(), &x, work.data());
+  return x;
+}
+
+}  // namespace
+
+namespace {
+
+// docs/theory.md §9.2: the aggregate over the samples in the window, in time order; `best` the
+// row where max or min is reached.
+double aggregate(const Metric& metric, const Trajectory& traj,
+                 const std::vector<double>& parameters, size_t& best) {
   const size_t nc = traj.columns.size(), tcol = traj.column_index("t");
   if (!metric.tape || metric.columns != nc || metric.tape->num_inputs() != nc + parameters.size())
     throw std::logic_error(fmt::format(
@@ -194,15 +210,13 @@ double evaluate(const Metric& metric, const Trajectory& traj,
   size_t count = 0;
   for (size_t r = 0; r < traj.rows(); ++r) {
     if (!in_window(metric, traj.data[r * nc + tcol])) continue;
-    std::copy_n(traj.data.begin() + static_cast<long>(r * nc), nc, in.begin());
-    double x = 0.0;
-    metric.tape->eval(in.data(), &x, work.data());
+    const double x = metric_at(metric, traj.data.data() + r * nc, nc, in, work);
     switch (metric.aggregate) {
       case Metric::Aggregate::Max:
-        result = count == 0 ? x : std::max(result, x);
+        if (count == 0 || x > result) result = x, best = r;
         break;
       case Metric::Aggregate::Min:
-        result = count == 0 ? x : std::min(result, x);
+        if (count == 0 || x < result) result = x, best = r;
         break;
       case Metric::Aggregate::Mean:
         sum += x;
@@ -223,6 +237,79 @@ double evaluate(const Metric& metric, const Trajectory& traj,
   if (metric.aggregate == Metric::Aggregate::Mean && count > 0)
     result = sum / static_cast<double>(count);
   return result;
+}
+
+}  // namespace
+
+double evaluate(const Metric& metric, const Trajectory& traj,
+                const std::vector<double>& parameters) {
+  size_t best = 0;
+  return aggregate(metric, traj, parameters, best);
+}
+
+// docs/theory.md §9.2: max and min between samples. The extremum the samples show at row r
+// lies in [t(r−1), t(r+1)], cut to the window and the run; golden-section search there on the
+// metric of rows integrated from the sample before finds it to 1e-10 (1 + |t|) in time (at a
+// window's edge, the value there).
+double evaluate(const Metric& metric, const Trajectory& traj, const std::vector<double>& parameters,
+                const RowAt& row_at) {
+  size_t r = 0;
+  const double sampled = aggregate(metric, traj, parameters, r);
+  const bool max = metric.aggregate == Metric::Aggregate::Max;
+  if ((!max && metric.aggregate != Metric::Aggregate::Min) || std::isnan(sampled)) return sampled;
+  const size_t nc = traj.columns.size(), tcol = traj.column_index("t");
+  const auto t_of = [&](size_t row) { return traj.data[row * nc + tcol]; };
+  const size_t from = r > 0 ? r - 1 : r;
+  double a = t_of(from), b = t_of(r + 1 < traj.rows() ? r + 1 : r);
+  if (metric.after) a = std::max(a, *metric.after);
+  if (metric.before) b = std::min(b, *metric.before);
+  if (!(b > a)) return sampled;
+  std::vector<double> in(nc + parameters.size()), work(metric.tape->work_size());
+  std::copy(parameters.begin(), parameters.end(), in.begin() + static_cast<long>(nc));
+  // The value to maximise: the metric, or minus it for min.
+  const auto f = [&](double t) {
+    const std::vector<double> row = row_at(from, t);
+    const double x = metric_at(metric, row.data(), nc, in, work);
+    return max ? x : -x;
+  };
+  const double g = (std::sqrt(5.0) - 1) / 2;  // 1/φ
+  double c = b - g * (b - a), d = a + g * (b - a), fc = f(c), fd = f(d);
+  for (int it = 0; it < 200 && b - a > 1e-10 * (1 + std::abs(b)); ++it) {
+    if (fc >= fd) {
+      b = d, d = c, fd = fc;
+      c = b - g * (b - a), fc = f(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + g * (b - a), fd = f(d);
+    }
+  }
+  const double found = std::max(fc, fd);
+  if (!std::isfinite(found)) return sampled;
+  return max ? std::max(sampled, found) : std::min(sampled, -found);
+}
+
+RowAt rows_between_samples(Dynamics& dyn, const SimulationOptions& options,
+                           const Trajectory& traj) {
+  const CompiledModel& cm = dyn.model();
+  const size_t nc = traj.columns.size(), tcol = traj.column_index("t");
+  std::vector<size_t> qcol, vcol;
+  for (const auto& name : cm.coordinate_names) qcol.push_back(traj.column_index(name));
+  for (const auto& name : cm.velocity_names) vcol.push_back(traj.column_index(name));
+  return [&dyn, options, &traj, nc, tcol, qcol, vcol](size_t row, double t) {
+    const double* sample = traj.data.data() + row * nc;
+    if (!(t > sample[tcol])) return std::vector<double>(sample, sample + nc);
+    std::vector<double> q, v;
+    for (size_t i : qcol) q.push_back(sample[i]);
+    for (size_t i : vcol) v.push_back(sample[i]);
+    SimulationOptions one = options;
+    one.progress = nullptr;  // a piece of the run already reported
+    one.t0 = sample[tcol];
+    one.t_end = t;
+    one.output_step = t - one.t0;
+    const Trajectory piece = simulate(dyn, one, q, v);
+    if (piece.rows() == 0) return std::vector<double>(nc, std::nan(""));
+    return std::vector<double>(piece.data.end() - static_cast<long>(nc), piece.data.end());
+  };
 }
 
 }  // namespace lagrange::sweep

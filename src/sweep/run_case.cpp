@@ -67,9 +67,11 @@ CaseResult run_case(Dynamics& dyn, const CaseInput& input, const std::vector<Met
   result.status = traj.status;
   result.reason = traj.message;
   result.failure_time = traj.failure_time;
-  if (traj.rows() > 0)
-    for (const auto& m : metrics) result.metrics.push_back(evaluate(m, traj, input.parameters));
-  else
+  if (traj.rows() > 0) {
+    const RowAt row_at = rows_between_samples(dyn, input.options, traj);
+    for (const auto& m : metrics)
+      result.metrics.push_back(evaluate(m, traj, input.parameters, row_at));
+  } else
     result.metrics.assign(metrics.size(), std::nan(""));
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

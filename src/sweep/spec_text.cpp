@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <sstream>
 
+#include "lagrange/reader.hpp"
 #include "lagrange/sweep.hpp"
 
 namespace lagrange::sweep {
@@ -26,12 +26,10 @@ std::vector<std::string> split(const std::string& text, char sep) {
 
 double finite_number(const std::string& text, const std::string& context) {
   try {
-    size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(value)) return value;
-  } catch (const std::exception&) {
+    return evaluate_value_text(text);
+  } catch (const ValueTextError& e) {
+    throw StudyError(fmt::format("{}: {}", context, e.what()));
   }
-  throw StudyError(fmt::format("{}: expected a finite number, got '{}'", context, text));
 }
 
 std::pair<std::string, std::string> name_and_value(const std::string& spec,

@@ -13,7 +13,8 @@ std::string trim(const std::string& text);
 /// `text` cut at each `sep`, each piece trimmed.
 std::vector<std::string> split(const std::string& text, char sep);
 
-/// A finite number written as `text`; StudyError "<context>: expected a finite number, got …".
+/// The finite number `text` writes in the model language (`0.5`, `pi/4`, no names);
+/// StudyError "<context>: …" saying what is wrong otherwise.
 double finite_number(const std::string& text, const std::string& context);
 
 /// `NAME=REST` of `spec` as (NAME, REST), both trimmed; StudyError naming `option` and what was

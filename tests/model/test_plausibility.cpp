@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::hardening {
 namespace {
@@ -63,6 +63,48 @@ INSTANTIATE_TEST_SUITE_P(Plausibility, ImplausibleValue, ::testing::ValuesIn(cas
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return s;
                          });
+
+// A start beyond a turn of a coordinate that enters only as an angle (issue 36 item 6): written
+// in the file (at the coordinate), given with --initial (on a pendulum, a links: joint, a URDF),
+// the same warning; half a turn, or a coordinate that also enters outside sin, is not warned.
+TEST(Plausibility, CoordinateStartsInDegreesAreWarnedWhereverGiven) {
+  ScratchDir dir(std::string("plausible-start-") + std::to_string(getpid()));
+  const fs::path pendulum = dir.path() / "pendulum.yaml", arm = dir.path() / "arm.yaml";
+  spit(pendulum,
+       "parameters: {m: 1, l: 1}\ngravity: [0, 0, -9.81]\n"
+       "coordinates: {theta: {initial: 30}}\n"
+       "points: {bob: [l*sin(theta), 0, -l*cos(theta)]}\nparticles: {bob: m}\n");
+  RunResult r = run_lagrange(dir.path(), {"check", pendulum.string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.rfind(pendulum.string() +
+                            ":3:15: warning: initial value of coordinate 'theta' is 30 and it "
+                            "enters only as an angle (inside sin, cos or tan), 4.77 turns",
+                        0),
+            0U)
+      << r.err;
+  r = run_lagrange(dir.path(), {"check", pendulum.string(), "--initial", "theta=pi/2"});
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  spit(arm,
+       "links:\n  arm: {joint: {name: q, type: revolute, axis: [0, 1, 0], initial: 0.5},\n"
+       "        mass: 1, com: [0.5, 0, 0], inertia: [0.01, 0.01, 0.01]}\n"
+       "gravity: [0, 0, -9.81]\n");
+  for (const fs::path& model :
+       {pendulum, arm, fs::path(LAGRANGE_SOURCE_DIR) / "examples/robots/ur5.urdf"}) {
+    const std::string name = model == pendulum ? "theta"
+                             : model == arm    ? "q"
+                                               : "shoulder_lift_joint";
+    r = run_lagrange(dir.path(), {"check", model.string(), "--initial", name + "=45"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.rfind("warning: initial value of coordinate '" + name +
+                              "' is 45, given to the run, and it enters only as an angle",
+                          0),
+              0U)
+        << model << "\n"
+        << r.err;
+  }
+  r = run_lagrange(dir.path(), {"check", arm.string()});
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
 
 // A frequency inside sin (sin(ω t), ω = 50 rad/s) is not an angle, and no shipped example warns.
 TEST(Plausibility, FrequenciesAndTheExamplesAreNotWarnedAbout) {

@@ -199,3 +199,47 @@ def test_trim_tolerance_is_the_command_lines(cli):
     m = lagrange.loads(DRAG_PENDULUM, label="<pendulum>")
     python = float(re.search(r"tol: float = ([-+.e0-9]+)", m.trim.__doc__)[1])
     assert python == command_line
+
+
+SIDE_FORCE = """
+name: pendulum in a side force
+parameters: {m: 1.0, l: 1.0, g: 9.81, F: 0.0}
+coordinates: {theta: {initial: 0.3}}
+points: {bob: [l*sin(theta), -l*cos(theta), 0]}
+particles: {bob: m}
+gravity: [0, -g, 0]
+forces: [{point: bob, force: [F, 0, 0]}]
+"""
+
+
+def test_linearize_trims_first_and_takes_values_as_the_cli(cli, tmp_path):
+    # F = m g tan(theta) holds the pendulum at theta = 0.3; there
+    # theta'' = (F cos(theta) - m g sin(theta))/(m l) has d/dtheta = -g/(l cos(theta)).
+    path = tmp_path / "side_force.yaml"
+    path.write_text(SIDE_FORCE)
+    m = lagrange.load(str(path))
+    trimmed = m.linearize(inputs=["F"], at_trim=True, free=["F"])
+    F = trimmed.trim.inputs["F"]
+    assert F == pytest.approx(9.81 * math.tan(0.3), rel=1e-10)
+    assert trimmed.A[1, 0] == pytest.approx(-9.81 / math.cos(0.3), rel=1e-10)
+    assert trimmed.B[1, 0] == pytest.approx(math.cos(0.3), rel=1e-12)
+    out = subprocess.run([str(cli), "linearize", str(path), "--at-trim", "--free", "F",
+                          "--inputs", "F", "--format", "json"],
+                         check=True, capture_output=True, text=True)
+    j = json.loads(out.stdout)
+    assert j["trim"]["inputs"]["F"] == F
+    assert np.array_equal(np.array(j["A"]), trimmed.A)
+    assert np.array_equal(np.array(j["B"]), trimmed.B)
+    # The same operating point given as a value, and on the command line as --set.
+    given = m.linearize(inputs=["F"], values={"F": F})
+    assert np.array_equal(given.A, trimmed.A)
+    assert given.trim is None
+    out = subprocess.run([str(cli), "linearize", str(path), "--set", f"F={F!r}", "--inputs", "F",
+                          "--format", "json"], check=True, capture_output=True, text=True)
+    assert np.array_equal(np.array(json.loads(out.stdout)["A"]), given.A)
+    # Without them, the F = 0 matrices: A[1, 0] = -g cos(theta).
+    assert m.linearize().A[1, 0] == pytest.approx(-9.81 * math.cos(0.3), rel=1e-12)
+    with pytest.raises(ValueError, match="give at_trim=True"):
+        m.linearize(free=["F"])
+    with pytest.raises(ValueError, match=r"values: no parameter or model input 'G' \(parameters: "):
+        m.linearize(values={"G": 1.0})

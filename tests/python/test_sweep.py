@@ -45,7 +45,8 @@ def check(frame, expected):
     for _, row in frame.iterrows():
         last, peak = expected[(row["l2"], row["m2"])]
         assert row["last"] == last  # bit for bit
-        assert row["peak"] == peak
+        # located between samples (docs/theory.md §9.2): at least the largest sample, near it
+        assert peak <= row["peak"] <= peak * (1 + 1e-2)
 
 
 def test_sweep_here_equals_lone_runs(expected, cli, tmp_path):

@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::hardening {
 namespace {
@@ -106,7 +106,10 @@ TEST(SweepCommand, CasesAreBitIdenticalToSimulateSet) {
         if (v[0] > 1) peak = std::max(peak, std::abs(v[2]));
       }
       EXPECT_EQ(std::stod(row.at("final(theta1)")), last);
-      EXPECT_EQ(std::stod(row.at("peak")), peak);
+      // The peak is located between samples (docs/theory.md §9.2; exact in test_study_cases):
+      // at least the largest sample, and near it at this output step.
+      EXPECT_GE(std::stod(row.at("peak")), peak);
+      EXPECT_NEAR(std::stod(row.at("peak")), peak, 1e-2 * peak);
     }
   }
   EXPECT_EQ(without_wall_time(dir.path() / "j1" / "summary.csv"),
