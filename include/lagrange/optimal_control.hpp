@@ -57,8 +57,8 @@ struct PathConstraintSpec {
   SourceLoc loc;
 };
 
-/// The problem: J = ∫₀ᵀ L dt + Φ(T, q(T), v(T), u(T)), minimised (or maximised) subject to the
-/// dynamics, bounds, path constraints and boundary values (docs/theory.md §10).
+/// The problem: J = ∫₀ᵀ L dt + (1/T)∫₀ᵀ M dt + Φ(T, q(T), v(T), u(T)), minimised (or maximised)
+/// subject to the dynamics, bounds, path constraints and boundary values (docs/theory.md §10).
 struct OptimalControlSpec {
   std::vector<ControlSpec> controls;
   double horizon = 1.0;                ///< T when fixed; the initial guess when free
@@ -66,6 +66,8 @@ struct OptimalControlSpec {
   bool maximize = false;
   GiNaC::ex integrand = 0;  ///< L, the sum of the objective's integral terms with their factors
   GiNaC::ex terminal = 0;   ///< Φ, the rest of the objective (t is the final time there)
+  /// M, the sum of the objective's mean(…) terms with their factors: (1/T)∫₀ᵀ M dt, T free or not
+  GiNaC::ex mean_integrand = 0;
   std::string objective_text;
   std::vector<StateBound> bounds;
   std::vector<PathConstraintSpec> path;

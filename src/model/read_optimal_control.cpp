@@ -61,54 +61,64 @@ Bounds ModelReader::read_bounds(const YAML::Node& node, const std::string& what,
   return b;
 }
 
-// J = Σ c_k ∫ L_k dt + Φ: each integral(…) is read on its own (the rest of the text blanked), then
-// the whole with each integral(…) renamed to a placeholder symbol of the same length, so that
-// every error keeps its column. The placeholders must enter linearly with constant factors c_k.
+// J = Σ c_k ∫ L_k dt + Σ c_m mean(M_m) + Φ: each integral(…) and mean(…) is read on its own (the
+// rest of the text blanked), then the whole with each renamed to a placeholder symbol of the same
+// length, so that every error keeps its column. The placeholders must enter linearly with
+// constant factors c.
 void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spec) const {
   const std::string what = "the objective";
   if (!node.IsScalar() || node.Scalar().find_first_not_of(" \t\r\n") == std::string::npos)
     fail(node, fmt::format("expected an expression for {}, got {}", what, describe(node)));
   std::string outer = node.Scalar();
   spec.objective_text = outer;
-  const std::string keyword = "integral";
   LocalNames placeholders;
-  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> integrals;
-  for (size_t at = outer.find(keyword); at != std::string::npos; at = outer.find(keyword, at + 1)) {
-    const size_t after = at + keyword.size();
-    if ((at > 0 && name_char(outer[at - 1])) || after >= outer.size() || outer[after] != '(')
-      continue;
-    const size_t close = closing(outer, after);
-    if (close == std::string::npos)
-      throw ModelError(src_.at(node, after), "expected ')' closing integral( (in the objective)");
-    std::string inner(outer.size(), ' ');
-    inner.replace(after + 1, close - after - 1, outer, after + 1, close - after - 1);
-    if (inner.find_first_not_of(' ') == std::string::npos)
-      throw ModelError(src_.at(node, after), "expected an expression inside integral()");
-    const GiNaC::ex L = parse_text(node, inner, kAll, "an integral of the objective").scalar;
-    // Never longer than the shortest term it replaces, "integral(x)" (11 characters), for any
-    // count the reader's text limit allows.
-    const std::string name = fmt::format("_i{}", integrals.size());
-    const GiNaC::symbol s(name);
-    placeholders[name] = s;
-    integrals.emplace_back(s, L);
-    outer.replace(at, close + 1 - at, name + std::string(close + 1 - at - name.size(), ' '));
-  }
+  struct Term {
+    GiNaC::symbol placeholder;
+    GiNaC::ex expr;
+    bool mean;
+  };
+  std::vector<Term> terms;
+  for (const std::string keyword : {"integral", "mean"})
+    for (size_t at = outer.find(keyword); at != std::string::npos;
+         at = outer.find(keyword, at + 1)) {
+      const size_t after = at + keyword.size();
+      if ((at > 0 && name_char(outer[at - 1])) || after >= outer.size() || outer[after] != '(')
+        continue;
+      const size_t close = closing(outer, after);
+      if (close == std::string::npos)
+        throw ModelError(src_.at(node, after),
+                         fmt::format("expected ')' closing {}( (in the objective)", keyword));
+      std::string inner(outer.size(), ' ');
+      inner.replace(after + 1, close - after - 1, outer, after + 1, close - after - 1);
+      if (inner.find_first_not_of(' ') == std::string::npos)
+        throw ModelError(src_.at(node, after),
+                         fmt::format("expected an expression inside {}()", keyword));
+      const GiNaC::ex L =
+          parse_text(node, inner, kAll, fmt::format("a {} of the objective", keyword)).scalar;
+      // Never longer than the shortest term it replaces, "mean(x)" (7 characters), for any count
+      // the reader's text limit allows.
+      const std::string name = fmt::format("_{}{}", keyword[0], terms.size());
+      const GiNaC::symbol s(name);
+      placeholders[name] = s;
+      terms.push_back({s, L, keyword == "mean"});
+      outer.replace(at, close + 1 - at, name + std::string(close + 1 - at - name.size(), ' '));
+    }
   const Value v = parse_text(node, outer, kAll, what, &placeholders);
   if (v.is_vector || v.is_matrix)
     fail(node, fmt::format("expected a scalar for {}, got a vector or matrix", what));
   GiNaC::exmap zero;
-  for (const auto& [s, L] : integrals) zero[s] = 0;
+  for (const Term& term : terms) zero[term.placeholder] = 0;
   spec.terminal = v.scalar.subs(zero);
-  spec.integrand = 0;
-  for (size_t k = 0; k < integrals.size(); ++k) {
-    const GiNaC::ex factor = v.scalar.diff(integrals[k].first);
-    if (!evaluate_unrecorded(factor) || factor.has(m_.t) || factor.has(integrals[k].first) ||
+  spec.integrand = spec.mean_integrand = 0;
+  for (size_t k = 0; k < terms.size(); ++k) {
+    const GiNaC::ex factor = v.scalar.diff(terms[k].placeholder);
+    if (!evaluate_unrecorded(factor) || factor.has(m_.t) || factor.has(terms[k].placeholder) ||
         !evaluate_unrecorded(factor.subs(zero)))
-      fail(node, fmt::format("expected integral terms added with constant factors in {} "
-                             "(c*integral(L) + terminal terms), got integral {} inside "
+      fail(node, fmt::format("expected integral and mean terms added with constant factors in {} "
+                             "(c*integral(L) + c*mean(M) + terminal terms), got term {} inside "
                              "another function",
                              what, k + 1));
-    spec.integrand += factor * integrals[k].second;
+    (terms[k].mean ? spec.mean_integrand : spec.integrand) += factor * terms[k].expr;
   }
 }
 

@@ -30,6 +30,7 @@ std::vector<std::string> problem_warnings(const Equations& eq, const CompiledMod
   std::vector<GiNaC::ex> used = dynamics_expressions(eq, cm);
   used.push_back(spec.integrand);
   used.push_back(spec.terminal);
+  used.push_back(spec.mean_integrand);
   for (const PathConstraintSpec& p : spec.path) used.push_back(p.expr);
   std::vector<std::string> warnings;
   for (const ControlSpec& c : spec.controls) {

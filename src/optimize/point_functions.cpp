@@ -2,6 +2,12 @@
 
 namespace lagrange::collocation {
 
+std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec) {
+  std::vector<GiNaC::ex> fs{spec.integrand, spec.terminal, spec.mean_integrand};
+  for (const PathConstraintSpec& p : spec.path) fs.push_back(p.expr);
+  return fs;
+}
+
 PointFunctions::PointFunctions(const Equations& eq, const CompiledModel& cm,
                                const std::vector<GiNaC::ex>& fs,
                                const std::vector<size_t>& controls)

@@ -7,9 +7,15 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/equations.hpp"
+#include "lagrange/optimal_control.hpp"
 #include "lagrange/tape.hpp"
 
 namespace lagrange::collocation {
+
+/// The problem's point functions in tape order: the integrand L, the terminal term Φ, the mean
+/// integrand M, then the path constraints from index kFirstPath.
+constexpr size_t kIntegrand = 0, kTerminal = 1, kMean = 2, kFirstPath = 3;
+std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec);
 
 /// f_i(t, q, v, u) for i < count, and their non-zero derivatives along the columns
 /// (t, q₁…q_nq, v₁…v_nv, the controls), differentiated symbolically (docs/theory.md §10).

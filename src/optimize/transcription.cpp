@@ -19,12 +19,6 @@ std::vector<std::string> control_names(const Model& model, const OptimalControlS
   return names;
 }
 
-std::vector<GiNaC::ex> point_functions(const OptimalControlSpec& spec) {
-  std::vector<GiNaC::ex> fs{spec.integrand, spec.terminal};
-  for (const PathConstraintSpec& p : spec.path) fs.push_back(p.expr);
-  return fs;
-}
-
 std::vector<GiNaC::ex> guessed_paths(const OptimalControlSpec& spec) {
   std::vector<GiNaC::ex> fs;
   for (const auto& [state, path] : spec.guess_paths) fs.push_back(path);
@@ -55,7 +49,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       dyn_(dyn),
       spec_(spec),
       jac_(eq, cm, control_names(*eq.model, spec)),
-      fun_(eq, *cm, point_functions(spec),
+      fun_(eq, *cm, problem_functions(spec),
            [&] {
              std::vector<size_t> c;
              for (const ControlSpec& s : spec.controls) c.push_back(s.input);
@@ -375,11 +369,12 @@ double Transcription::objective(const double* x) {
   double J = 0.0;
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
+      // docs/theory.md §10: ∫ L ≈ h Σ b_j L_kj; mean(M) = (1/T) ∫ M ≈ (1/N) Σ b_j M_kj.
       fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
-      J += h * rad_.b[static_cast<size_t>(j - 1)] * out_[0];
+      J += rad_.b[static_cast<size_t>(j - 1)] * (h * out_[kIntegrand] + out_[kMean] / N_);
     }
   fun_.eval(load(horizon(x), state(x, N_, 0), control(x, N_ - 1)), out_);
-  return sign_ * (J + out_[1]);
+  return sign_ * (J + out_[kTerminal]);
 }
 
 void Transcription::gradient(const double* x, double* grad) {
@@ -389,13 +384,15 @@ void Transcription::gradient(const double* x, double* grad) {
   const size_t nf = fun_.count();
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
-      const double w = sign_ * h * rad_.b[static_cast<size_t>(j - 1)];
+      // The integrand's weight h b_j depends on T, the mean's b_j / N does not.
+      const double w = sign_ * h * rad_.b[static_cast<size_t>(j - 1)],
+                   wm = sign_ * rad_.b[static_cast<size_t>(j - 1)] / N_;
       fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
-      if (free_T_) grad[0] += w / T * out_[0];
+      if (free_T_) grad[0] += w / T * out_[kIntegrand];
       for (size_t e = 0; e < fun_.pattern().size(); ++e) {
         const auto [f, c] = fun_.pattern()[e];
-        if (f != 0) continue;
-        const double d = w * out_[nf + e];
+        if (f != kIntegrand && f != kMean) continue;
+        const double d = (f == kMean ? wm : w) * out_[nf + e];
         if (c == 0) {
           if (free_T_) grad[0] += d * (k + rad_.tau[static_cast<size_t>(j)]) / N_;
         } else if (c < cu) {
@@ -408,7 +405,7 @@ void Transcription::gradient(const double* x, double* grad) {
   fun_.eval(load(T, state(x, N_, 0), control(x, N_ - 1)), out_);
   for (size_t e = 0; e < fun_.pattern().size(); ++e) {
     const auto [f, c] = fun_.pattern()[e];
-    if (f != 1) continue;
+    if (f != kTerminal) continue;
     const double d = sign_ * out_[nf + e];
     if (c == 0) {
       if (free_T_) grad[0] += d;
@@ -428,7 +425,7 @@ void Transcription::constraint_values(const double* x, double* g) {
       residual(x, k, j, g + p * nr);
       if (np_ == 0) continue;
       fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
-      std::copy(out_.begin() + 2, out_.begin() + 2 + static_cast<long>(np_),
+      std::copy(out_.begin() + kFirstPath, out_.begin() + kFirstPath + static_cast<long>(np_),
                 g + path_rows_ + p * np_);
     }
   const size_t periodic_at = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
@@ -497,12 +494,13 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       fun_.eval(load(time(x, k, j), X, control(x, k)), out_);
       for (size_t e = 0; e < fun_.pattern().size(); ++e) {
         const auto [f, c] = fun_.pattern()[e];
-        if (f < 2) continue;
+        if (f < kFirstPath) continue;
         const double v = out_[nf + e];
         if (c == 0) {
-          if (free_T_) emit(prow + f - 2, 0, v * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
+          if (free_T_)
+            emit(prow + f - kFirstPath, 0, v * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
         } else {
-          emit(prow + f - 2, c < cu ? xi(k, j) + c - 1 : ui(k) + c - cu, v);
+          emit(prow + f - kFirstPath, c < cu ? xi(k, j) + c - 1 : ui(k) + c - cu, v);
         }
       }
     }

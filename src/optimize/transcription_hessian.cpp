@@ -83,11 +83,10 @@ void Transcription::prepare_hessian() {
     in.insert(in.end(), mu.begin(), mu.end());
     h_dae_ = SecondDerivatives(s, in, columns);
   }
-  // w₀ L + w₁ Φ + Σ w_p g_p.
+  // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p.
   {
     const std::vector<GiNaC::symbol> w = symbols("hess_w", fun_.count());
-    std::vector<GiNaC::ex> fs{spec_.integrand, spec_.terminal};
-    for (const PathConstraintSpec& p : spec_.path) fs.push_back(p.expr);
+    const std::vector<GiNaC::ex> fs = problem_functions(spec_);
     GiNaC::ex s = 0;
     for (size_t f = 0; f < fs.size(); ++f) s += w[f] * fs[f];
     std::vector<GiNaC::symbol> in = base;
@@ -167,15 +166,17 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       scatter_all(h_dae_, k, j);
       // The integrand (Radau weight) and the path constraints.
       hin_ = load(time(x, k, j), X, control(x, k));
-      hin_.push_back(sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)]);
-      hin_.push_back(0.0);
+      hin_.push_back(sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)]);   // L
+      hin_.push_back(0.0);                                                      // Φ
+      hin_.push_back(sigma * sign_ * rad_.b[static_cast<size_t>(j - 1)] / N_);  // M
       for (size_t i = 0; i < np_; ++i) hin_.push_back(y[path_rows_ + p * np_ + i]);
       scatter_all(h_point_, k, j);
     }
   // The terminal term at (T, X_{N,0}, U_{N−1}): the point's columns are the end state's.
   hin_ = load(horizon(x), state(x, N_, 0), control(x, N_ - 1));
-  hin_.push_back(0.0);
-  hin_.push_back(sigma * sign_);
+  hin_.push_back(0.0);            // L
+  hin_.push_back(sigma * sign_);  // Φ
+  hin_.push_back(0.0);            // M
   hin_.resize(hin_.size() + np_, 0.0);
   h_point_.eval(hin_, hout_);
   for (size_t e = 0; e < h_point_.pattern().size(); ++e) {

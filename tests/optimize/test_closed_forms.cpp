@@ -44,6 +44,28 @@ TEST(OptimalControl, MinimumTimeDoubleIntegratorIsTwiceTheSquareRootOfTheDistanc
   }
 }
 
+// mean(u²) over T = 2 is the minimum-energy optimum divided by T: 12 d²/T³ /(1 − 1/N²) / T, with
+// the same controls, over a fixed horizon and as the limit of a free one pinned by its bounds.
+TEST(OptimalControl, MeanIsTheIntegralOverTheHorizon) {
+  testing::OptimalProblem p("double_integrator_min_energy.yaml");
+  OptimalControlSpec& spec = *p.model->optimal_control;
+  spec.horizon = 2.0;
+  const OptimizeResult integral = p.solve(10, 3);
+  spec.mean_integrand = spec.integrand;
+  spec.integrand = 0;
+  const OptimizeResult mean = p.solve(10, 3);
+  ASSERT_TRUE(integral.optimal && mean.optimal) << integral.status << mean.status;
+  const double closed = 12.0 / 8.0 / (1 - 1.0 / 100);
+  EXPECT_NEAR(integral.objective, closed, 1e-9);
+  EXPECT_NEAR(mean.objective, closed / 2, 1e-9);
+  for (size_t k = 0; k < mean.controls.size(); ++k)
+    EXPECT_NEAR(mean.controls[k], integral.controls[k], 1e-7);
+  spec.free_horizon = Bounds{2.0, 2.0};
+  const OptimizeResult pinned = p.solve(10, 3);
+  ASSERT_TRUE(pinned.optimal) << pinned.status;
+  EXPECT_NEAR(pinned.objective, closed / 2, 1e-7);
+}
+
 // The pendulum swing-up by a horizontal force: the optimum re-simulates onto the upright rest
 // state to the collocation's accuracy, which improves with N.
 TEST(OptimalControl, PendulumSwingUpConvergesWithTheMesh) {

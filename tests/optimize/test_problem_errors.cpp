@@ -73,6 +73,21 @@ TEST(OptimalControlErrors, AreLocatedAndSayWhatWasExpected) {
             std::string::npos);
 }
 
+// mean(M) is (1/T) ∫ M: its own term, whatever the horizon (docs/theory.md §10).
+TEST(OptimalControlErrors, MeanTermsAreTheirOwnIntegrand) {
+  const Model m = read_model_string(
+      kModel + "  controls: {u: {}}\n  horizon: 2\n  minimize: integral(x) + 4*mean(u^2) - x\n",
+      "di.yaml");
+  const GiNaC::symbol& x = m.coordinates[0].q;
+  const GiNaC::symbol& u = m.inputs[0].u;
+  EXPECT_TRUE((m.optimal_control->integrand - x).expand().is_zero());
+  EXPECT_TRUE((m.optimal_control->mean_integrand - 4 * u * u).expand().is_zero());
+  EXPECT_TRUE((m.optimal_control->terminal + x).expand().is_zero());
+  EXPECT_NE(error_of("  controls: {u: {}}\n  horizon: 1\n  minimize: mean(u^2)^2\n")
+                .find("constant factors"),
+            std::string::npos);
+}
+
 TEST(OptimalControlErrors, ObjectiveSplitsIntoIntegrandAndTerminalTerms) {
   const Model m = read_model_string(
       kModel +
