@@ -263,7 +263,10 @@ int main(int argc, char** argv) {
   optimize->add_option("model", opt.model, "model file (YAML) with an optimal_control section")
       ->required();
   optimize->add_option("-o,--output", opt.csv,
-                       "CSV of the optimal trajectory (t, states, controls, multipliers)");
+                       "CSV of the optimal trajectory (simulate's columns, then the controls and "
+                       "the collocated multipliers)");
+  optimize->add_option("--report", opt.report,
+                       "one offline HTML file: the optimal motion in 3-D, plots, equations");
   optimize->add_option("--intervals", opt.intervals, "collocation intervals N (overrides the file)")
       ->check(CLI::Range(1, 100000));
   optimize->add_option("--degree", opt.degree, "Radau IIA points per interval, 1-5")

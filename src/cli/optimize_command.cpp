@@ -1,4 +1,4 @@
-// `lagrange optimize MODEL [-o out.csv] [--intervals N] [--degree d] [--set …] [--verify]
+// `lagrange optimize MODEL [-o out.csv] [--report out.html] [--intervals N] [--degree d] [--set …] [--verify]
 // [--ipopt KEY=VALUE …]` (docs/model-language.md, "Optimal control"; docs/theory.md §10).
 // Exit codes: 0 optimal, 1 a mistake in the model file, 2 usage, 3 Ipopt failed or infeasible.
 
@@ -8,12 +8,19 @@
 
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
+#include "cli/report_command.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/optimize.hpp"
 
 namespace lagrange::cli {
 
 int run_optimize(const Options& opt) {
+  // Output locations are checked before the solve, not found unwritable after it (issue 37).
+  for (const auto& [path, option] :
+       {std::pair{opt.csv, "-o"}, std::pair{opt.csv.empty() ? std::string() : opt.csv + ".json",
+                                            "-o"},
+        std::pair{opt.report, "--report"}})
+    if (!path.empty()) check_output(path, option);
   Prepared p = prepare(opt.model, opt.sets, {}, "--initial", "lagrangian");
   if (!p.model->optimal_control)
     throw UsageError(
@@ -21,6 +28,7 @@ int run_optimize(const Options& opt) {
                     "\"Optimal control\")",
                     opt.model));
   const OptimalControlSpec& spec = *p.model->optimal_control;
+  if (!opt.report.empty()) check_report(opt.report, *p.model);
   OptimizeOptions o;
   o.intervals = opt.intervals;
   o.degree = opt.degree;
@@ -41,6 +49,9 @@ int run_optimize(const Options& opt) {
   }
   for (const std::string& w : r.warnings) fmt::print(stderr, "{}\n", w);
   if (!opt.csv.empty()) write_trajectory_csv(r.trajectory, opt.csv);
+  if (!opt.report.empty())
+    write_run_report(p, r.trajectory, "Radau IIA collocation (optimize)",
+                     r.setup_seconds + r.solve_seconds, opt.report);
   if (!opt.quiet) {
     fmt::print("{}: {} ({} iterations)\n", p.model->name, r.status, r.iterations);
     fmt::print("  objective          {:.10g}\n", r.objective);

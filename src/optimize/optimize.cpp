@@ -12,6 +12,7 @@
 
 #include "optimize/ipopt_adapter.hpp"
 #include "optimize/transcription.hpp"
+#include "simulation/row_writer.hpp"
 
 namespace lagrange {
 
@@ -55,35 +56,50 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Rows t, q, v, controls, λ at t = 0 (λ from the forward dynamics) and every collocation point.
+/// At t = 0 and every collocation point, simulate's row (trajectory_columns: t, q, v, energies,
+/// outputs, the forward dynamics' λ, residuals, reactions, loads) with the controls held, then
+/// the controls and the collocated multipliers `lambda_<constraint>` (at t = 0, where none is
+/// collocated, the forward dynamics' λ). A state where the forward dynamics fail keeps t, q, v
+/// and NaN in the columns they give.
 Trajectory collocated(collocation::Transcription& nlp, Dynamics& dyn, const double* x,
                       const std::vector<std::string>& controls) {
   const CompiledModel& cm = dyn.model();
   Trajectory traj;
-  traj.columns.push_back("t");
-  for (const auto& n : cm.coordinate_names) traj.columns.push_back(n);
-  for (const auto& n : cm.velocity_names) traj.columns.push_back(n);
+  traj.columns = trajectory_columns(cm);
+  const size_t simulated = traj.columns.size(), nx = cm.nq + cm.nv, nu = controls.size();
+  const size_t first_lambda =
+      cm.m > 0 ? static_cast<size_t>(std::find(traj.columns.begin(), traj.columns.end(),
+                                               cm.constraint_names[0]) -
+                                     traj.columns.begin())
+               : 0;
   for (const auto& n : controls) traj.columns.push_back(n);
   for (const auto& n : cm.constraint_names) traj.columns.push_back("lambda_" + n);
-  const size_t nx = cm.nq + cm.nv, nu = controls.size();
-  auto row = [&](double t, const double* X, const double* u, const double* lambda) {
-    traj.data.push_back(t);
-    traj.data.insert(traj.data.end(), X, X + nx);
-    traj.data.insert(traj.data.end(), u, u + nu);
-    traj.data.insert(traj.data.end(), lambda, lambda + cm.m);
+  RowWriter writer(cm);
+  std::vector<double> row;
+  const auto add = [&](double t, const double* X, const double* u, const double* lambda) {
+    for (size_t c = 0; c < nu; ++c) dyn.hold_input(nlp.control_inputs()[c], u[c]);
+    row.clear();
+    try {
+      writer.write(dyn, t, X, X + cm.nq, row);
+    } catch (const SimulationError&) {
+      row.assign(simulated, std::nan(""));
+      row[0] = t;
+      std::copy(X, X + nx, row.begin() + 1);
+    }
+    std::vector<double> forward_lambda;  // a copy: inserting from `row` into itself is undefined
+    if (lambda == nullptr) {
+      forward_lambda.assign(row.begin() + static_cast<long>(first_lambda),
+                            row.begin() + static_cast<long>(first_lambda + cm.m));
+      lambda = forward_lambda.data();
+    }
+    row.insert(row.end(), u, u + nu);
+    row.insert(row.end(), lambda, lambda + cm.m);
+    traj.data.insert(traj.data.end(), row.begin(), row.end());
   };
-  std::vector<double> qdot(cm.nq), a(cm.nv), lambda(cm.m);
-  for (size_t c = 0; c < nu; ++c) dyn.hold_input(nlp.control_inputs()[c], nlp.control(x, 0)[c]);
-  const double* X0 = nlp.state(x, 0, 0);
-  try {
-    dyn.forward(0.0, X0, X0 + cm.nq, qdot.data(), a.data(), lambda.data());
-  } catch (const SimulationError&) {
-    std::fill(lambda.begin(), lambda.end(), std::nan(""));
-  }
-  row(0.0, X0, nlp.control(x, 0), lambda.data());
+  add(0.0, nlp.state(x, 0, 0), nlp.control(x, 0), nullptr);
   for (int k = 0; k < nlp.intervals(); ++k)
     for (int j = 1; j <= nlp.scheme().degree; ++j)
-      row(nlp.time(x, k, j), nlp.state(x, k, j), nlp.control(x, k), nlp.multipliers(x, k, j));
+      add(nlp.time(x, k, j), nlp.state(x, k, j), nlp.control(x, k), nlp.multipliers(x, k, j));
   return traj;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "cli/shell_run.hpp"
@@ -28,7 +29,7 @@ TEST(OptimizeCommand, SolvesWritesAndVerifies) {
   std::ifstream in(csv);
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header, "t,x,x_dot,u");
+  EXPECT_EQ(header, "t,x,x_dot,kinetic,potential,energy,u");  // simulate's columns, the control
   size_t rows = 0;
   for (std::string line; std::getline(in, line);) ++rows;
   EXPECT_EQ(rows, 1u + 10u * 3u);  // t = 0 and every collocation point
@@ -54,6 +55,29 @@ TEST(OptimizeCommand, InfeasibleProblemExitsThreeNamingTheMostViolatedConstraint
   EXPECT_NE(bad.output.find("most violated:"), std::string::npos) << bad.output;
   EXPECT_NE(bad.output.find("at t = "), std::string::npos) << bad.output;
   std::filesystem::remove(yaml);
+}
+
+// --report writes simulate's HTML report of the collocated motion; a bad report name is refused
+// before the solve, with nothing written.
+TEST(OptimizeCommand, WritesTheReportOfTheOptimalMotion) {
+  const std::string html =
+      (std::filesystem::temp_directory_path() / "lagrange_optimize_report.html").string();
+  std::filesystem::remove(html);
+  const auto r = testing::run_shell("optimize " + kDir +
+                                    "pendulum_swing_up_cartesian.yaml --intervals 10 --report " +
+                                    html);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(html);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Radau IIA collocation (optimize)"), std::string::npos);
+  EXPECT_NE(text.find("lambda_rod"), std::string::npos);
+  std::filesystem::remove(html);
+  const auto bad = testing::run_shell("optimize " + kDir +
+                                      "pendulum_swing_up_cartesian.yaml --report out.txt");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("expected a file name ending in .html"), std::string::npos)
+      << bad.output;
+  EXPECT_EQ(bad.output.find("optimal solution"), std::string::npos) << bad.output;
 }
 
 // A control that nothing uses is solved around, with a located warning naming it.
