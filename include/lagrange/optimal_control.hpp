@@ -86,6 +86,10 @@ struct OptimalControlSpec {
   /// `guess: {COORDINATE: expr(t), …}`: those coordinates start on the written paths, their rates
   /// on the paths' time derivatives; the others interpolate linearly (docs/theory.md §10).
   std::vector<std::pair<StateRef, GiNaC::ex>> guess_paths;
+  /// `guess: FILE.csv`: a trajectory CSV (an earlier solution, a simulation) whose coordinate,
+  /// rate and control columns start the solve, stretched over the horizon; the path resolved
+  /// against the model file's folder.
+  std::string guess_file;
   int intervals = 50;  ///< collocation intervals N
   int degree = 3;      ///< Radau IIA collocation points per interval
   SourceLoc loc;

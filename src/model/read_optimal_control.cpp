@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include "model/model_reader.hpp"
@@ -254,10 +255,20 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
     }
   } else if (node["guess"]) {
     spec.guess = scalar(node["guess"], "guess");
-    if (spec.guess != "linear" && spec.guess != "simulation")
-      fail(node["guess"],
-           fmt::format("expected guess linear, simulation or a map COORDINATE: path(t), got '{}'",
-                       clip(spec.guess)));
+    const std::filesystem::path file = spec.guess;
+    if (file.extension() == ".csv") {
+      std::filesystem::path p = file;
+      if (p.is_relative()) p = std::filesystem::path(src_.file()).parent_path() / p;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(p, ec))
+        fail(node["guess"], fmt::format("expected a trajectory CSV for guess, cannot open '{}'",
+                                        clip(p.string())));
+      spec.guess_file = p.string();
+      spec.guess.clear();
+    } else if (spec.guess != "linear" && spec.guess != "simulation")
+      fail(node["guess"], fmt::format("expected guess linear, simulation, a FILE.csv or a map "
+                                      "COORDINATE: path(t), got '{}'",
+                                      clip(spec.guess)));
   }
   auto count = [&](const char* key, int& out, int lo, int hi) {
     if (!node[key]) return;

@@ -68,9 +68,9 @@ Trajectory collocated(collocation::Transcription& nlp, Dynamics& dyn, const doub
   traj.columns = trajectory_columns(cm);
   const size_t simulated = traj.columns.size(), nx = cm.nq + cm.nv, nu = controls.size();
   const size_t first_lambda =
-      cm.m > 0 ? static_cast<size_t>(std::find(traj.columns.begin(), traj.columns.end(),
-                                               cm.constraint_names[0]) -
-                                     traj.columns.begin())
+      cm.m > 0 ? static_cast<size_t>(
+                     std::find(traj.columns.begin(), traj.columns.end(), cm.constraint_names[0]) -
+                     traj.columns.begin())
                : 0;
   for (const auto& n : controls) traj.columns.push_back(n);
   for (const auto& n : cm.constraint_names) traj.columns.push_back("lambda_" + n);

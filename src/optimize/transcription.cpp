@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
+#include "optimize/file_guess.hpp"
 #include "optimize/simulated_guess.hpp"
 
 namespace lagrange::collocation {
@@ -284,9 +286,21 @@ std::vector<double> Transcription::make_guess() {
     for (int j = 0; j < d_; ++j) times.push_back(T_ * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
   times.push_back(T_);
   const bool simulated =
-      spec_.guess == "simulation" || (spec_.guess.empty() && spec_.guess_paths.empty() && m_ > 0);
+      spec_.guess == "simulation" ||
+      (spec_.guess.empty() && spec_.guess_paths.empty() && spec_.guess_file.empty() && m_ > 0);
   std::vector<std::vector<double>> states;
-  if (simulated)
+  std::optional<std::vector<std::vector<double>>> file_controls;
+  if (!spec_.guess_file.empty()) {
+    std::vector<std::string> names;
+    for (size_t c : controls_) names.push_back(eq_.model->inputs[c].name);
+    FileGuess file = read_file_guess(spec_.guess_file, *cm_, names, times, T_);
+    states = std::move(file.states);
+    file_controls = std::move(file.controls);
+    // A file of another model or mesh may be off the constraints: projected as paths are.
+    for (size_t p = 0; p < states.size() && m_ > 0; ++p)
+      dyn_.try_project(times[p], states[p].data(), states[p].data() + nq_,
+                       std::vector<bool>(nq_, false));
+  } else if (simulated)
     states = simulated_states(
         dyn_, controls_, u0,
         std::vector<double>(start.begin(), start.begin() + static_cast<long>(nq_)),
@@ -297,6 +311,11 @@ std::vector<double> Transcription::make_guess() {
     for (const BoundaryValue& b : *spec_.initial) keep_start[state_index(b.state, nq_)] = b.fixed();
   for (const BoundaryValue& b : final_) keep_end[state_index(b.state, nq_)] = b.fixed();
   for (int k = 0; k < N_; ++k) {
+    // From a guess file, interval k's control is the file's at its first collocation point (for
+    // the file's own mesh, exactly its control there), clipped to the bounds.
+    if (file_controls)
+      for (size_t c = 0; c < nu_; ++c)
+        u0[c] = clamp(ui(k) + c, (*file_controls)[static_cast<size_t>(k * d_ + 1)][c]);
     std::copy(u0.begin(), u0.end(), x.begin() + static_cast<long>(ui(k)));
     for (int j = 0; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j);

@@ -63,17 +63,16 @@ TEST(OptimizeCommand, WritesTheReportOfTheOptimalMotion) {
   const std::string html =
       (std::filesystem::temp_directory_path() / "lagrange_optimize_report.html").string();
   std::filesystem::remove(html);
-  const auto r = testing::run_shell("optimize " + kDir +
-                                    "pendulum_swing_up_cartesian.yaml --intervals 10 --report " +
-                                    html);
+  const auto r = testing::run_shell(
+      "optimize " + kDir + "pendulum_swing_up_cartesian.yaml --intervals 10 --report " + html);
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(html);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("Radau IIA collocation (optimize)"), std::string::npos);
   EXPECT_NE(text.find("lambda_rod"), std::string::npos);
   std::filesystem::remove(html);
-  const auto bad = testing::run_shell("optimize " + kDir +
-                                      "pendulum_swing_up_cartesian.yaml --report out.txt");
+  const auto bad =
+      testing::run_shell("optimize " + kDir + "pendulum_swing_up_cartesian.yaml --report out.txt");
   EXPECT_EQ(bad.code, 2) << bad.output;
   EXPECT_NE(bad.output.find("expected a file name ending in .html"), std::string::npos)
       << bad.output;

@@ -6,9 +6,11 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "lagrange/io.hpp"
 #include "optimal_problem.hpp"
 
 namespace lagrange {
@@ -122,6 +124,36 @@ TEST(OptimalFormulations, CartPoleCostConvergesAtSecondOrder) {
   const double ratio = (a.objective - b.objective) / (b.objective - c.objective);
   EXPECT_GT(ratio, 3.0) << a.objective << " " << b.objective << " " << c.objective;
   EXPECT_LT(ratio, 5.5) << a.objective << " " << b.objective << " " << c.objective;
+}
+
+// guess: FILE.csv starts from an earlier solution: from its own mesh Ipopt is done at once, from a
+// coarser one it needs fewer iterations than from the default guess, and the optimum is the same.
+TEST(OptimalFormulations, AnEarlierSolutionWarmStartsTheSolve) {
+  testing::OptimalProblem cp("cart_pole_swing_up.yaml");
+  const OptimizeResult coarse = cp.solve(20, 3), cold = cp.solve(40, 3);
+  ASSERT_TRUE(coarse.optimal && cold.optimal) << coarse.status << cold.status;
+  const std::string dir = ::testing::TempDir();
+  write_trajectory_csv(coarse.trajectory, dir + "coarse.csv");
+  write_trajectory_csv(cold.trajectory, dir + "same.csv");
+  OptimalControlSpec& spec = *cp.model->optimal_control;
+  spec.guess_file = dir + "coarse.csv";
+  const OptimizeResult warm = cp.solve(40, 3);
+  spec.guess_file = dir + "same.csv";
+  const OptimizeResult again = cp.solve(40, 3);
+  ASSERT_TRUE(warm.optimal && again.optimal) << warm.status << again.status;
+  EXPECT_NEAR(warm.objective, cold.objective, 1e-8 * cold.objective);
+  EXPECT_NEAR(again.objective, cold.objective, 1e-8 * cold.objective);
+  EXPECT_LT(warm.iterations, cold.iterations);
+  EXPECT_LE(again.iterations, 3);
+  // A file without the model's columns is refused, naming the column.
+  std::ofstream(dir + "bad.csv") << "t,x\n0,0\n1,1\n";
+  spec.guess_file = dir + "bad.csv";
+  try {
+    cp.solve(10, 3);
+    FAIL() << "a guess file without theta was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("has no column"), std::string::npos) << e.what();
+  }
 }
 
 // A periodic problem with a free period and nothing to optimise finds the Van der Pol limit cycle

@@ -131,8 +131,13 @@ TEST(OptimalControlErrors, AGuessedPathIsACoordinateInT) {
   EXPECT_EQ(p.optimal_control->periodic.size(), 2u);    // x and x_dot
   ASSERT_TRUE(p.optimal_control->initial.has_value());  // free: the orbit starts where it ends
   EXPECT_TRUE(p.optimal_control->initial->empty());
+  const std::string missing = error_of(ok + "  guess: nowhere.csv\n");
+  EXPECT_NE(missing.find("di.yaml:12:10: error: expected a trajectory CSV for guess, cannot open"),
+            std::string::npos)
+      << missing;
   const std::string word = error_of(ok + "  guess: straight\n");
-  EXPECT_NE(word.find("expected guess linear, simulation or a map"), std::string::npos) << word;
+  EXPECT_NE(word.find("expected guess linear, simulation, a FILE.csv or a map"), std::string::npos)
+      << word;
 }
 
 }  // namespace
