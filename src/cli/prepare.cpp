@@ -67,18 +67,6 @@ struct GivenState {
   std::string option;
 };
 
-/// Whether the state checks pass at the model file's own initial state.
-bool accepts_own_state(const Prepared& p) {
-  std::vector<double> q = p.compiled->q0, v = p.compiled->v0;
-  try {
-    (void)require_consistent_initial_state(*p.model, *p.dynamics, q, v);
-    require_regular_initial_state(*p.model, p.equations, *p.dynamics, q, v);
-    return true;
-  } catch (const ModelError&) {
-    return false;
-  }
-}
-
 /// The model's parameters by name at their values (after --set): what a start value may name.
 std::map<std::string, double> parameter_values(const Model& model) {
   std::map<std::string, double> out;
@@ -118,8 +106,19 @@ Prepared prepare_with(const ModelSource& source, const ParameterOverrides& overr
     require_regular_initial_state(*p.model, p.equations, *p.dynamics, p.q, p.v);
   } catch (const ModelError& e) {
     // A state the file's own initial values pass is the command line's mistake (issue 37 item
-    // 18): `--at l=0` is not an error at the file's line.
-    if (initial.values.empty() || !accepts_own_state(p)) throw;
+    // 18): `--at l=0` is not an error at the file's line. The start values reach the reader, so
+    // the file's own state is the model prepared again without them (on this error path only).
+    bool own_state_passes = false;
+    if (!initial.values.empty()) {
+      try {
+        GivenState none;
+        none.option = initial.option;
+        (void)prepare_with(source, overrides, none, dynamics);
+        own_state_passes = true;
+      } catch (const ModelError&) {
+      }
+    }
+    if (!own_state_passes) throw;
     std::string given;
     for (const auto& [name, value] : initial.values)
       given += fmt::format("{}{}={}", given.empty() ? "" : ",", name, value);

@@ -43,7 +43,9 @@ def test_auto_switches_in_a_run_and_in_a_sweep_as_in_the_cli(cli, tmp_path):
                            t_end=1.0, integrator="auto")
     assert list(frame["status"]) == ["ok"]
     assert frame["x_end"][0] == run["x"][-1]
-    assert frame["z_low"][0] == run["z"].min()
+    # min() is located between samples (docs/theory.md §9.2): at or below the lowest sample.
+    assert frame["z_low"][0] <= run["z"].min()
+    assert frame["z_low"][0] == pytest.approx(run["z"].min(), abs=1e-3)
 
 
 def test_stepper_with_cvode_jacobian_follows_one_run():
