@@ -16,12 +16,20 @@
 namespace lagrange {
 
 /// How optimize() transcribes and solves; unset sizes keep the problem's own.
+/// What Ipopt gets for the Hessian of the Lagrangian (docs/theory.md §10, "Hessian"): the exact
+/// one (a fixed horizon), its limited-memory approximation, or the exact one unless the model's
+/// equations exceed kHessianTerms distinct terms, beyond which the symbolic second derivatives
+/// cost more set-up than they save (a 7-joint spatial arm).
+enum class HessianChoice { Auto, Exact, LimitedMemory };
+constexpr size_t kHessianTerms = 2000;
+
 struct OptimizeOptions {
   int intervals = 0;  ///< collocation intervals N (0: the problem's)
   int degree = 0;     ///< Radau IIA points per interval, 1 to 5 (0: the problem's)
   /// Ipopt options by name, as text: integers, numbers and words are told apart by their form.
   std::vector<std::pair<std::string, std::string>> ipopt;
   bool verbose = false;  ///< Ipopt's iteration log on stdout
+  HessianChoice hessian = HessianChoice::Auto;
 };
 
 /// What optimize() found.
@@ -47,6 +55,8 @@ struct OptimizeResult {
   /// What looks wrong in the problem but does not stop it, each a located line
   /// ("model.yaml:12:5: warning: control 'G' is used by no equation …").
   std::vector<std::string> warnings;
+  /// Why the Hessian is not the exact one when it could have been (empty otherwise).
+  std::string hessian_note;
 };
 
 /// Solve `spec` for the model `eq` (compiled as `cm`) with workspace `dyn` (its parameters and

@@ -230,6 +230,7 @@ class Model:
         ipopt: Mapping[str, object] = {},
         verify: bool = False,
         verbose: bool = False,
+        hessian: str = "auto",
     ) -> SimpleNamespace:
         """Solve the file's optimal_control problem as `lagrange optimize` does: optimal, status,
         objective, horizon, controls (intervals x controls), control_names, run (a Run),

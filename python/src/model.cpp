@@ -291,7 +291,7 @@ void bind_model(py::module_& m) {
            "inputs) (dense numpy), with ∂(a, λ)/∂x = −K⁻¹ Phi_x.")
       .def("optimize", &optimize_model, py::arg("intervals") = py::none(),
            py::arg("degree") = py::none(), py::arg("ipopt") = std::map<std::string, py::object>{},
-           py::arg("verify") = false, py::arg("verbose") = false,
+           py::arg("verify") = false, py::arg("verbose") = false, py::arg("hessian") = "auto",
            "Solve the file's optimal_control problem as `lagrange optimize` does (intervals and "
            "degree override the file's; ipopt={'key': value} passes options through; verify "
            "re-simulates the controls), with the GIL released: a namespace with optimal, status, "

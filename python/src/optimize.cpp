@@ -19,7 +19,7 @@ namespace lagrange::python {
 // verify(), on a workspace of this call's own.
 py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::optional<int> degree,
                           const std::map<std::string, py::object>& ipopt, bool verify_result,
-                          bool verbose) {
+                          bool verbose, const std::string& hessian) {
   const cli::Prepared& p = *m.prepared;
   if (!p.model->optimal_control)
     throw py::value_error(p.model->name +
@@ -36,6 +36,12 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   o.intervals = intervals.value_or(0);
   o.degree = degree.value_or(0);
   o.verbose = verbose;
+  if (hessian != "auto" && hessian != "exact" && hessian != "limited-memory")
+    throw py::value_error("expected hessian 'auto', 'exact' or 'limited-memory', got '" + hessian +
+                          "'");
+  o.hessian = hessian == "exact"            ? HessianChoice::Exact
+              : hessian == "limited-memory" ? HessianChoice::LimitedMemory
+                                            : HessianChoice::Auto;
   for (const auto& [key, value] : ipopt)
     o.ipopt.emplace_back(key, py::str(value).cast<std::string>());
   const SimulationOptions so = cli::simulation_options(*p.model, cli::RunSettings{});
@@ -83,6 +89,7 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["degree"] = r.degree;
   fields["iterations"] = r.iterations;
   fields["exact_hessian"] = r.exact_hessian;
+  fields["hessian_note"] = r.hessian_note;
   fields["violation"] = r.violation;
   fields["worst_constraint"] = r.worst_constraint;
   fields["control_names"] = r.control_names;

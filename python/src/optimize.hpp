@@ -18,6 +18,6 @@ namespace lagrange::python {
 pybind11::object optimize_model(const PyModel& m, std::optional<int> intervals,
                                 std::optional<int> degree,
                                 const std::map<std::string, pybind11::object>& ipopt, bool verify,
-                                bool verbose);
+                                bool verbose, const std::string& hessian);
 
 }  // namespace lagrange::python

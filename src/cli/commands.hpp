@@ -54,7 +54,8 @@ struct Options {
   int intervals = 0, degree = 0;   ///< optimize --intervals, --degree (0: the problem's)
   bool verify = false;             ///< optimize --verify
   bool verbose = false;            ///< optimize -v: Ipopt's iteration log
-  std::vector<std::string> ipopt;  ///< optimize --ipopt KEY=VALUE
+  std::vector<std::string> ipopt;
+  std::string hessian = "auto";  ///< optimize: auto, exact or limited-memory  ///< optimize --ipopt KEY=VALUE
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;

@@ -275,6 +275,9 @@ int main(int argc, char** argv) {
   optimize->add_flag("--verify", opt.verify,
                      "re-simulate the optimal controls at tight tolerance and report the gap");
   optimize->add_option("--ipopt", opt.ipopt, "Ipopt option KEY=VALUE (repeatable)");
+  optimize->add_option("--hessian", opt.hessian,
+                       "exact, limited-memory, or auto (exact unless the equations are too large)")
+      ->check(CLI::IsMember({"auto", "exact", "limited-memory"}));
   optimize->add_flag("-v,--verbose", opt.verbose, "print Ipopt's iteration log");
   optimize->add_flag("-q,--quiet", opt.quiet, "no summary");
 

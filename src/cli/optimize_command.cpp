@@ -1,4 +1,4 @@
-// `lagrange optimize MODEL [-o out.csv] [--report out.html] [--intervals N] [--degree d] [--set …] [--verify]
+// `lagrange optimize MODEL [-o out.csv] [--report out.html] [--hessian H] [--intervals N] [--degree d] [--set …] [--verify]
 // [--ipopt KEY=VALUE …]` (docs/model-language.md, "Optimal control"; docs/theory.md §10).
 // Exit codes: 0 optimal, 1 a mistake in the model file, 2 usage, 3 Ipopt failed or infeasible.
 
@@ -33,6 +33,9 @@ int run_optimize(const Options& opt) {
   o.intervals = opt.intervals;
   o.degree = opt.degree;
   o.verbose = opt.verbose;
+  o.hessian = opt.hessian == "exact"            ? HessianChoice::Exact
+              : opt.hessian == "limited-memory" ? HessianChoice::LimitedMemory
+                                                : HessianChoice::Auto;
   for (const std::string& a : opt.ipopt) {
     const size_t eq = a.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -48,6 +51,7 @@ int run_optimize(const Options& opt) {
     throw ModelError(spec.loc, e.what());
   }
   for (const std::string& w : r.warnings) fmt::print(stderr, "{}\n", w);
+  if (!r.hessian_note.empty() && !opt.quiet) fmt::print(stderr, "note: {}\n", r.hessian_note);
   if (!opt.csv.empty()) write_trajectory_csv(r.trajectory, opt.csv);
   if (!opt.report.empty())
     write_run_report(p, r.trajectory, "Radau IIA collocation (optimize)",

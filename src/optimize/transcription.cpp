@@ -45,7 +45,7 @@ size_t state_index(const StateRef& s, size_t nq) {
 Transcription::Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
                              Dynamics& dyn, const OptimalControlSpec& spec, int intervals,
                              int degree, const std::vector<double>& q0,
-                             const std::vector<double>& v0)
+                             const std::vector<double>& v0, HessianChoice hessian)
     : eq_(eq),
       cm_(cm),
       dyn_(dyn),
@@ -104,7 +104,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
     if (added) nz_.emplace_back(r, c);
     slot_.push_back(it->second);
   });
-  if (!free_T_) prepare_hessian();
+  if (!free_T_ && hessian != HessianChoice::LimitedMemory) prepare_hessian(hessian);
 }
 
 size_t Transcription::xi(int k, int j) const {

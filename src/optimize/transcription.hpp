@@ -10,6 +10,7 @@
 
 #include "lagrange/analysis.hpp"
 #include "lagrange/optimal_control.hpp"
+#include "lagrange/optimize.hpp"
 #include "optimize/point_functions.hpp"
 #include "optimize/radau.hpp"
 #include "optimize/second_derivatives.hpp"
@@ -27,7 +28,8 @@ class Transcription {
  public:
   Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
                 const OptimalControlSpec& spec, int intervals, int degree,
-                const std::vector<double>& q0, const std::vector<double>& v0);
+                const std::vector<double>& q0, const std::vector<double>& v0,
+                HessianChoice hessian = HessianChoice::Auto);
 
   size_t variables() const { return n_; }
   size_t constraints() const { return rows_; }
@@ -46,6 +48,8 @@ class Transcription {
   /// Whether the exact Hessian of the Lagrangian is available (a fixed horizon; docs/theory.md
   /// §10, "Hessian").
   bool has_hessian() const { return hessian_ready_; }
+  /// Why the exact Hessian was not made though the horizon is fixed (empty otherwise).
+  const std::string& hessian_note() const { return hessian_note_; }
   /// (row, column), row ≥ column, of the Hessian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& hessian_pattern() const { return hnz_; }
   /// σ∇²J + Σ y_r ∇²g_r at x, in hessian_pattern() order (y: one multiplier per constraint).
@@ -97,7 +101,7 @@ class Transcription {
   void invariant_gradients(double t, const double* X, Emit&& emit);
   /// Compiles the second derivatives of the DAE, the point functions and the invariants, and
   /// finds the Hessian's pattern (docs/theory.md §10, "Hessian").
-  void prepare_hessian();
+  void prepare_hessian(HessianChoice choice);
   /// Every Hessian entry as emit(row, column, value), row ≥ column, in a fixed order.
   template <class Emit>
   void walk_hessian(const double* x, double sigma, const double* y, Emit&& emit);
@@ -135,6 +139,7 @@ class Transcription {
   // functions over (q, v, u), of the weighted invariants over (q, v).
   SecondDerivatives h_dae_, h_point_, h_invariants_;
   bool hessian_ready_ = false;
+  std::string hessian_note_;
   std::vector<std::pair<size_t, size_t>> hnz_;
   std::vector<size_t> hslot_;
   std::vector<double> hin_, hout_;

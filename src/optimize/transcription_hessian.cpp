@@ -4,6 +4,8 @@
 // and path-constraint functions, and at t = 0 of the weighted invariants; compiled symbolically
 // like the first derivatives and scattered through the linear maps onto the NLP's variables.
 
+#include <fmt/format.h>
+
 #include <map>
 
 #include "optimize/transcription.hpp"
@@ -40,9 +42,23 @@ void scatter(bool diagonal, const std::vector<Term>& A, const std::vector<Term>&
     }
 }
 
+/// Distinct nodes of an expression DAG (GiNaC shares subexpressions: a tree walk could take
+/// exponentially long), counted up to `limit`.
+size_t distinct_terms(const GiNaC::ex& e, size_t limit) {
+  std::map<GiNaC::ex, bool, GiNaC::ex_is_less> seen;
+  std::vector<GiNaC::ex> stack{e};
+  while (!stack.empty() && seen.size() <= limit) {
+    const GiNaC::ex top = stack.back();
+    stack.pop_back();
+    if (!seen.emplace(top, true).second) continue;
+    for (size_t i = 0; i < top.nops(); ++i) stack.push_back(top.op(i));
+  }
+  return seen.size();
+}
+
 }  // namespace
 
-void Transcription::prepare_hessian() {
+void Transcription::prepare_hessian(HessianChoice choice) {
   const Equations& eq = eq_;
   const CompiledModel& cm = *cm_;
   const std::vector<GiNaC::ex> out = dynamics_expressions(eq, cm);
@@ -71,6 +87,17 @@ void Transcription::prepare_hessian() {
     for (size_t e = 0; e < cm.G_pattern.size(); ++e) {
       const auto [k, j] = cm.G_pattern[e];
       s += out[cm.G_out() + e] * (mu[nq_ + j] * lam[k] + mu[nx_ + k] * a[j]);
+    }
+    if (choice == HessianChoice::Auto) {
+      const size_t terms = distinct_terms(s, kHessianTerms);
+      if (terms > kHessianTerms) {
+        hessian_note_ = fmt::format(
+            "limited-memory Hessian: the equations have more than {} distinct terms, beyond "
+            "which symbolic second derivatives cost more set-up than they save (--hessian exact "
+            "forces them)",
+            kHessianTerms);
+        return;
+      }
     }
     std::vector<GiNaC::symbol> in = base;
     std::vector<size_t> columns = state_columns;

@@ -101,6 +101,25 @@ TEST(OptimizeCommand, AnUnusedControlIsALocatedWarning) {
   std::filesystem::remove(yaml);
 }
 
+// --hessian chooses what Ipopt gets: the exact Hessian and L-BFGS reach the same optimum, the
+// summary says which was used, and an unknown choice is a usage error.
+TEST(OptimizeCommand, HessianChoiceReachesTheSameOptimum) {
+  const std::string model = kDir + "cart_pole_swing_up.yaml --intervals 20";
+  const auto exact = testing::run_shell("optimize " + model + " --hessian exact");
+  const auto lbfgs = testing::run_shell("optimize " + model + " --hessian limited-memory");
+  ASSERT_EQ(exact.code, 0) << exact.output;
+  ASSERT_EQ(lbfgs.code, 0) << lbfgs.output;
+  EXPECT_NE(exact.output.find("(Radau IIA), exact Hessian"), std::string::npos) << exact.output;
+  EXPECT_NE(lbfgs.output.find("(Radau IIA), limited-memory Hessian"), std::string::npos)
+      << lbfgs.output;
+  const auto objective = [](const std::string& out) {
+    const size_t at = out.find("objective");
+    return std::stod(out.substr(out.find_first_not_of(' ', at + 9)));
+  };
+  EXPECT_NEAR(objective(exact.output), objective(lbfgs.output), 1e-6 * objective(exact.output));
+  EXPECT_EQ(testing::run_shell("optimize " + model + " --hessian newton").code, 2);
+}
+
 TEST(OptimizeCommand, ModelWithoutAProblemIsAUsageError) {
   const auto r = testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) +
                                     "/examples/pendulum.yaml");

@@ -61,8 +61,18 @@ def test_a_failure_is_a_result_not_an_exception():
     assert "maximum number of iterations" in r.status
 
 
+def test_the_hessian_choice_reaches_the_same_optimum():
+    m = lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml"))
+    exact, lbfgs = m.optimize(intervals=20), m.optimize(intervals=20, hessian="limited-memory")
+    assert exact.exact_hessian and not lbfgs.exact_hessian
+    assert exact.hessian_note == ""
+    assert lbfgs.objective == pytest.approx(exact.objective, rel=1e-6)
+
+
 def test_bad_requests_say_what_is_wrong(examples_dir):
     with pytest.raises(ValueError, match="no optimal_control section"):
         lagrange.load(str(examples_dir / "pendulum.yaml")).optimize()
     with pytest.raises(ValueError, match="degree from 1 to 5"):
         lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(degree=7)
+    with pytest.raises(ValueError, match="expected hessian"):
+        lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(hessian="newton")
