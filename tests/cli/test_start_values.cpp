@@ -74,18 +74,9 @@ std::map<std::string, double> first_row(const fs::path& path) {
 
 TEST(StartValues, ElasticLineIsStraightWithUniformTensionAfterInitial) {
   ScratchDir dir("start-elastic");
-  const fs::path model = dir.path() / "line.yaml", written = dir.path() / "written.yaml";
-  spit(model, kElasticLine);
-  std::string text = kElasticLine;
-  text.replace(text.find("initial: 1.05"), 13, "initial: 1.1");
-  spit(written, text);
-  const fs::path a = dir.path() / "a.csv", b = dir.path() / "b.csv";
-  RunResult r = run_lagrange(
-      dir.path(), {"simulate", model.string(), "--initial", "x=1.1", "-q", "-o", a.string()});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run_lagrange(dir.path(), {"simulate", written.string(), "-q", "-o", b.string()});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto given = first_row(a), in_file = first_row(b);
+  const GivenAndWritten runs =
+      run_given_and_written(dir, kElasticLine, "initial: 1.05", "initial: 1.1", "x=1.1");
+  const auto given = first_row(runs.given), in_file = first_row(runs.written);
   const double expected = 1000 * (1.1 / 1.0 - 1);  // EA (x/L − 1) = 100 N
   for (int j = 1; j <= 5; ++j) {
     const std::string column = "line.tension_" + std::to_string(j);

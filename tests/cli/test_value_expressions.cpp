@@ -75,19 +75,10 @@ TEST(ValueExpressions, EvaluatedAsTheFileEvaluatesThem) {
 
 TEST(ValueExpressions, InitialEqualsTheSameValueWrittenInTheFile) {
   ScratchDir dir("values-initial");
-  const fs::path model = dir.path() / "pendulum.yaml", in_file = dir.path() / "file.yaml";
-  spit(model, kPendulum);
-  std::string text = kPendulum;
-  text.replace(text.find("initial: 0.3"), 12, "initial: pi/3");
-  spit(in_file, text);
-  const fs::path a = dir.path() / "a.csv", b = dir.path() / "b.csv";
-  const RunResult given = run_lagrange(
-      dir.path(), {"simulate", model.string(), "--initial", "theta=pi/3", "-q", "-o", a.string()});
-  ASSERT_EQ(given.exit_code, 0) << given.err;
-  const RunResult written =
-      run_lagrange(dir.path(), {"simulate", in_file.string(), "-q", "-o", b.string()});
-  ASSERT_EQ(written.exit_code, 0) << written.err;
-  const Csv ca = read_csv(a), cb = read_csv(b);
+  const GivenAndWritten runs =
+      run_given_and_written(dir, kPendulum, "initial: 0.3", "initial: pi/3", "theta=pi/3");
+  const fs::path model = dir.path() / "model.yaml";
+  const Csv ca = read_csv(runs.given), cb = read_csv(runs.written);
   EXPECT_DOUBLE_EQ(ca.at(0, "theta"), kPi / 3);
   // A function of two arguments survives the option's split at commas.
   const fs::path c = dir.path() / "c.csv";

@@ -216,4 +216,28 @@ inline void expect_model_error(const BadModel& bad, const std::string& scratch) 
   EXPECT_EQ(dir.files(), std::vector<std::string>{"bad.yaml"}) << bad.label;
 }
 
+/// The two CSVs a start value should make equal: `simulate` of `model_text` with `--initial
+/// initial` (a.csv), and of the same text with `from` replaced by `to` in the file (b.csv); both
+/// runs must exit 0.
+struct GivenAndWritten {
+  fs::path given, written;
+};
+inline GivenAndWritten run_given_and_written(const ScratchDir& dir, const std::string& model_text,
+                                             const std::string& from, const std::string& to,
+                                             const std::string& initial) {
+  const fs::path model = dir.path() / "model.yaml", file = dir.path() / "written.yaml";
+  spit(model, model_text);
+  std::string text = model_text;
+  text.replace(text.find(from), from.size(), to);
+  spit(file, text);
+  GivenAndWritten out{dir.path() / "a.csv", dir.path() / "b.csv"};
+  const RunResult given = run_lagrange(dir.path(), {"simulate", model.string(), "--initial",
+                                                    initial, "-q", "-o", out.given.string()});
+  EXPECT_EQ(given.exit_code, 0) << given.err;
+  const RunResult written =
+      run_lagrange(dir.path(), {"simulate", file.string(), "-q", "-o", out.written.string()});
+  EXPECT_EQ(written.exit_code, 0) << written.err;
+  return out;
+}
+
 }  // namespace lagrange::hardening

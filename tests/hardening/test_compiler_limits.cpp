@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::hardening {
 namespace {
@@ -118,39 +118,37 @@ TEST(CompilerLimits, AHungCompilerIsStoppedAndTheInterpreterRuns) {
 }
 
 // Ctrl-C while `--compile on` compiles: once it waited for the compiler (forever for this one).
-TEST(CompilerLimits, CtrlCWhileSimulateCompilesEndsAt130) {
-  ScratchDir dir("cc-sigint-simulate");
+// Runs `args` with the hung compiler, sends SIGINT once the compiler has started, and checks the
+// run ends at 130 within 5 s, leaving no compiler and a clean cache; its output for more checks.
+RunResult interrupted_while_compiling(const ScratchDir& dir, const std::vector<std::string>& args) {
   const CompilerEnvironment env(dir, hung_compiler(dir), nullptr);
-  Child child(dir.path(),
-              {"simulate", kPendulum, "--compile", "on", "-o", (dir.path() / "out.csv").string()});
+  Child child(dir.path(), args);
   const pid_t group = compiler_group(dir, std::chrono::seconds(60));
-  ASSERT_GT(group, 0) << "the compiler never started";
+  EXPECT_GT(group, 0) << "the compiler never started";
   const auto sent = std::chrono::steady_clock::now();
   child.signal(SIGINT);
   const RunResult r = child.wait(std::chrono::seconds(60));
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count(), 5.0);
+  if (group > 0) expect_no_compiler_left(group);
+  EXPECT_EQ(leftovers(dir), std::vector<std::string>{});
+  return r;
+}
+
+TEST(CompilerLimits, CtrlCWhileSimulateCompilesEndsAt130) {
+  ScratchDir dir("cc-sigint-simulate");
+  const RunResult r = interrupted_while_compiling(
+      dir, {"simulate", kPendulum, "--compile", "on", "-o", (dir.path() / "out.csv").string()});
   EXPECT_NE(r.err.find("lagrange: interrupted"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "out.csv"));
-  expect_no_compiler_left(group);
-  EXPECT_EQ(leftovers(dir), std::vector<std::string>{});
 }
 
 TEST(CompilerLimits, CtrlCWhileASweepCompilesEndsAt130) {
   ScratchDir dir("cc-sigint-sweep");
-  const CompilerEnvironment env(dir, hung_compiler(dir), nullptr);
-  Child child(dir.path(), {"sweep", kPendulum, "--vary", "m=1,2", "--compile", "on", "-q", "-o",
-                           (dir.path() / "study").string()});
-  const pid_t group = compiler_group(dir, std::chrono::seconds(60));
-  ASSERT_GT(group, 0) << "the compiler never started";
-  const auto sent = std::chrono::steady_clock::now();
-  child.signal(SIGINT);
-  const RunResult r = child.wait(std::chrono::seconds(60));
-  EXPECT_EQ(r.exit_code, 130) << r.err;
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count(), 5.0);
+  const RunResult r =
+      interrupted_while_compiling(dir, {"sweep", kPendulum, "--vary", "m=1,2", "--compile", "on",
+                                        "-q", "-o", (dir.path() / "study").string()});
   EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
-  expect_no_compiler_left(group);
-  EXPECT_EQ(leftovers(dir), std::vector<std::string>{});
 }
 
 // export --fmu compiles while Ctrl-C still ends the process at once (nothing is written yet):
