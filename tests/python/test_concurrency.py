@@ -86,8 +86,9 @@ def test_stepper_releases_the_gil(examples_dir):
     # As for simulate: one long step on another thread leaves this thread running Python.
     tether = lagrange.load(str(examples_dir / "tether_in_wind.yaml"))
     s = tether.stepper(compile="off")
-    # Long enough (about a second; 60 s of it took 0.05 s) that a busy machine descheduling this thread for a while
-    # (ctest runs other tests beside this one) still leaves ticks in the middle half.
+    # Long enough (about a second; 60 s of it took 0.05 s) that a busy machine descheduling
+    # this thread for a while (ctest runs other tests beside it) still leaves ticks in the
+    # middle half.
     worker = threading.Thread(target=s.step, args=(1800.0,))
     ticks = [time.perf_counter()]
     worker.start()
