@@ -104,7 +104,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
     if (added) nz_.emplace_back(r, c);
     slot_.push_back(it->second);
   });
-  if (!free_T_ && hessian != HessianChoice::LimitedMemory) prepare_hessian(hessian);
+  if (hessian != HessianChoice::LimitedMemory) prepare_hessian(hessian);
 }
 
 size_t Transcription::xi(int k, int j) const {

@@ -45,10 +45,9 @@ class Transcription {
   /// (row, column) of the Jacobian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& jacobian_pattern() const { return nz_; }
   void jacobian(const double* x, double* values);
-  /// Whether the exact Hessian of the Lagrangian is available (a fixed horizon; docs/theory.md
-  /// §10, "Hessian").
+  /// Whether the exact Hessian of the Lagrangian is available (docs/theory.md §10, "Hessian").
   bool has_hessian() const { return hessian_ready_; }
-  /// Why the exact Hessian was not made though the horizon is fixed (empty otherwise).
+  /// Why the exact Hessian was not made (empty when it was, or when it was not asked for).
   const std::string& hessian_note() const { return hessian_note_; }
   /// (row, column), row ≥ column, of the Hessian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& hessian_pattern() const { return hnz_; }

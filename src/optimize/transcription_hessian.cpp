@@ -110,7 +110,7 @@ void Transcription::prepare_hessian(HessianChoice choice) {
     in.insert(in.end(), mu.begin(), mu.end());
     h_dae_ = SecondDerivatives(s, in, columns);
   }
-  // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p.
+  // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p, over (q, v, u) and, with T free, t = T (k + τ_j)/N.
   {
     const std::vector<GiNaC::symbol> w = symbols("hess_w", fun_.count());
     const std::vector<GiNaC::ex> fs = problem_functions(spec_);
@@ -118,7 +118,9 @@ void Transcription::prepare_hessian(HessianChoice choice) {
     for (size_t f = 0; f < fs.size(); ++f) s += w[f] * fs[f];
     std::vector<GiNaC::symbol> in = base;
     in.insert(in.end(), w.begin(), w.end());
-    h_point_ = SecondDerivatives(s, in, state_columns);
+    std::vector<size_t> columns = state_columns;
+    if (free_T_) columns.push_back(0);  // t, the tape's first input
+    h_point_ = SecondDerivatives(s, in, columns);
   }
   // Σ ν_i C_i + Σ ν_{m+i} Ċ_i.
   if (!start_rows_.empty()) {
@@ -150,11 +152,17 @@ void Transcription::hessian(const double* x, double sigma, const double* y, doub
 
 template <class Emit>
 void Transcription::walk_hessian(const double* x, double sigma, const double* y, Emit&& emit) {
-  const double h = horizon(x) / N_;
-  const size_t nr = nx_ + m_;
+  const double T = horizon(x), h = T / N_;
+  const size_t nr = nx_ + m_, nf = fun_.count(), cu = 1 + nx_;
   std::vector<Term> A, B;
-  // The NLP variables of local column `col` at point (k, j): q, v, u, then a = v' and λ.
-  const auto terms = [&](int k, int j, size_t col, std::vector<Term>& t) {
+  std::vector<double> r(nr), g(nx_);
+  // With T free (variable 0) a = v' = (1/h) Σ_l D_jl V_{k,l} carries −a/T and t = T (k + τ_j)/N
+  // carries (k + τ_j)/N (docs/theory.md §10, "Hessian", free horizon).
+  const auto on_T = [&](std::vector<Term>& t, double coefficient) {
+    if (free_T_) t.push_back({0, coefficient});
+  };
+  // The NLP variables of the DAE's local column `col` at point (k, j): q, v, u, a = v', λ.
+  const auto dae_terms = [&](int k, int j, size_t col, std::vector<Term>& t) {
     t.clear();
     if (col < nx_) {
       t.push_back({xi(k, j) + col, 1.0});
@@ -163,16 +171,29 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
     } else if (col < nx_ + nu_ + nv_) {
       for (int l = 0; l <= d_; ++l)
         t.push_back({xi(k, l) + nq_ + col - nx_ - nu_, rad_.derivative(j, l) / h});
+      on_T(t, -xp_[nq_ + col - nx_ - nu_] / T);
     } else {
       t.push_back({li(k, j) + col - nx_ - nu_ - nv_, 1.0});
     }
   };
-  const auto scatter_all = [&](const SecondDerivatives& sd, int k, int j) {
+  // The point functions' local columns: q, v, u, then t when T is free. `end`: the terminal
+  // point (T, X_{N,0}, U_{N−1}).
+  const auto point_terms = [&](int k, int j, bool end, size_t col, std::vector<Term>& t) {
+    t.clear();
+    if (col < nx_) {
+      t.push_back({end ? xi(N_, 0) + col : xi(k, j) + col, 1.0});
+    } else if (col < nx_ + nu_) {
+      t.push_back({ui(end ? N_ - 1 : k) + col - nx_, 1.0});
+    } else {
+      on_T(t, end ? 1.0 : (k + rad_.tau[static_cast<size_t>(j)]) / N_);
+    }
+  };
+  const auto scatter_all = [&](const SecondDerivatives& sd, auto&& terms) {
     sd.eval(hin_, hout_);
     for (size_t e = 0; e < sd.pattern().size(); ++e) {
       const auto [a, b] = sd.pattern()[e];
-      terms(k, j, a, A);
-      terms(k, j, b, B);
+      terms(a, A);
+      terms(b, B);
       scatter(a == b, A, B, hout_[e], emit);
     }
   };
@@ -180,41 +201,63 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
     for (int j = 1; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1);
       const double* X = state(x, k, j);
+      residual(x, k, j, r.data());  // x' into xp_, the controls held
       // The DAE residual: inputs, a = v', λ, α, μ.
       hin_ = load(time(x, k, j), X, control(x, k));
-      for (size_t i = 0; i < nv_; ++i) {
-        double a = 0.0;
-        for (int l = 0; l <= d_; ++l) a += rad_.derivative(j, l) / h * state(x, k, l)[nq_ + i];
-        hin_.push_back(a);
-      }
+      hin_.insert(hin_.end(), xp_.begin() + static_cast<long>(nq_), xp_.end());
       hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
       hin_.push_back(dyn_.baumgarte());
       hin_.insert(hin_.end(), y + p * nr, y + (p + 1) * nr);
-      scatter_all(h_dae_, k, j);
+      scatter_all(h_dae_, [&](size_t col, std::vector<Term>& t) { dae_terms(k, j, col, t); });
+      if (free_T_) {
+        // x' = (1/h) Σ_l D_jl X_l is not linear in T: with g = Σ μ ∂r/∂x' (μ_q for q', Mμ_v + Gᵀμ_λ
+        // for v'), ∂²x'/∂T² = 2x'/T² and ∂²x'/∂T∂X_l = −D_jl/(hT).
+        const ImplicitJacobian J =
+            jac_.implicit(dyn_, time(x, k, j), X, X + nq_, xp_.data() + nq_, multipliers(x, k, j));
+        std::copy(y + p * nr, y + p * nr + nq_, g.begin());
+        std::fill(g.begin() + static_cast<long>(nq_), g.end(), 0.0);
+        for (int o = 0; o < J.K.outerSize(); ++o)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, o); it; ++it)
+            if (static_cast<size_t>(it.col()) < nv_)
+              g[nq_ + static_cast<size_t>(it.col())] +=
+                  y[p * nr + nq_ + static_cast<size_t>(it.row())] * it.value();
+        for (size_t i = 0; i < nx_; ++i) {
+          emit(0, 0, g[i] * 2 * xp_[i] / (T * T));
+          for (int l = 0; l <= d_; ++l)
+            emit(xi(k, l) + i, 0, -g[i] * rad_.derivative(j, l) / (h * T));
+        }
+      }
       // The integrand (Radau weight) and the path constraints.
+      const double wL = sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)];
       hin_ = load(time(x, k, j), X, control(x, k));
-      hin_.push_back(sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)]);   // L
+      hin_.push_back(wL);                                                       // L
       hin_.push_back(0.0);                                                      // Φ
       hin_.push_back(sigma * sign_ * rad_.b[static_cast<size_t>(j - 1)] / N_);  // M
       for (size_t i = 0; i < np_; ++i) hin_.push_back(y[path_rows_ + p * np_ + i]);
-      scatter_all(h_point_, k, j);
+      scatter_all(h_point_,
+                  [&](size_t col, std::vector<Term>& t) { point_terms(k, j, false, col, t); });
+      if (free_T_) {
+        // The integrand's weight h b_j = T b_j/N is linear in T: ∂²/∂T∂z of wL·L is (wL/T)·∂L/∂z.
+        fun_.eval(load(time(x, k, j), X, control(x, k)), out_);
+        const double dt = (k + rad_.tau[static_cast<size_t>(j)]) / N_;
+        for (size_t e = 0; e < fun_.pattern().size(); ++e) {
+          const auto [f, c] = fun_.pattern()[e];
+          if (f != kIntegrand) continue;
+          const double v = wL / T * out_[nf + e];
+          if (c == 0)
+            emit(0, 0, 2 * v * dt);
+          else
+            emit(c < cu ? xi(k, j) + c - 1 : ui(k) + c - cu, 0, v);
+        }
+      }
     }
-  // The terminal term at (T, X_{N,0}, U_{N−1}): the point's columns are the end state's.
-  hin_ = load(horizon(x), state(x, N_, 0), control(x, N_ - 1));
+  // The terminal term at (T, X_{N,0}, U_{N−1}).
+  hin_ = load(T, state(x, N_, 0), control(x, N_ - 1));
   hin_.push_back(0.0);            // L
   hin_.push_back(sigma * sign_);  // Φ
   hin_.push_back(0.0);            // M
   hin_.resize(hin_.size() + np_, 0.0);
-  h_point_.eval(hin_, hout_);
-  for (size_t e = 0; e < h_point_.pattern().size(); ++e) {
-    const auto [a, b] = h_point_.pattern()[e];
-    const auto end_terms = [&](size_t col, std::vector<Term>& t) {
-      t.assign(1, {col < nx_ ? xi(N_, 0) + col : ui(N_ - 1) + col - nx_, 1.0});
-    };
-    end_terms(a, A);
-    end_terms(b, B);
-    scatter(a == b, A, B, hout_[e], emit);
-  }
+  scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(0, 0, true, col, t); });
   // The invariants imposed at t = 0, on X_{0,0}.
   if (start_rows_.empty()) return;
   hin_ = load(0.0, state(x, 0, 0), control(x, 0));
@@ -222,7 +265,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
   std::vector<double> nu(2 * m_, 0.0);
   for (size_t r = 0; r < start_rows_.size(); ++r) nu[start_rows_[r]] = y[at + r];
   hin_.insert(hin_.end(), nu.begin(), nu.end());
-  scatter_all(h_invariants_, 0, 0);
+  scatter_all(h_invariants_, [&](size_t col, std::vector<Term>& t) { dae_terms(0, 0, col, t); });
 }
 
 }  // namespace lagrange::collocation
