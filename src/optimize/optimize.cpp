@@ -115,8 +115,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   r.degree = options.degree > 0 ? options.degree : spec.degree;
   for (const ControlSpec& c : spec.controls)
     r.control_names.push_back(eq.model->inputs[c.input].name);
-  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0,
-                                 options.hessian);
+  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0, options.hessian);
   r.hessian_note = nlp.hessian_note();
   r.setup_seconds = seconds_since(start);
 

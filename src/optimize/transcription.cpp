@@ -289,33 +289,41 @@ std::vector<double> Transcription::make_guess() {
       spec_.guess == "simulation" ||
       (spec_.guess.empty() && spec_.guess_paths.empty() && spec_.guess_file.empty() && m_ > 0);
   std::vector<std::vector<double>> states;
-  std::optional<std::vector<std::vector<double>>> file_controls;
+  std::optional<std::vector<std::vector<double>>> guessed_controls;
   if (!spec_.guess_file.empty()) {
     std::vector<std::string> names;
     for (size_t c : controls_) names.push_back(eq_.model->inputs[c].name);
     FileGuess file = read_file_guess(spec_.guess_file, *cm_, names, times, T_);
     states = std::move(file.states);
-    file_controls = std::move(file.controls);
+    guessed_controls = std::move(file.controls);
     // A file of another model or mesh may be off the constraints: projected as paths are.
     for (size_t p = 0; p < states.size() && m_ > 0; ++p)
       dyn_.try_project(times[p], states[p].data(), states[p].data() + nq_,
                        std::vector<bool>(nq_, false));
-  } else if (simulated)
-    states = simulated_states(
-        dyn_, controls_, u0,
+  } else if (simulated) {
+    // Controls with a guess are held at it; the others fly the model's own schedule.
+    std::vector<std::optional<double>> held(nu_);
+    for (size_t c = 0; c < nu_; ++c)
+      if (spec_.controls[c].guess) held[c] = u0[c];
+    SimulatedGuess flown = simulated_states(
+        dyn_, controls_, held,
         std::vector<double>(start.begin(), start.begin() + static_cast<long>(nq_)),
         std::vector<double>(start.begin() + static_cast<long>(nq_), start.end()), times);
+    states = std::move(flown.states);
+    if (!flown.controls.empty()) guessed_controls = std::move(flown.controls);
+  }
   // The components a projection keeps: the fixed boundary values at the ends.
   std::vector<bool> keep_start(nx_, false), keep_end(nx_, false), keep_none(nx_, false);
   if (spec_.initial)
     for (const BoundaryValue& b : *spec_.initial) keep_start[state_index(b.state, nq_)] = b.fixed();
   for (const BoundaryValue& b : final_) keep_end[state_index(b.state, nq_)] = b.fixed();
   for (int k = 0; k < N_; ++k) {
-    // From a guess file, interval k's control is the file's at its first collocation point (for
-    // the file's own mesh, exactly its control there), clipped to the bounds.
-    if (file_controls)
+    // From a guess file or a simulation, interval k's control is the one at its first
+    // collocation point (for a file of the same mesh, exactly its control there), clipped to the
+    // bounds.
+    if (guessed_controls)
       for (size_t c = 0; c < nu_; ++c)
-        u0[c] = clamp(ui(k) + c, (*file_controls)[static_cast<size_t>(k * d_ + 1)][c]);
+        u0[c] = clamp(ui(k) + c, (*guessed_controls)[static_cast<size_t>(k * d_ + 1)][c]);
     std::copy(u0.begin(), u0.end(), x.begin() + static_cast<long>(ui(k)));
     for (int j = 0; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j);
