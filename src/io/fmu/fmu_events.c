@@ -33,8 +33,10 @@ static int lg_stop_row(Instance* c, double t, const double* y) {
   lg_eval_tape(c, t, y);
   row[n++] = lg_max_abs(c->tape_out + LG_OUT_C, LAGRANGE_M);
   row[n++] = lg_max_abs(c->tape_out + LG_OUT_CDOT, LAGRANGE_M);
+#if LG_NREACTIONS > 0
   for (i = 0; i < LG_NREACTIONS; ++i) /* lambda of the reaction's constraint times its scale */
     row[n++] = c->lambda[lg_reaction_lambda[i]] * c->obs[LG_NOBS - 1 + i];
+#endif
 #endif
 #if LG_NLOADS > 0
   lg_loads(c->obs, c->dy + LAGRANGE_NQ, c->lambda, row + n);
