@@ -50,7 +50,7 @@ constexpr const char* kState = R"(causality="output" variability="continuous" in
 constexpr const char* kCalculated =
     R"(causality="output" variability="continuous" initial="calculated")";
 constexpr const char* kLocal = R"(causality="local" variability="continuous" initial="calculated")";
-constexpr const char* kParameter = R"(causality="parameter" variability="fixed" initial="exact")";
+constexpr const char* kParameter = R"(causality="parameter" variability="tunable" initial="exact")";
 
 std::string unknowns(const char* element, const std::vector<size_t>& indices) {
   std::string s = fmt::format("    <{}>\n", element);

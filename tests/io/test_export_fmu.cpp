@@ -232,6 +232,52 @@ TEST(ExportFmu, ParameterSetLikeSet) {
   e.fmu->free_instance(c);
 }
 
+// A tunable parameter set between steps acts from the next step: the pendulum's l changed from 1
+// to 2 at t = 0.5 gives simulate's run with l = 1 up to 0.5, continued with l = 2 from its state.
+TEST(ExportFmu, TunableParameterActsFromTheNextStep) {
+  Exported& e = pendulum();
+  EXPECT_EQ(e.fmu->variables.at("l").causality, "parameter");
+  const CompiledModel& cm = *e.sys.compiled;
+  SimulationOptions so = e.sys.options();
+  so.t_end = 0.5;
+  so.output_step = 0.1;
+  const Trajectory first = e.sys.run(so);
+  std::vector<double> p = cm.parameter_defaults;
+  const auto l = std::find(cm.parameter_names.begin(), cm.parameter_names.end(), "l");
+  ASSERT_NE(l, cm.parameter_names.end());
+  p[static_cast<size_t>(l - cm.parameter_names.begin())] = 2.0;
+  Dynamics longer(e.sys.compiled, p);
+  so.t0 = 0.5;
+  so.t_end = 1.0;
+  const Trajectory second =
+      simulate(longer, so, {first.at(5, "theta")}, {first.at(5, "theta_dot")});
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  run_cs(*e.fmu, c, 0.1, 5, {});
+  EXPECT_NEAR(e.fmu->get(c, "theta"), first.at(5, "theta"), 1e-8);
+  ASSERT_EQ(e.fmu->set(c, "l", 2.0), fmi2OK);
+  for (int i = 5; i < 10; ++i) ASSERT_EQ(e.fmu->do_step(c, i * 0.1, 0.1, fmi2True), fmi2OK);
+  EXPECT_NEAR(e.fmu->get(c, "theta"), second.at(5, "theta"), 1e-7);
+  EXPECT_NEAR(e.fmu->get(c, "theta_dot"), second.at(5, "theta_dot"), 1e-7);
+  e.fmu->free_instance(c);
+  // Model Exchange: set in event mode, the derivative is −(g/l) sin θ with the new l; in
+  // continuous-time mode a parameter cannot be set.
+  fmi2Component m = e.fmu->make(fmi2ModelExchange, log);
+  ASSERT_EQ(e.fmu->enter_init(m), fmi2OK);
+  ASSERT_EQ(e.fmu->exit_init(m), fmi2OK);
+  ASSERT_EQ(e.fmu->set(m, "l", 2.0), fmi2OK);
+  fmi2EventInfo info{};
+  ASSERT_EQ(e.fmu->new_discrete_states(m, &info), fmi2OK);
+  ASSERT_EQ(e.fmu->enter_continuous(m), fmi2OK);
+  double dx[2];
+  ASSERT_EQ(e.fmu->get_derivatives(m, dx, 2), fmi2OK);
+  EXPECT_NEAR(dx[1], -9.81 / 2.0 * std::sin(cm.q0[0]), 1e-14);
+  EXPECT_TRUE(log.messages.empty()) << log.messages.front();
+  EXPECT_EQ(e.fmu->set(m, "l", 3.0), fmi2Error);
+  EXPECT_NE(log.messages.back().find("continuous-time mode"), std::string::npos);
+  e.fmu->free_instance(m);
+}
+
 // An external input follows its declared value until set, then is held between steps.
 TEST(ExportFmu, ExternalInputHeldBetweenSteps) {
   Exported& e = driven();
@@ -279,7 +325,10 @@ TEST(ExportFmu, MisuseIsAnErrorWithAMessage) {
   EXPECT_NE(log.messages.back().find("99999"), std::string::npos) << log.messages.back();
   f.free_instance(c);
   fmi2Component c2 = start_cs(f, log);
-  EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a fixed parameter after initialisation
+  ASSERT_EQ(f.terminate(c2), fmi2OK);
+  EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a parameter after fmi2Terminate
+  EXPECT_NE(log.messages.back().find("after fmi2Terminate"), std::string::npos)
+      << log.messages.back();
   EXPECT_EQ(f.do_step(c2, 0.0, 0.1, fmi2True), fmi2Error);
   f.free_instance(c2);
   // A massless bob: M = 0 is singular, which initialisation reports instead of dividing by it.

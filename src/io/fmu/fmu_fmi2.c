@@ -238,31 +238,40 @@ fmi2Status fmi2GetReal(fmi2Component comp, const fmi2ValueReference vr[], size_t
   return fmi2OK;
 }
 
-/* Sets `vr` to `value`, checking that the variable may be set now; 0 or an error logged. */
+/* Sets `vr` to `value`, checking that the variable may be set now; 0 or an error logged.
+   Parameters are tunable (docs/fmu.md, "Variables"): besides before initialisation, in event mode
+   (Model Exchange) and between steps (Co-Simulation), FMI 2.0 §2.2.7. A change after
+   initialisation acts from the next evaluation; fmi2DoStep's step size, chosen for the old
+   dynamics, is discarded and started afresh (lg_initial_step). */
 static int lg_set(Instance* c, fmi2ValueReference vr, double value) {
   const int setup = (1 << c->phase) & LG_SETUP;
+  const int tunable = (1 << c->phase) & (LG_SETUP | LG_BIT(LG_EVENT) | LG_BIT(LG_STEPPING));
   if (!isfinite(value)) {
     lg_log_error(c, "fmi2SetReal: value reference %u: expected a finite value, got %g", vr, value);
     return 1;
   }
+  if (vr >= LG_VR_P && vr < LG_VR_U && tunable) {
+    if (c->p[vr - LG_VR_P] != value) c->h = 0.0;
+    c->p[vr - LG_VR_P] = value;
+    return 0;
+  }
+  if ((vr == LG_VR_ALPHA || vr == LG_VR_RTOL || vr == LG_VR_ATOL) && tunable && !setup) c->h = 0.0;
   if (vr < LG_VR_DQ && setup) {
     c->y[vr] = value;
-  } else if (vr >= LG_VR_P && vr < LG_VR_U && setup) {
-    c->p[vr - LG_VR_P] = value;
   } else if (vr >= LG_VR_U && vr < LG_VR_U + LAGRANGE_K && lg_external[vr - LG_VR_U] &&
              c->phase != LG_TERMINATED) {
     c->held[vr - LG_VR_U] = value;
     c->is_held[vr - LG_VR_U] = 1;
-  } else if (vr == LG_VR_ALPHA && setup && value >= 0.0) {
+  } else if (vr == LG_VR_ALPHA && tunable && value >= 0.0) {
     c->alpha = value;
-  } else if (vr == LG_VR_RTOL && setup && value > 0.0 && value < 1.0) {
+  } else if (vr == LG_VR_RTOL && tunable && value > 0.0 && value < 1.0) {
     c->rtol = value;
-  } else if (vr == LG_VR_ATOL && setup && value > 0.0) {
+  } else if (vr == LG_VR_ATOL && tunable && value > 0.0) {
     c->atol = value;
   } else {
     lg_log_error(c,
                  "fmi2SetReal: value reference %u cannot be set to %g now (unknown, not settable, "
-                 "or a parameter after initialization)",
+                 "out of range, or a parameter in continuous-time mode or after fmi2Terminate)",
                  vr, value);
     return 1;
   }
