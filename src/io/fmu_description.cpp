@@ -50,7 +50,7 @@ constexpr const char* kState = R"(causality="output" variability="continuous" in
 constexpr const char* kCalculated =
     R"(causality="output" variability="continuous" initial="calculated")";
 constexpr const char* kLocal = R"(causality="local" variability="continuous" initial="calculated")";
-constexpr const char* kParameter = R"(causality="parameter" variability="fixed" initial="exact")";
+constexpr const char* kParameter = R"(causality="parameter" variability="tunable" initial="exact")";
 
 std::string unknowns(const char* element, const std::vector<size_t>& indices) {
   std::string s = fmt::format("    <{}>\n", element);
@@ -124,8 +124,8 @@ std::string model_description(const CompiledModel& cm, const Description& d) {
       "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\"\n"
       "  description=\"Lagrangian model exported by lagrange (docs/fmu.md)\"\n"
       "  generationTool=\"lagrange\" variableNamingConvention=\"flat\" "
-      "numberOfEventIndicators=\"0\">\n",
-      xml_escape(d.model_name), d.guid);
+      "numberOfEventIndicators=\"{}\">\n",
+      xml_escape(d.model_name), d.guid, cm.stop_when.size());
   if (d.model_exchange)
     s += fmt::format(
         "  <ModelExchange modelIdentifier=\"{}\" canGetAndSetFMUstate=\"true\" "
@@ -136,7 +136,9 @@ std::string model_description(const CompiledModel& cm, const Description& d) {
         "  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
         "canGetAndSetFMUstate=\"true\">\n{}  </CoSimulation>\n",
         d.identifier, sources);
-  s += "  <LogCategories>\n    <Category name=\"logStatusError\"/>\n  </LogCategories>\n";
+  s += "  <LogCategories>\n    <Category name=\"logStatusError\"/>\n"
+       "    <Category name=\"logEvents\" description=\"a stop_when condition became true\"/>\n"
+       "  </LogCategories>\n";
   s += fmt::format(
       "  <DefaultExperiment startTime=\"0\" stopTime=\"{:.17g}\" tolerance=\"{:.17g}\" "
       "stepSize=\"{:.17g}\"/>\n",

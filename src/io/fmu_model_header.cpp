@@ -22,6 +22,63 @@ std::string double_array(const char* name, const std::vector<double>& values) {
                      values.empty() ? "0" : fmt::format("{:.17g}", fmt::join(values, ", ")));
 }
 
+// A C string literal of `text` (quotes, backslashes and control characters escaped).
+std::string c_string(const std::string& text) {
+  std::string s = "\"";
+  for (unsigned char ch : text) {
+    if (ch == '"' || ch == '\\')
+      s += '\\', s += static_cast<char>(ch);
+    else if (ch < 0x20)
+      s += fmt::format("\\{:03o}", ch);
+    else
+      s += static_cast<char>(ch);
+  }
+  return s + "\"";
+}
+
+// The stop_when conditions (docs/fmu.md, "Stop conditions"): their names and texts, the row
+// layout lg_stop_row (fmu_events.c) builds as RowWriter::write does, the loads' values and the
+// conditions' tape.
+std::string stop_conditions(const CompiledModel& cm) {
+  std::vector<std::string> names, texts;
+  for (const StopSpec& spec : cm.stop_when)
+    names.push_back(c_string(spec.name)), texts.push_back(c_string(spec.text));
+  if (names.empty()) names.emplace_back("\"\""), texts.emplace_back("\"\"");
+  std::string s = fmt::format(
+      "\n/* stop_when (fmu_events.c). */\n#define LG_NZ {}\n#define LG_NROW {}\n"
+      "#define LG_NREACTIONS {}\n#define LG_NLOADS {}\n"
+      "static const char* const lg_stop_names[] = {{{}}};\n"
+      "static const char* const lg_stop_texts[] = {{{}}};\n",
+      cm.stop_when.size(), trajectory_columns(cm).size(), cm.m > 0 ? cm.reaction_names.size() : 0,
+      cm.loads.size(), fmt::join(names, ", "), fmt::join(texts, ", "));
+  if (cm.stop_when.empty()) return s;
+  if (cm.m > 0 && !cm.reaction_names.empty())
+    s += int_array("lg_reaction_lambda", cm.reaction_constraints);
+  if (!cm.loads.empty()) {
+    // docs/theory.md §4.11, as RowWriter::load_value sums them: each part Σ coefficient · (a, λ
+    // or 1); three parts give a length.
+    s += "static void lg_loads(const double* obs, const double* a, const double* lambda, "
+         "double* out) {\n  double value, square;\n";
+    for (size_t l = 0; l < cm.loads.size(); ++l) {
+      s += "  square = 0.0;\n";
+      for (const auto& part : cm.loads[l].parts) {
+        s += "  value = 0.0;\n";
+        for (const LoadTerm& term : part)
+          s += term.acceleration >= 0 ? fmt::format("  value += obs[{}] * a[{}];\n",
+                                                    term.observable, term.acceleration)
+               : term.multiplier >= 0 ? fmt::format("  value += obs[{}] * lambda[{}];\n",
+                                                    term.observable, term.multiplier)
+                                      : fmt::format("  value += obs[{}] * 1.0;\n", term.observable);
+        s += "  square += value * value;\n";
+      }
+      s += fmt::format("  out[{}] = {};\n", l,
+                       cm.loads[l].parts.size() == 1 ? "value" : "sqrt(square)");
+    }
+    s += "  (void)a, (void)lambda, (void)square;\n}\n";
+  }
+  return s + cm.stop_tape.to_c("lagrange_stop_conditions", true);
+}
+
 }  // namespace
 
 std::string model_header(const CompiledModel& cm, const Description& d) {
@@ -78,7 +135,7 @@ std::string model_header(const CompiledModel& cm, const Description& d) {
   s += "};\n";
   s += "\n/* T, U, the model's outputs, then reaction scales and load coefficients. */\n";
   s += cm.observables.to_c("lagrange_observables", true);
-  return s;
+  return s + stop_conditions(cm);
 }
 
 }  // namespace lagrange::fmu

@@ -46,6 +46,7 @@ class FmuImporter {
       throw std::runtime_error("modelDescription.xml does not parse");
     const tinyxml2::XMLElement* root = doc.FirstChildElement("fmiModelDescription");
     guid = root->Attribute("guid");
+    event_indicators = root->UnsignedAttribute("numberOfEventIndicators");
     for (const char* kind : {"CoSimulation", "ModelExchange"})
       if (const tinyxml2::XMLElement* e = root->FirstChildElement(kind))
         identifier = e->Attribute("modelIdentifier");
@@ -78,6 +79,10 @@ class FmuImporter {
     load(set_states, "fmi2SetContinuousStates");
     load(get_derivatives, "fmi2GetDerivatives");
     load(enter_continuous, "fmi2EnterContinuousTimeMode");
+    load(enter_event_mode, "fmi2EnterEventMode");
+    load(get_event_indicators, "fmi2GetEventIndicators");
+    load(get_real_status, "fmi2GetRealStatus");
+    load(get_boolean_status, "fmi2GetBooleanStatus");
     load(new_discrete_states, "fmi2NewDiscreteStates");
     load(get_state, "fmi2GetFMUstate");
     load(set_state, "fmi2SetFMUstate");
@@ -124,6 +129,7 @@ class FmuImporter {
   }
 
   std::string guid, identifier, library;
+  unsigned event_indicators = 0;  ///< numberOfEventIndicators
   std::map<std::string, Variable> variables;
   std::vector<std::string> order;  ///< names in the description's order (index − 1)
   std::map<std::string, std::vector<unsigned>> structure;
@@ -140,6 +146,10 @@ class FmuImporter {
   fmi2SetContinuousStatesTYPE* set_states = nullptr;
   fmi2GetDerivativesTYPE* get_derivatives = nullptr;
   fmi2EnterContinuousTimeModeTYPE* enter_continuous = nullptr;
+  fmi2EnterEventModeTYPE* enter_event_mode = nullptr;
+  fmi2GetEventIndicatorsTYPE* get_event_indicators = nullptr;
+  fmi2GetRealStatusTYPE* get_real_status = nullptr;
+  fmi2GetBooleanStatusTYPE* get_boolean_status = nullptr;
   fmi2NewDiscreteStatesTYPE* new_discrete_states = nullptr;
   fmi2GetFMUstateTYPE* get_state = nullptr;
   fmi2SetFMUstateTYPE* set_state = nullptr;

@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 
 #include "fmu_importer.hpp"
 #include "lagrange/io.hpp"
@@ -230,6 +232,52 @@ TEST(ExportFmu, ParameterSetLikeSet) {
   e.fmu->free_instance(c);
 }
 
+// A tunable parameter set between steps acts from the next step: the pendulum's l changed from 1
+// to 2 at t = 0.5 gives simulate's run with l = 1 up to 0.5, continued with l = 2 from its state.
+TEST(ExportFmu, TunableParameterActsFromTheNextStep) {
+  Exported& e = pendulum();
+  EXPECT_EQ(e.fmu->variables.at("l").causality, "parameter");
+  const CompiledModel& cm = *e.sys.compiled;
+  SimulationOptions so = e.sys.options();
+  so.t_end = 0.5;
+  so.output_step = 0.1;
+  const Trajectory first = e.sys.run(so);
+  std::vector<double> p = cm.parameter_defaults;
+  const auto l = std::find(cm.parameter_names.begin(), cm.parameter_names.end(), "l");
+  ASSERT_NE(l, cm.parameter_names.end());
+  p[static_cast<size_t>(l - cm.parameter_names.begin())] = 2.0;
+  Dynamics longer(e.sys.compiled, p);
+  so.t0 = 0.5;
+  so.t_end = 1.0;
+  const Trajectory second =
+      simulate(longer, so, {first.at(5, "theta")}, {first.at(5, "theta_dot")});
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  run_cs(*e.fmu, c, 0.1, 5, {});
+  EXPECT_NEAR(e.fmu->get(c, "theta"), first.at(5, "theta"), 1e-8);
+  ASSERT_EQ(e.fmu->set(c, "l", 2.0), fmi2OK);
+  for (int i = 5; i < 10; ++i) ASSERT_EQ(e.fmu->do_step(c, i * 0.1, 0.1, fmi2True), fmi2OK);
+  EXPECT_NEAR(e.fmu->get(c, "theta"), second.at(5, "theta"), 1e-7);
+  EXPECT_NEAR(e.fmu->get(c, "theta_dot"), second.at(5, "theta_dot"), 1e-7);
+  e.fmu->free_instance(c);
+  // Model Exchange: set in event mode, the derivative is −(g/l) sin θ with the new l; in
+  // continuous-time mode a parameter cannot be set.
+  fmi2Component m = e.fmu->make(fmi2ModelExchange, log);
+  ASSERT_EQ(e.fmu->enter_init(m), fmi2OK);
+  ASSERT_EQ(e.fmu->exit_init(m), fmi2OK);
+  ASSERT_EQ(e.fmu->set(m, "l", 2.0), fmi2OK);
+  fmi2EventInfo info{};
+  ASSERT_EQ(e.fmu->new_discrete_states(m, &info), fmi2OK);
+  ASSERT_EQ(e.fmu->enter_continuous(m), fmi2OK);
+  double dx[2];
+  ASSERT_EQ(e.fmu->get_derivatives(m, dx, 2), fmi2OK);
+  EXPECT_NEAR(dx[1], -9.81 / 2.0 * std::sin(cm.q0[0]), 1e-14);
+  EXPECT_TRUE(log.messages.empty()) << log.messages.front();
+  EXPECT_EQ(e.fmu->set(m, "l", 3.0), fmi2Error);
+  EXPECT_NE(log.messages.back().find("continuous-time mode"), std::string::npos);
+  e.fmu->free_instance(m);
+}
+
 // An external input follows its declared value until set, then is held between steps.
 TEST(ExportFmu, ExternalInputHeldBetweenSteps) {
   Exported& e = driven();
@@ -277,7 +325,10 @@ TEST(ExportFmu, MisuseIsAnErrorWithAMessage) {
   EXPECT_NE(log.messages.back().find("99999"), std::string::npos) << log.messages.back();
   f.free_instance(c);
   fmi2Component c2 = start_cs(f, log);
-  EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a fixed parameter after initialisation
+  ASSERT_EQ(f.terminate(c2), fmi2OK);
+  EXPECT_EQ(f.set(c2, "l", 3.0), fmi2Error);  // a parameter after fmi2Terminate
+  EXPECT_NE(log.messages.back().find("after fmi2Terminate"), std::string::npos)
+      << log.messages.back();
   EXPECT_EQ(f.do_step(c2, 0.0, 0.1, fmi2True), fmi2Error);
   f.free_instance(c2);
   // A massless bob: M = 0 is singular, which initialisation reports instead of dividing by it.
@@ -317,6 +368,118 @@ TEST(ExportFmu, InstancesAreIndependentAndStatesRestore) {
   f.free_instance(a);
   f.free_instance(b);
   EXPECT_TRUE(log.messages.empty());
+}
+
+// A ball dropped from h0 = 2 m: z = h0 − g t²/2 reaches the ground at t* = √(2 h0 / g). `ground`
+// reads an output, `fast` (never true here) a velocity column.
+Exported& ball() {
+  return exported("ball", [] {
+    return testing::load_string(
+        "name: falling ball\nparameters: {m: 1.0, g: 9.81, h0: 2.0}\n"
+        "coordinates:\n  z: {initial: h0, rate: 0.0}\n"
+        "points:\n  p: [0, 0, z]\nparticles:\n  - {point: p, mass: m}\ngravity: [0, 0, -g]\n"
+        "outputs: {height: z}\n"
+        "stop_when:\n  fast: z_dot < -100\n  ground: height < 0\n"
+        "simulate: {t_end: 2, output_step: 0.01, rtol: 1e-10, atol: 1e-12}\n");
+  });
+}
+const double kGroundTime = std::sqrt(2.0 * 2.0 / 9.81);
+
+// Co-Simulation steps of `h` until fmi2DoStep returns fmi2Discard (docs/fmu.md, "Stop
+// conditions"); the time it reports by fmi2LastSuccessfulTime and fmi2Terminated.
+double run_until_stopped(FmuImporter& f, fmi2Component c, double h, int max_steps) {
+  for (int i = 0; i < max_steps; ++i) {
+    const fmi2Status status = f.do_step(c, i * h, h, fmi2True);
+    if (status == fmi2OK) continue;
+    EXPECT_EQ(status, fmi2Discard) << "step " << i;
+    fmi2Boolean terminated = fmi2False;
+    EXPECT_EQ(f.get_boolean_status(c, fmi2Terminated, &terminated), fmi2OK);
+    EXPECT_EQ(terminated, fmi2True);
+    double t = NAN;
+    EXPECT_EQ(f.get_real_status(c, fmi2LastSuccessfulTime, &t), fmi2OK);
+    EXPECT_GT(t, i * h);
+    EXPECT_LE(t, (i + 1) * h);
+    EXPECT_EQ(f.do_step(c, t, h, fmi2True), fmi2Discard);  // it cannot go further
+    return t;
+  }
+  ADD_FAILURE() << "no stop within " << max_steps << " steps";
+  return NAN;
+}
+
+// fmi2DoStep ends where `ground` becomes true: at simulate's stop time and at the closed form,
+// on the ground; the steps before it are whole.
+TEST(ExportFmu, StopWhenEndsTheStepWhereSimulateStops) {
+  Exported& e = ball();
+  EXPECT_EQ(e.fmu->event_indicators, 2u);
+  const Trajectory tr = e.sys.run(e.sys.options());
+  ASSERT_EQ(tr.stopped_by, "ground");
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  const double t = run_until_stopped(*e.fmu, c, 0.05, 100);
+  EXPECT_NEAR(t, tr.stop_time, 1e-10);
+  EXPECT_NEAR(t, kGroundTime, 1e-10);
+  EXPECT_NEAR(e.fmu->get(c, "z"), 0.0, 1e-9);
+  EXPECT_NEAR(e.fmu->get(c, "z_dot"), -9.81 * kGroundTime, 1e-8);
+  e.fmu->free_instance(c);
+  EXPECT_TRUE(log.messages.empty()) << log.messages.front();
+}
+
+// A condition on a constraint multiplier (the row's λ column, from the KKT solve): the Cartesian
+// pendulum released at 1 rad, whose rod tension λ = m (v² − g y) / l² rises from 5.3 to 18.8 N on
+// the way down, stops where simulate stops.
+TEST(ExportFmu, StopWhenOnAMultiplierMatchesSimulate) {
+  Exported& e = exported("cartesian_taut", [] {
+    std::ifstream in(testing::example_path("cartesian_pendulum.yaml"));
+    std::stringstream text;
+    text << in.rdbuf() << "stop_when: {taut: rod > 12}\n";
+    return testing::load_string(text.str());
+  });
+  const Trajectory tr = e.sys.run(e.sys.options());
+  ASSERT_EQ(tr.stopped_by, "taut");
+  FmuLog log;
+  fmi2Component c = start_cs(*e.fmu, log);
+  const double t = run_until_stopped(*e.fmu, c, 0.01, 100);
+  EXPECT_NEAR(t, tr.stop_time, 1e-9);
+  EXPECT_NEAR(e.fmu->get(c, "rod"), 12.0, 1e-7);
+  e.fmu->free_instance(c);
+}
+
+// Model Exchange: the indicators are g = rhs − lhs (0 − height for `height < 0`), changing sign
+// at the closed-form time; the event there asks the importer to terminate, one before it does not.
+TEST(ExportFmu, EventIndicatorChangesSignAtTheClosedFormTime) {
+  FmuImporter& f = *ball().fmu;
+  FmuLog log;
+  fmi2Component c = f.make(fmi2ModelExchange, log);
+  ASSERT_NE(c, nullptr);
+  ASSERT_EQ(f.enter_init(c), fmi2OK);
+  ASSERT_EQ(f.exit_init(c), fmi2OK);
+  fmi2EventInfo info{};
+  ASSERT_EQ(f.new_discrete_states(c, &info), fmi2OK);
+  EXPECT_EQ(info.terminateSimulation, fmi2False);
+  ASSERT_EQ(f.enter_continuous(c), fmi2OK);
+  double z[2];
+  EXPECT_EQ(f.get_event_indicators(c, z, 1), fmi2Error);  // the wrong count
+  EXPECT_NE(log.messages.back().find("expected 2 event indicators"), std::string::npos);
+  ASSERT_EQ(f.reset(c), fmi2OK);
+  ASSERT_EQ(f.enter_init(c), fmi2OK);
+  ASSERT_EQ(f.exit_init(c), fmi2OK);
+  ASSERT_EQ(f.new_discrete_states(c, &info), fmi2OK);
+  ASSERT_EQ(f.enter_continuous(c), fmi2OK);
+  for (const double dt : {-1e-6, 1e-6}) {
+    const double t = kGroundTime + dt;
+    const double x[2] = {2.0 - 9.81 * t * t / 2, -9.81 * t};
+    ASSERT_EQ(f.set_time(c, t), fmi2OK);
+    ASSERT_EQ(f.set_states(c, x, 2), fmi2OK);
+    ASSERT_EQ(f.get_event_indicators(c, z, 2), fmi2OK);
+    EXPECT_DOUBLE_EQ(z[0], -100.0 - x[1]);  // fast: z_dot < −100
+    EXPECT_NEAR(z[1], -x[0], 1e-15);        // ground: height < 0
+    EXPECT_EQ(z[1] > 0, dt > 0) << "at t* + " << dt;
+    ASSERT_EQ(f.enter_event_mode(c), fmi2OK);
+    ASSERT_EQ(f.new_discrete_states(c, &info), fmi2OK);
+    EXPECT_EQ(info.terminateSimulation, dt > 0 ? fmi2True : fmi2False) << "at t* + " << dt;
+    ASSERT_EQ(f.enter_continuous(c), fmi2OK);
+  }
+  f.free_instance(c);
 }
 
 // The description an importer reads: states with their derivatives, the model's parameters with

@@ -5,7 +5,7 @@
    err = |h| ||e5||^2 / sqrt(||e5||^2 + 0.01 ||e3||^2) in the RMS norm scaled by
    atol + rtol max(|y0|, |y1|), and Hairer's PI step control
    h_new = h clamp(0.9 err^-(1/8 - 0.2 beta) err_prev^beta, 1/3, 6), beta = 0.04, no growth right
-   after a rejection. Included by lagrange_fmu.c; needs lg_rhs and lg_after_step. */
+   after a rejection. Included by lagrange_fmu.c; needs lg_rhs, lg_after_step and lg_check_stop. */
 
 #define LG_STAGES 12 /* stage 13, f(t + h, y1), is the next step's first */
 #define LG_BETA 0.04
@@ -85,8 +85,9 @@ static double lg_error(const Instance* c, double h) {
 /* Largest number of internal steps one fmi2DoStep may take before it fails. */
 #define LG_MAX_STEPS 10000000L
 
-/* Advance c->y from c->t to t_end; 0, or -1 with a message logged when a step fails. A stage that
-   is not finite rejects the step, which is retried shorter. */
+/* Advance c->y from c->t to t_end; 0, or -1 with a message logged when a step fails, or 1 when a
+   stop_when condition became true (fmu_events.c: the instance is then at its crossing). A stage
+   that is not finite rejects the step, which is retried shorter. */
 static int lg_integrate(Instance* c, double t_end) {
   long steps = 0;
   int i;
@@ -131,6 +132,12 @@ static int lg_integrate(Instance* c, double t_end) {
         h_next = h / shrink;
         if (c->rejections > 0 && h_next > h) h_next = h;
         c->err_prev = err > 1e-4 ? err : 1e-4;
+#if LG_NZ > 0
+        if (!c->locating) { /* where a crossing is located from */
+          c->t_prev = c->t;
+          for (i = 0; i < LG_NX; ++i) c->y_prev[i] = c->y[i];
+        }
+#endif
         for (i = 0; i < LG_NX; ++i) c->y[i] = c->y_new[i];
         c->t = last ? t_end : c->t + h;
         c->h = last && wanted > h_next ? wanted : h_next;
@@ -140,6 +147,12 @@ static int lg_integrate(Instance* c, double t_end) {
           return -1;
         }
         if (lg_after_step(c)) return -1;
+#if LG_NZ > 0
+        if (!c->locating) {
+          const int stop = lg_check_stop(c);
+          if (stop) return stop;
+        }
+#endif
         break;
       }
       ++c->rejections;

@@ -44,6 +44,8 @@ static void lg_defaults(Instance* c) {
   c->atol = LG_ATOL;
   c->project = LG_PROJECT;
   c->h = 0.0;
+  c->stopped = 0;
+  c->stop_which = -1;
 }
 
 const char* fmi2GetTypesPlatform(void) {
@@ -159,6 +161,10 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component comp) {
                  "state (singular mass matrix or constraints, or values not finite)");
     return fmi2Error;
   }
+#if LG_NZ > 0
+  /* the stop conditions' values at the start: one fires when it becomes true after it */
+  if (lg_stop_values(c, c->t, c->y, c->g_prev, "fmi2ExitInitializationMode")) return fmi2Error;
+#endif
   c->phase = c->type == fmi2ModelExchange ? LG_EVENT : LG_STEPPING;
   return fmi2OK;
 }
@@ -232,31 +238,40 @@ fmi2Status fmi2GetReal(fmi2Component comp, const fmi2ValueReference vr[], size_t
   return fmi2OK;
 }
 
-/* Sets `vr` to `value`, checking that the variable may be set now; 0 or an error logged. */
+/* Sets `vr` to `value`, checking that the variable may be set now; 0 or an error logged.
+   Parameters are tunable (docs/fmu.md, "Variables"): besides before initialisation, in event mode
+   (Model Exchange) and between steps (Co-Simulation), FMI 2.0 §2.2.7. A change after
+   initialisation acts from the next evaluation; fmi2DoStep's step size, chosen for the old
+   dynamics, is discarded and started afresh (lg_initial_step). */
 static int lg_set(Instance* c, fmi2ValueReference vr, double value) {
   const int setup = (1 << c->phase) & LG_SETUP;
+  const int tunable = (1 << c->phase) & (LG_SETUP | LG_BIT(LG_EVENT) | LG_BIT(LG_STEPPING));
   if (!isfinite(value)) {
     lg_log_error(c, "fmi2SetReal: value reference %u: expected a finite value, got %g", vr, value);
     return 1;
   }
+  if (vr >= LG_VR_P && vr < LG_VR_U && tunable) {
+    if (c->p[vr - LG_VR_P] != value) c->h = 0.0;
+    c->p[vr - LG_VR_P] = value;
+    return 0;
+  }
+  if ((vr == LG_VR_ALPHA || vr == LG_VR_RTOL || vr == LG_VR_ATOL) && tunable && !setup) c->h = 0.0;
   if (vr < LG_VR_DQ && setup) {
     c->y[vr] = value;
-  } else if (vr >= LG_VR_P && vr < LG_VR_U && setup) {
-    c->p[vr - LG_VR_P] = value;
   } else if (vr >= LG_VR_U && vr < LG_VR_U + LAGRANGE_K && lg_external[vr - LG_VR_U] &&
              c->phase != LG_TERMINATED) {
     c->held[vr - LG_VR_U] = value;
     c->is_held[vr - LG_VR_U] = 1;
-  } else if (vr == LG_VR_ALPHA && setup && value >= 0.0) {
+  } else if (vr == LG_VR_ALPHA && tunable && value >= 0.0) {
     c->alpha = value;
-  } else if (vr == LG_VR_RTOL && setup && value > 0.0 && value < 1.0) {
+  } else if (vr == LG_VR_RTOL && tunable && value > 0.0 && value < 1.0) {
     c->rtol = value;
-  } else if (vr == LG_VR_ATOL && setup && value > 0.0) {
+  } else if (vr == LG_VR_ATOL && tunable && value > 0.0) {
     c->atol = value;
   } else {
     lg_log_error(c,
                  "fmi2SetReal: value reference %u cannot be set to %g now (unknown, not settable, "
-                 "or a parameter after initialization)",
+                 "out of range, or a parameter in continuous-time mode or after fmi2Terminate)",
                  vr, value);
     return 1;
   }
@@ -399,12 +414,31 @@ fmi2Status fmi2EnterEventMode(fmi2Component c) {
   return lg_transition(c, LG_BIT(LG_EVENT) | LG_BIT(LG_CONTINUOUS), LG_EVENT, "fmi2EnterEventMode");
 }
 
+/* A stop_when condition that became true since the last event (its indicator was not positive
+   then and is now) asks the importer to end the run: terminateSimulation (FMI 2.0 §3.2.2). */
 fmi2Status fmi2NewDiscreteStates(fmi2Component comp, fmi2EventInfo* info) {
   Instance* c = (Instance*)comp;
+#if LG_NZ > 0
+  double g[LG_NZ];
+  int i;
+#endif
   LG_NOT_FAILED(c, "fmi2NewDiscreteStates");
   if (!info || !lg_in_phase(c, LG_BIT(LG_EVENT), "fmi2NewDiscreteStates")) return fmi2Error;
   info->newDiscreteStatesNeeded = fmi2False;
   info->terminateSimulation = fmi2False;
+#if LG_NZ > 0
+  if (lg_stop_values(c, c->t, c->y, g, "fmi2NewDiscreteStates")) return fmi2Error;
+  for (i = 0; i < LG_NZ; ++i) {
+    if (!c->stopped && lg_fired(c->g_prev[i], g[i])) {
+      c->stopped = 1;
+      c->stop_which = i;
+      lg_log_event(c, "fmi2NewDiscreteStates: stop_when %s (%s) became true at t = %.17g",
+                   lg_stop_names[i], lg_stop_texts[i], c->t);
+    }
+    c->g_prev[i] = g[i];
+  }
+  info->terminateSimulation = c->stopped ? fmi2True : fmi2False;
+#endif
   info->nominalsOfContinuousStatesChanged = fmi2False;
   info->valuesOfContinuousStatesChanged = fmi2False;
   info->nextEventTimeDefined = fmi2False;
@@ -490,9 +524,19 @@ fmi2Status fmi2GetDerivatives(fmi2Component comp, fmi2Real dx[], size_t nx) {
   return fmi2OK;
 }
 
+/* The stop_when conditions' g at the current time and state (fmu_events.c). */
 fmi2Status fmi2GetEventIndicators(fmi2Component comp, fmi2Real z[], size_t nz) {
-  (void)z;
-  return lg_none(comp, nz, "fmi2GetEventIndicators");
+  Instance* c = (Instance*)comp;
+  LG_NOT_FAILED(c, "fmi2GetEventIndicators");
+  if (nz != LG_NZ || (nz > 0 && !z)) {
+    lg_log_error(c, "fmi2GetEventIndicators: expected %d event indicators, got %u", LG_NZ,
+                 (unsigned)nz);
+    return fmi2Error;
+  }
+#if LG_NZ > 0
+  if (lg_stop_values(c, c->t, c->y, z, "fmi2GetEventIndicators")) return fmi2Error;
+#endif
+  return fmi2OK;
 }
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component comp, fmi2Real x[], size_t nx) {
@@ -506,6 +550,7 @@ fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component comp, fmi2Real x[], s
 
 fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real now, fmi2Real h, fmi2Boolean no_set_prior) {
   Instance* c = (Instance*)comp;
+  int rc;
   (void)no_set_prior;
   LG_NOT_FAILED(c, "fmi2DoStep");
   if (!lg_in_phase(c, LG_BIT(LG_STEPPING), "fmi2DoStep")) return fmi2Error;
@@ -516,8 +561,22 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real now, fmi2Real h, fmi2Boolean 
                  c->t, now, h);
     return fmi2Error;
   }
+  if (c->stopped) {
+    lg_log_event(c, "fmi2DoStep: the run ended at t = %.17g, where stop_when %s became true", c->t,
+                 lg_stop_names[c->stop_which]);
+    return fmi2Discard;
+  }
   c->t = now;
-  if (h > 0.0 && lg_integrate(c, now + h)) return fmi2Error;
+  rc = h > 0.0 ? lg_integrate(c, now + h) : 0;
+  if (rc < 0) return fmi2Error;
+  if (rc > 0) {
+    /* FMI 2.0 §4.2.3: the slave computed only part of the step and cannot go further; the master
+       reads the time with fmi2GetRealStatus(fmi2LastSuccessfulTime) and fmi2Terminated. */
+    c->stopped = 1;
+    lg_log_event(c, "fmi2DoStep: stop_when %s (%s) became true at t = %.17g",
+                 lg_stop_names[c->stop_which], lg_stop_texts[c->stop_which], c->t);
+    return fmi2Discard;
+  }
   return fmi2OK;
 }
 
@@ -535,9 +594,12 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
   (void)s, (void)value;
   return lg_unsupported(c, "fmi2GetIntegerStatus");
 }
-fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean* value) {
-  (void)s, (void)value;
-  return lg_unsupported(c, "fmi2GetBooleanStatus");
+/* fmi2Terminated: whether a stop_when condition ended the run (after fmi2DoStep's fmi2Discard). */
+fmi2Status fmi2GetBooleanStatus(fmi2Component comp, const fmi2StatusKind s, fmi2Boolean* value) {
+  Instance* c = (Instance*)comp;
+  if (!c || !value || s != fmi2Terminated) return lg_unsupported(comp, "fmi2GetBooleanStatus");
+  *value = c->stopped ? fmi2True : fmi2False;
+  return fmi2OK;
 }
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String* value) {
   (void)s, (void)value;

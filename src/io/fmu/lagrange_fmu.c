@@ -47,10 +47,19 @@ typedef struct {
   double h;        /* the integrator's next step */
   double err_prev; /* its last accepted error (the PI control's memory) */
   int rejections;  /* rejected tries of the current step */
+  /* stop_when (fmu_events.c): g at the last accepted step or event, the condition that stopped
+     the run (-1: none) and whether it did. */
+  double g_prev[LG_MAX1(LG_NZ)];
+  int stop_which, stopped;
   /* Scratch. */
   double dy[LG_NX], lambda[LG_MAX1(LAGRANGE_M)], obs[LG_MAX1(LG_NOBS_ALL)];
   double k[12][LG_NX], y_stage[LG_NX], y_new[LG_NX];
   double tape_in[LG_NIN], tape_out[LAGRANGE_NOUT];
+#if LG_NZ > 0
+  double g[LG_NZ], g_end[LG_NZ], row[LG_NROW + LAGRANGE_NP], t_prev;
+  double y_prev[LG_NX], y_end[LG_NX], y_try[LG_NX], y_stop[LG_NX];
+  int locating; /* lg_integrate is re-integrating to locate a crossing: no checks */
+#endif
 #if LAGRANGE_M > 0
   double proj_J[LAGRANGE_M * (LAGRANGE_NQ > LAGRANGE_N ? LAGRANGE_NQ : LAGRANGE_N)];
   double proj_S[LAGRANGE_M * LAGRANGE_M], proj_r[LAGRANGE_M];
@@ -74,6 +83,15 @@ static void lg_log_error(Instance* c, const char* format, ...) {
   lg_log(c, fmi2Error, "logStatusError", format, args);
   va_end(args);
   c->phase = LG_FAILED;
+}
+
+/* A message of category logEvents (a stop_when condition that fired), when logging is on. */
+static void lg_log_event(Instance* c, const char* format, ...) {
+  va_list args;
+  if (!c->logging) return;
+  va_start(args, format);
+  lg_log(c, fmi2OK, "logEvents", format, args);
+  va_end(args);
 }
 
 /* The inputs u, u_dot, u_ddot (3 K values) at t: the model's definitions, with each external
@@ -113,6 +131,10 @@ static int lg_rhs(Instance* c, double t, const double* y, double* dy) {
   return LG_RHS_OK;
 }
 
+/* In this order: each needs the ones before it. */
+/* clang-format off */
 #include "fmu_constraints.c"
+#include "fmu_events.c"
 #include "fmu_dop853.c"
 #include "fmu_fmi2.c"
+/* clang-format on */
