@@ -14,6 +14,10 @@ example fails the test suite.
 - {literalinclude} of a .yaml file: `lagrange check` must accept the file. (Each tutorial's
   transcripts then simulate it and compare the numbers the page states.)
 
+- The command line cannot drift from the manual: the reference page is generated from --help
+  (docs/_ext/lagrange_cli.py), and every option some `lagrange COMMAND --help` lists must be
+  described in docs/manual/reference/options.md, which must name no option the program lacks.
+
 Commands run in a scratch directory that sees the repository's examples/ and docs/, so `-o out/…`
 writes nowhere in the source tree.
 
@@ -138,6 +142,27 @@ def check_model(path, rel, lineno, lagrange, cwd, env, failures):
         failures.append(f"{rel}:{lineno}: lagrange check {path}: {proc.stdout}{proc.stderr}")
 
 
+# Options of other programs that options.md quotes (git describe, mpirun).
+FOREIGN_OPTIONS = {"--always", "--dirty", "--oversubscribe", "--allow-run-as-root"}
+
+
+def check_options(lagrange, page, failures):
+    def help_of(*args):
+        return subprocess.run([lagrange, *args, "--help"], capture_output=True, text=True,
+                              check=True).stdout
+    top = help_of()
+    program = set(re.findall(r"^\s+(?:-\w,)?(--[a-z][a-z0-9-]*)", top, re.M))
+    commands = re.findall(r"^  (\S+)\s", top.split("Subcommands:")[1], re.M)
+    for command in commands:
+        program |= set(re.findall(r"^\s+(?:-\w,)?(--[a-z][a-z0-9-]*)", help_of(command), re.M))
+    described = set(re.findall(r"(--[a-z][a-z0-9-]*)", page.read_text())) - FOREIGN_OPTIONS
+    for option in sorted(program - described):
+        failures.append(f"{page.name}: the program has {option}, which the page does not describe")
+    for option in sorted(described - program):
+        failures.append(f"{page.name}: the page describes {option}, which no command has")
+    return len(commands), len(program)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--lagrange", required=True)
@@ -187,6 +212,10 @@ def main():
                                       env=env, capture_output=True, text=True, timeout=120)
                 if proc.returncode != 0:
                     failures.append(f"{rel}: its Python blocks failed:\n{proc.stdout}{proc.stderr}")
+    options_page = src / "docs" / "manual" / "reference" / "options.md"
+    if not a.pages:
+        commands, options = check_options(lagrange, options_page, failures)
+        print(f"checked the {options} options of {commands} commands against {options_page.name}")
     print(f"checked {len(pages)} pages: {counts['console']} transcripts, {counts['python']} "
           f"Python blocks{'' if python_ok else ' (skipped: no module)'}, {counts['yaml']} "
           f"YAML blocks, {counts['include']} included model files")
