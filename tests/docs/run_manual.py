@@ -30,6 +30,7 @@ import shlex
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 FENCE = re.compile(r"^(`{3,}|:{3,})\s*(\{?[\w-]+\}?)?[ \t]*(.*)$")
@@ -184,7 +185,9 @@ def main():
         env["PATH"] = str(Path(lagrange).parent) + os.pathsep + env.get("PATH", "")
         if python_ok:
             env["PYTHONPATH"] = str(Path(a.python_path).resolve())
+        timings = []
         for page in pages:
+            started = time.monotonic()
             rel = page.relative_to(src)
             text = page.read_text()
             python = []
@@ -212,6 +215,7 @@ def main():
                                       env=env, capture_output=True, text=True, timeout=120)
                 if proc.returncode != 0:
                     failures.append(f"{rel}: its Python blocks failed:\n{proc.stdout}{proc.stderr}")
+            timings.append((time.monotonic() - started, str(rel)))
     options_page = src / "docs" / "manual" / "reference" / "options.md"
     if not a.pages:
         commands, options = check_options(lagrange, options_page, failures)
@@ -219,6 +223,9 @@ def main():
     print(f"checked {len(pages)} pages: {counts['console']} transcripts, {counts['python']} "
           f"Python blocks{'' if python_ok else ' (skipped: no module)'}, {counts['yaml']} "
           f"YAML blocks, {counts['include']} included model files")
+    for seconds, rel in timings:
+        if seconds >= 0.05:
+            print(f"  {seconds:5.2f} s  {rel}")
     for f in failures:
         print("FAIL", f)
     return 1 if failures else 0
