@@ -36,3 +36,30 @@ pygments_style = "default"
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
+
+
+# Debian's furo (2022.12.07+dfsg) expects a web server: its stylesheet imports normalize.css from
+# /javascript/ (Debian's libjs-normalize.css, served by Apache's javascript-common), and its
+# script is an ES module that imports gumshoe. Opened from the disk, or served from any directory,
+# the page then lacks both, with console errors. Once the site is written, the stylesheet imports
+# a copy beside it and the script carries gumshoe inline, so that every page works offline.
+def _furo_offline(app, exception):
+    import shutil
+
+    if exception is not None or app.builder.format != "html":
+        return
+    static = Path(app.outdir) / "_static"
+    css = static / "styles" / "furo.css"
+    absolute = "url(/javascript/normalize.css/normalize.css)"
+    normalize = Path("/usr/share/javascript/normalize.css/normalize.css")
+    if css.exists() and absolute in css.read_text() and normalize.exists():
+        shutil.copy(normalize, static / "styles" / "normalize.css")
+        css.write_text(css.read_text().replace(absolute, "url(normalize.css)"))
+    script, gumshoe = static / "scripts" / "furo.js", static / "scripts" / "gumshoe-patched.js"
+    importing = 'import Gumshoe from "./gumshoe-patched.js";'
+    if script.exists() and gumshoe.exists() and script.read_text().startswith(importing):
+        script.write_text(gumshoe.read_text() + "\n" + script.read_text()[len(importing):])
+
+
+def setup(app):
+    app.connect("build-finished", _furo_offline)

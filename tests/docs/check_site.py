@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Builds the manual as `make docs` does, into a scratch directory, and checks the site (issue 39):
 no Sphinx warning (-W), every internal link and anchor of the built pages resolves (no network),
-and the search index sends "Baumgarte" to the model-language page.
+the search index sends "Baumgarte" to the model-language page, and, where node, the report's
+playwright-core and Debian's chromium are present, headless Chromium opens the start page and a
+tutorial without console errors and its search page lists model-language for "Baumgarte"
+(tests/docs/site_browser.mjs).
 
 usage: check_site.py --source SRC --build BUILD
 Exit 77 (ctest: skipped) when Debian's Sphinx, furo or myst-parser is not installed
@@ -12,6 +15,7 @@ import html.parser
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -84,9 +88,18 @@ def main():
         hits = hits if isinstance(hits, list) else [hits]
         if "model-language" not in [data["docnames"][i] for i in hits]:
             failures.append('the search index does not send "Baumgarte" to model-language')
+        browser = "not run (no node, web/node_modules or chromium)"
+        node = shutil.which("node")
+        if node and (src / "web" / "node_modules" / "playwright-core").exists() and \
+                Path("/usr/bin/chromium").exists():
+            run = subprocess.run([node, str(src / "tests" / "docs" / "site_browser.mjs"), str(out)],
+                                 capture_output=True, text=True, timeout=240)
+            browser = run.stdout.strip().splitlines()[-1] if run.stdout.strip() else "no output"
+            if run.returncode != 0:
+                failures.append("headless Chromium: " + run.stdout + run.stderr)
         size = sum(f.stat().st_size for f in out.rglob("*") if f.is_file())
         print(f"built {len(pages)} pages in {seconds:.1f} s ({size / 1e6:.1f} MB); "
-              f"checked {checked} internal links and the search for Baumgarte")
+              f"checked {checked} internal links and the search for Baumgarte; browser: {browser}")
     for f in failures:
         print("FAIL", f)
     return 1 if failures else 0
