@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 MAKEFLAGS += --no-print-directory
 
-.PHONY: deps configure build demo install test bench asan-configure asan fuzz clean
+.PHONY: deps configure build demo install test bench docs asan-configure asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -33,6 +33,16 @@ install: configure
 test: build
 	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The HTML manual (docs/: Sphinx, furo, myst-parser, all Debian's) into $(BUILD)/docs/html,
+# offline; a Sphinx warning is an error. It needs the command (the command-line reference is
+# its own --help) and the Python module (the API reference is its docstrings).
+docs: configure
+	@LAGRANGE_DOCS=1 ./scripts/install-deps.sh
+	@cmake --build $(BUILD) -j $(JOBS) --target lagrange _lagrange
+	@LAGRANGE_BUILD=$(BUILD) /usr/bin/python3 -m sphinx -W --keep-going -q -b html \
+	  -d $(BUILD)/docs/doctrees docs $(BUILD)/docs/html
+	@echo "docs: $(BUILD)/docs/html/index.html"
 
 bench: build
 	@LAGRANGE_BENCH=1 ./scripts/install-deps.sh

@@ -20,6 +20,8 @@ command -v npm >/dev/null 2>&1 || packages+=(npm)
 if [ "${LAGRANGE_FUZZ:-0}" = 1 ]; then packages+=(clang libclang-rt-14-dev); fi
 # The benchmarks' peers (bench/work_precision.py): SciPy's solve_ivp, Debian's build.
 if [ "${LAGRANGE_BENCH:-0}" = 1 ]; then packages+=(python3-numpy python3-scipy); fi
+# The manual (`make docs`): Debian's Sphinx with the furo theme and myst-parser (Markdown pages).
+if [ "${LAGRANGE_DOCS:-0}" = 1 ]; then packages+=(python3-sphinx furo python3-myst-parser); fi
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
