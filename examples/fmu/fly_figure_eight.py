@@ -151,7 +151,8 @@ def roll_law(p, azimuth, elevation, heading):
     """examples/figure_eight.yaml's law: loops beyond |azimuth| > a0, heading control between."""
     turn = (1 + math.tanh((abs(azimuth) - p["a0"]) / 0.02)) / 2
     loop = p["K_loop"] * math.tanh(azimuth / 0.02)
-    aim = math.tanh(heading / 0.05) * (math.pi / 2 + p["gamma0"] + p["k_e"] * (elevation - p["el0"]))
+    descent = math.pi / 2 + p["gamma0"] + p["k_e"] * (elevation - p["el0"])
+    aim = math.tanh(heading / 0.05) * descent
     return turn * loop + (1 - turn) * p["K_h"] * (heading - aim)
 
 

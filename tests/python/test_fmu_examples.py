@@ -43,8 +43,9 @@ def test_python_controller_flies_the_fmu_in_figure_eights(cli, tmp_path):
     assert f"{round(T_END / STEP)} steps of {STEP:g} s" in flown.stdout
     fmu_run = read_csv(tmp_path / "flight.csv")
 
-    subprocess.run([str(cli), "simulate", str(EXAMPLES / "figure_eight.yaml"), "--t-end", str(T_END),
-                    "--output-step", str(STEP), "-o", str(tmp_path / "law_in_model.csv")],
+    subprocess.run([str(cli), "simulate", str(EXAMPLES / "figure_eight.yaml"),
+                    "--t-end", str(T_END), "--output-step", str(STEP),
+                    "-o", str(tmp_path / "law_in_model.csv")],
                    check=True, capture_output=True, timeout=120)
     reference = read_csv(tmp_path / "law_in_model.csv")
     t = fmu_run["t"]
@@ -55,7 +56,8 @@ def test_python_controller_flies_the_fmu_in_figure_eights(cli, tmp_path):
     assert max(fmu_run["roll_cmd"]) > 0.6 and min(fmu_run["roll_cmd"]) < -0.6  # both loops
     # ... and without it the file's default roll_cmd = 0 flies the kite into the ground.
     subprocess.run([str(cli), "simulate", str(EXAMPLES / "fmu" / "figure_eight_roll_input.yaml"),
-                    "--t-end", "10", "--output-step", str(STEP), "-o", str(tmp_path / "no_roll.csv")],
+                    "--t-end", "10", "--output-step", str(STEP),
+                    "-o", str(tmp_path / "no_roll.csv")],
                    check=True, capture_output=True, timeout=120)
     assert min(read_csv(tmp_path / "no_roll.csv")["wing.elevation"]) < 0
 
@@ -71,7 +73,8 @@ def test_python_controller_flies_the_fmu_in_figure_eights(cli, tmp_path):
         period, reference_period = mine[-1] - mine[-2], theirs[-1] - theirs[-2]
         assert abs(period / reference_period - 1) < 0.005, (period, reference_period)
         assert abs(period / 9.77 - 1) < 0.01, period
-    up, down = crossings(t, fmu_run["wing.azimuth"], True), crossings(t, fmu_run["wing.azimuth"], False)
+    azimuth = fmu_run["wing.azimuth"]
+    up, down = crossings(t, azimuth, True), crossings(t, azimuth, False)
     assert all(d < u for d, u in zip(down, up)) and all(u < d for u, d in zip(up, down[1:]))
 
     # Airborne all along, over the same range of azimuth and elevation as the continuous law.
