@@ -170,6 +170,11 @@ def fly(fmu_path, t_end, step):
     """Rows of COLUMNS every `step` s up to t_end, the roll computed and set before each step."""
     fmu = CoSimulation(fmu_path)
     try:
+        causality = {name: fmu.variables.get(name, (0, None))[1]
+                     for name in ["roll_cmd"] + COLUMNS[2:]}
+        if causality.pop("roll_cmd") != "input" or set(causality.values()) != {"output"}:
+            raise RuntimeError(f"{fmu_path}: roll_cmd must be an FMI input and the kite's "
+                               f"columns outputs (export figure_eight_roll_input.yaml)")
         fmu.initialize()
         gains = ["a0", "K_loop", "K_h", "gamma0", "k_e", "el0"]
         p = dict(zip(gains, fmu.get(gains)))  # the law's parameters, as the model file gives them
