@@ -49,7 +49,7 @@ struct BoundaryValue {
   bool fixed() const { return bounds.lower == bounds.upper; }
 };
 
-/// lower ≤ expr(t, q, v, u, p) ≤ upper at every collocation point.
+/// lower ≤ expr(t, q, v, u, λ, p) ≤ upper at every collocation point.
 struct PathConstraintSpec {
   std::string name;
   GiNaC::ex expr;
@@ -61,6 +61,9 @@ struct PathConstraintSpec {
 /// subject to the dynamics, bounds, path constraints and boundary values (docs/theory.md §10).
 struct OptimalControlSpec {
   std::vector<ControlSpec> controls;
+  /// λ_c of each model constraint, as the objective and path expressions use them (a constraint's
+  /// name, or a reaction λ_c·scale such as a tether's tension).
+  std::vector<GiNaC::symbol> multipliers;
   double horizon = 1.0;                ///< T when fixed; the initial guess when free
   std::optional<Bounds> free_horizon;  ///< set: T is chosen within these bounds
   bool maximize = false;
@@ -80,7 +83,8 @@ struct OptimalControlSpec {
   /// "Periodic problems").
   std::vector<StateRef> periodic;
   /// The starting point: "linear" interpolation between the boundary states, a "simulation" of
-  /// the model with the controls at their guesses, or "" (simulation for constrained models,
+  /// the model (controls with a guess held at it, the others on their declared expressions), or
+  /// "" (simulation for constrained models,
   /// whose states a straight line would take off the constraints; linear otherwise).
   std::string guess;
   /// `guess: {COORDINATE: expr(t), …}`: those coordinates start on the written paths, their rates

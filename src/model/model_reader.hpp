@@ -48,7 +48,10 @@ enum Allowed : unsigned {
   kCoords = 4,
   kInputs = 8,
   kPoints = 16,
-  kAll = 31
+  kAll = 31,
+  /// The trajectory's columns beyond the state: outputs, constraint multipliers (by the
+  /// constraint's name) and reactions such as tether tensions (optimal control only).
+  kColumns = 32
 };
 
 /// Reads one YAML document into a Model. Sections are read in dependency order:
@@ -85,6 +88,8 @@ class ModelReader {
   std::optional<Value> lookup(const std::string& name, size_t offset, unsigned allowed) const;
   /// `body.r`, `body.R` for a dotted name whose first part is a body; nullopt otherwise.
   std::optional<Value> body_member(const std::string& name, size_t offset, unsigned allowed) const;
+  /// An output, a constraint's multiplier λ_c or a reaction λ_c·scale named as its column.
+  std::optional<Value> column_value(const std::string& name, size_t offset) const;
   /// Declares `body.point` (the point's own name checked like any other name).
   void declare_body_point(const std::string& body, const YAML::Node& key, size_t index);
   std::string names_of(NameKind kind) const;
@@ -273,6 +278,8 @@ class ModelReader {
   Model m_;
   std::map<std::string, NameEntry> names_;
   std::vector<bool> point_ready_;
+  /// λ_c of each constraint while optimal_control is read (kColumns).
+  std::vector<GiNaC::symbol> multipliers_;
   std::vector<Point> body_points_;  ///< `body.point` in the world frame, appended to the points
   std::vector<bool> body_ready_;
 };

@@ -95,7 +95,8 @@ void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spe
         throw ModelError(src_.at(node, after),
                          fmt::format("expected an expression inside {}()", keyword));
       const GiNaC::ex L =
-          parse_text(node, inner, kAll, fmt::format("a {} of the objective", keyword)).scalar;
+          parse_text(node, inner, kAll | kColumns, fmt::format("a {} of the objective", keyword))
+              .scalar;
       // Never longer than the shortest term it replaces, "mean(x)" (7 characters), for any count
       // the reader's text limit allows.
       const std::string name = fmt::format("_{}{}", keyword[0], terms.size());
@@ -104,7 +105,7 @@ void ModelReader::read_objective(const YAML::Node& node, OptimalControlSpec& spe
       terms.push_back({s, L, keyword == "mean"});
       outer.replace(at, close + 1 - at, name + std::string(close + 1 - at - name.size(), ' '));
     }
-  const Value v = parse_text(node, outer, kAll, what, &placeholders);
+  const Value v = parse_text(node, outer, kAll | kColumns, what, &placeholders);
   if (v.is_vector || v.is_matrix)
     fail(node, fmt::format("expected a scalar for {}, got a vector or matrix", what));
   GiNaC::exmap zero;
@@ -131,6 +132,8 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
              "optimal_control");
   OptimalControlSpec spec;
   spec.loc = src_.at(node);
+  for (const NamedExpr& c : m_.constraints) spec.multipliers.emplace_back("lambda_" + c.name);
+  multipliers_ = spec.multipliers;
 
   if (!node["controls"]) fail(node, "expected 'controls' in optimal_control (inputs it chooses)");
   expect_map(node["controls"], "controls (a map INPUT: {lower: …, upper: …})");
@@ -191,7 +194,7 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
       expect_map(kv.second, what);
       if (!kv.second["expression"])
         fail(kv.first, fmt::format("expected 'expression' in {}, got none", what));
-      PathConstraintSpec c{name, scalar_expr(kv.second["expression"], kAll, what),
+      PathConstraintSpec c{name, scalar_expr(kv.second["expression"], kAll | kColumns, what),
                            read_bounds(kv.second, what, {"expression"}), src_.at(kv.first)};
       if (!std::isfinite(c.bounds.lower) && !std::isfinite(c.bounds.upper))
         fail(kv.first, fmt::format("expected a lower or an upper bound in {}, got neither", what));

@@ -133,6 +133,8 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
     if (!(allowed & kTime)) throw refuse("the time 't'");
     return Value::of(m_.t);
   }
+  if (allowed & kColumns)
+    if (std::optional<Value> column = column_value(name, offset)) return column;
   auto it = names_.find(name);
   if (it == names_.end()) return body_member(name, offset, allowed);
   const NameEntry& e = it->second;
@@ -175,6 +177,24 @@ std::optional<Value> ModelReader::lookup(const std::string& name, size_t offset,
                                   "used in expressions)",
                                   got)};
   }
+  return std::nullopt;
+}
+
+// The columns a trajectory records beyond the state, as expressions of (t, q, v, u, p) and the
+// multipliers (docs/model-language.md, "Optimal control").
+std::optional<Value> ModelReader::column_value(const std::string& name, size_t offset) const {
+  for (const Reaction& r : m_.reactions)
+    if (r.name == name) return Value::of(multipliers_.at(r.constraint) * r.scale);
+  for (size_t c = 0; c < m_.constraints.size(); ++c)
+    if (m_.constraints[c].name == name) return Value::of(multipliers_.at(c));
+  for (const NamedExpr& o : m_.outputs)
+    if (o.name == name) return Value::of(o.expr);
+  for (const Load& l : m_.loads)
+    if (l.name == name)
+      throw ExprError{offset, fmt::format("expected a column of the state, the multipliers and the "
+                                          "outputs, got the load '{}' (it needs the "
+                                          "accelerations; the tension columns stand in for it)",
+                                          name)};
   return std::nullopt;
 }
 

@@ -10,12 +10,17 @@ std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec) {
 
 PointFunctions::PointFunctions(const Equations& eq, const CompiledModel& cm,
                                const std::vector<GiNaC::ex>& fs,
-                               const std::vector<size_t>& controls)
-    : count_(fs.size()) {
-  const std::vector<GiNaC::symbol> in = eq.tape_inputs();
-  std::vector<size_t> columns{0};  // tape input of each column: t, q, v, then the controls
+                               const std::vector<size_t>& controls,
+                               const std::vector<GiNaC::symbol>& multipliers)
+    : count_(fs.size()), multipliers_(multipliers.size()) {
+  std::vector<GiNaC::symbol> in = eq.tape_inputs();
+  std::vector<size_t> columns{0};  // input of each column: t, q, v, the controls, then λ
   for (size_t i = 0; i < cm.nq + cm.nv; ++i) columns.push_back(cm.q_offset() + i);
   for (size_t j : controls) columns.push_back(cm.u_offset() + j);
+  for (const GiNaC::symbol& l : multipliers) {
+    columns.push_back(in.size());
+    in.push_back(l);
+  }
   std::vector<GiNaC::ex> outputs(fs.begin(), fs.end());
   for (size_t i = 0; i < fs.size(); ++i)
     for (size_t c = 0; c < columns.size(); ++c) {
@@ -28,9 +33,12 @@ PointFunctions::PointFunctions(const Equations& eq, const CompiledModel& cm,
   work_.resize(std::max<size_t>(tape_.work_size(), 1));
 }
 
-void PointFunctions::eval(const std::vector<double>& in, std::vector<double>& out) const {
+void PointFunctions::eval(const std::vector<double>& in, const double* lambda,
+                          std::vector<double>& out) const {
   out.resize(tape_.num_outputs());
-  tape_.eval(in.data(), out.data(), work_.data());
+  in_.assign(in.begin(), in.end());
+  if (multipliers_ > 0) in_.insert(in_.end(), lambda, lambda + multipliers_);
+  tape_.eval(in_.data(), out.data(), work_.data());
 }
 
 }  // namespace lagrange::collocation

@@ -17,22 +17,27 @@ namespace lagrange::collocation {
 constexpr size_t kIntegrand = 0, kTerminal = 1, kMean = 2, kFirstPath = 3;
 std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec);
 
-/// f_i(t, q, v, u) for i < count, and their non-zero derivatives along the columns
-/// (t, q₁…q_nq, v₁…v_nv, the controls), differentiated symbolically (docs/theory.md §10).
+/// f_i(t, q, v, u, λ) for i < count, and their non-zero derivatives along the columns
+/// (t, q₁…q_nq, v₁…v_nv, the controls, the multipliers), differentiated symbolically
+/// (docs/theory.md §10).
 class PointFunctions {
  public:
-  /// `controls`: indices of the model inputs that are controls (the last columns).
+  /// `controls`: indices of the model inputs that are controls; `multipliers`: the symbols of λ
+  /// (OptimalControlSpec::multipliers; empty for functions without them).
   PointFunctions(const Equations& eq, const CompiledModel& cm, const std::vector<GiNaC::ex>& fs,
-                 const std::vector<size_t>& controls);
+                 const std::vector<size_t>& controls,
+                 const std::vector<GiNaC::symbol>& multipliers = {});
   size_t count() const { return count_; }
   /// (function, column) of each derivative, in output order.
   const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
   /// Values (count()) then derivatives (pattern()) at the tape input vector `in` (the model's
-  /// layout t, q, v, u, u̇, ü, p) into `out`.
-  void eval(const std::vector<double>& in, std::vector<double>& out) const;
+  /// layout t, q, v, u, u̇, ü, p) and the multipliers `lambda` (as many as given at construction)
+  /// into `out`.
+  void eval(const std::vector<double>& in, const double* lambda, std::vector<double>& out) const;
 
  private:
-  size_t count_ = 0;
+  size_t count_ = 0, multipliers_ = 0;
+  mutable std::vector<double> in_;
   std::vector<std::pair<size_t, size_t>> pattern_;
   Tape tape_;
   mutable std::vector<double> work_;

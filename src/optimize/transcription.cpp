@@ -51,12 +51,14 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       dyn_(dyn),
       spec_(spec),
       jac_(eq, cm, control_names(*eq.model, spec)),
-      fun_(eq, *cm, problem_functions(spec),
-           [&] {
-             std::vector<size_t> c;
-             for (const ControlSpec& s : spec.controls) c.push_back(s.input);
-             return c;
-           }()),
+      fun_(
+          eq, *cm, problem_functions(spec),
+          [&] {
+            std::vector<size_t> c;
+            for (const ControlSpec& s : spec.controls) c.push_back(s.input);
+            return c;
+          }(),
+          spec.multipliers),
       rad_(radau(degree)),
       N_(intervals),
       d_(degree),
@@ -73,6 +75,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       q0_(q0),
       v0_(v0) {
   if (intervals < 1) throw std::invalid_argument("expected at least 1 collocation interval");
+  if (spec.multipliers.size() != m_)
+    throw std::invalid_argument("the problem's multipliers do not match the model's constraints");
   for (const ControlSpec& c : spec.controls) controls_.push_back(c.input);
   if (free_T_) {
     // dt/dT enters every point: the dynamics must not depend on t itself (∂/∂t is not on the tape).
@@ -117,6 +121,17 @@ size_t Transcription::li(int k, int j) const {
 }
 size_t Transcription::ui(int k) const {
   return first_ + static_cast<size_t>(k) * block_ + static_cast<size_t>(d_) * (nx_ + m_);
+}
+
+size_t Transcription::point_variable(size_t column, int k, int j) const {
+  const size_t cu = 1 + nx_, cl = cu + nu_;
+  if (column < cu) return xi(k, j) + column - 1;
+  if (column < cl) return ui(k) + column - cu;
+  return li(k, j) + column - cl;
+}
+
+void Transcription::eval_point(const double* x, int k, int j) {
+  fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), multipliers(x, k, j), out_);
 }
 
 double Transcription::time(const double* x, int k, int j) const {
@@ -258,7 +273,7 @@ std::vector<double> Transcription::guessed_state(double t, const std::vector<dou
   for (size_t i = 0; i < nx_; ++i) x[i] = (1 - s) * start[i] + s * end[i];
   if (!spec_.guess_paths.empty()) {
     const std::vector<double> zero(std::max(nx_, nu_), 0.0);  // the paths depend on t alone
-    paths_.eval(load(t, zero.data(), zero.data()), out_);
+    paths_.eval(load(t, zero.data(), zero.data()), nullptr, out_);
     const size_t count = paths_.count();
     for (size_t f = 0; f < count; ++f) {
       const size_t c = spec_.guess_paths[f].first.coordinate;
@@ -397,50 +412,43 @@ double Transcription::objective(const double* x) {
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       // docs/theory.md §10: ∫ L ≈ h Σ b_j L_kj; mean(M) = (1/T) ∫ M ≈ (1/N) Σ b_j M_kj.
-      fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
+      eval_point(x, k, j);
       J += rad_.b[static_cast<size_t>(j - 1)] * (h * out_[kIntegrand] + out_[kMean] / N_);
     }
-  fun_.eval(load(horizon(x), state(x, N_, 0), control(x, N_ - 1)), out_);
+  eval_point(x, N_ - 1, d_);  // the terminal point (T, X_{N,0}), with the multipliers there
   return sign_ * (J + out_[kTerminal]);
 }
 
 void Transcription::gradient(const double* x, double* grad) {
   std::fill(grad, grad + n_, 0.0);
   const double T = horizon(x), h = T / N_;
-  const size_t cu = 1 + nx_;  // first control column
   const size_t nf = fun_.count();
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       // The integrand's weight h b_j depends on T, the mean's b_j / N does not.
       const double w = sign_ * h * rad_.b[static_cast<size_t>(j - 1)],
                    wm = sign_ * rad_.b[static_cast<size_t>(j - 1)] / N_;
-      fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
+      eval_point(x, k, j);
       if (free_T_) grad[0] += w / T * out_[kIntegrand];
       for (size_t e = 0; e < fun_.pattern().size(); ++e) {
         const auto [f, c] = fun_.pattern()[e];
         if (f != kIntegrand && f != kMean) continue;
         const double d = (f == kMean ? wm : w) * out_[nf + e];
-        if (c == 0) {
-          if (free_T_) grad[0] += d * (k + rad_.tau[static_cast<size_t>(j)]) / N_;
-        } else if (c < cu) {
-          grad[xi(k, j) + c - 1] += d;
-        } else {
-          grad[ui(k) + c - cu] += d;
-        }
+        if (c != 0)
+          grad[point_variable(c, k, j)] += d;
+        else if (free_T_)
+          grad[0] += d * (k + rad_.tau[static_cast<size_t>(j)]) / N_;
       }
     }
-  fun_.eval(load(T, state(x, N_, 0), control(x, N_ - 1)), out_);
+  eval_point(x, N_ - 1, d_);
   for (size_t e = 0; e < fun_.pattern().size(); ++e) {
     const auto [f, c] = fun_.pattern()[e];
     if (f != kTerminal) continue;
     const double d = sign_ * out_[nf + e];
-    if (c == 0) {
-      if (free_T_) grad[0] += d;
-    } else if (c < cu) {
-      grad[xi(N_, 0) + c - 1] += d;
-    } else {
-      grad[ui(N_ - 1) + c - cu] += d;
-    }
+    if (c != 0)
+      grad[point_variable(c, N_ - 1, d_)] += d;
+    else if (free_T_)
+      grad[0] += d;
   }
 }
 
@@ -451,7 +459,7 @@ void Transcription::constraint_values(const double* x, double* g) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1);
       residual(x, k, j, g + p * nr);
       if (np_ == 0) continue;
-      fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), out_);
+      eval_point(x, k, j);
       std::copy(out_.begin() + kFirstPath, out_.begin() + kFirstPath + static_cast<long>(np_),
                 g + path_rows_ + p * np_);
     }
@@ -477,7 +485,7 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   const double T = horizon(x), h = T / N_;
   const size_t nr = nx_ + m_;
   std::vector<double> r(nr);
-  const size_t nf = fun_.count(), cu = 1 + nx_;
+  const size_t nf = fun_.count();
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       const size_t row = static_cast<size_t>(k * d_ + j - 1) * nr;
@@ -518,17 +526,15 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).
       const size_t prow = path_rows_ + static_cast<size_t>(k * d_ + j - 1) * np_;
-      fun_.eval(load(time(x, k, j), X, control(x, k)), out_);
+      eval_point(x, k, j);
       for (size_t e = 0; e < fun_.pattern().size(); ++e) {
         const auto [f, c] = fun_.pattern()[e];
         if (f < kFirstPath) continue;
         const double v = out_[nf + e];
-        if (c == 0) {
-          if (free_T_)
-            emit(prow + f - kFirstPath, 0, v * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
-        } else {
-          emit(prow + f - kFirstPath, c < cu ? xi(k, j) + c - 1 : ui(k) + c - cu, v);
-        }
+        if (c != 0)
+          emit(prow + f - kFirstPath, point_variable(c, k, j), v);
+        else if (free_T_)
+          emit(prow + f - kFirstPath, 0, v * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
       }
     }
   // x(T) − x(0) of the periodic components.

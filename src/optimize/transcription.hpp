@@ -80,6 +80,11 @@ class Transcription {
   size_t xi(int k, int j) const;
   size_t li(int k, int j) const;
   size_t ui(int k) const;
+  /// The NLP variable of the point functions' column `column` ≥ 1 (q, v, the controls, λ) at
+  /// collocation point (k, j ≥ 1); the terminal point is (N − 1, d).
+  size_t point_variable(size_t column, int k, int j) const;
+  /// The point functions at collocation point (k, j ≥ 1) into out_.
+  void eval_point(const double* x, int k, int j);
   /// The tape inputs (t, q, v, u, u̇, ü, p) at a point with controls `u`.
   const std::vector<double>& load(double t, const double* x, const double* u);
   /// x'(τ_j)/h of interval k into qp_, and the residual's dynamics at (k, j) with the controls

@@ -110,15 +110,19 @@ void Transcription::prepare_hessian(HessianChoice choice) {
     in.insert(in.end(), mu.begin(), mu.end());
     h_dae_ = SecondDerivatives(s, in, columns);
   }
-  // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p, over (q, v, u) and, with T free, t = T (k + τ_j)/N.
+  // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p, over (q, v, u, λ) and, with T free, t = T (k + τ_j)/N.
   {
     const std::vector<GiNaC::symbol> w = symbols("hess_w", fun_.count());
     const std::vector<GiNaC::ex> fs = problem_functions(spec_);
     GiNaC::ex s = 0;
     for (size_t f = 0; f < fs.size(); ++f) s += w[f] * fs[f];
     std::vector<GiNaC::symbol> in = base;
-    in.insert(in.end(), w.begin(), w.end());
     std::vector<size_t> columns = state_columns;
+    for (const GiNaC::symbol& l : spec_.multipliers) {
+      columns.push_back(in.size());
+      in.push_back(l);
+    }
+    in.insert(in.end(), w.begin(), w.end());
     if (free_T_) columns.push_back(0);  // t, the tape's first input
     h_point_ = SecondDerivatives(s, in, columns);
   }
@@ -153,7 +157,7 @@ void Transcription::hessian(const double* x, double sigma, const double* y, doub
 template <class Emit>
 void Transcription::walk_hessian(const double* x, double sigma, const double* y, Emit&& emit) {
   const double T = horizon(x), h = T / N_;
-  const size_t nr = nx_ + m_, nf = fun_.count(), cu = 1 + nx_;
+  const size_t nr = nx_ + m_, nf = fun_.count();
   std::vector<Term> A, B;
   std::vector<double> r(nr), g(nx_);
   // With T free (variable 0) a = v' = (1/h) Σ_l D_jl V_{k,l} carries −a/T and t = T (k + τ_j)/N
@@ -176,17 +180,14 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       t.push_back({li(k, j) + col - nx_ - nu_ - nv_, 1.0});
     }
   };
-  // The point functions' local columns: q, v, u, then t when T is free. `end`: the terminal
-  // point (T, X_{N,0}, U_{N−1}).
-  const auto point_terms = [&](int k, int j, bool end, size_t col, std::vector<Term>& t) {
+  // The point functions' local columns: q, v, u, λ, then t when T is free; the terminal point
+  // is (N − 1, d), where τ_d = 1.
+  const auto point_terms = [&](int k, int j, size_t col, std::vector<Term>& t) {
     t.clear();
-    if (col < nx_) {
-      t.push_back({end ? xi(N_, 0) + col : xi(k, j) + col, 1.0});
-    } else if (col < nx_ + nu_) {
-      t.push_back({ui(end ? N_ - 1 : k) + col - nx_, 1.0});
-    } else {
-      on_T(t, end ? 1.0 : (k + rad_.tau[static_cast<size_t>(j)]) / N_);
-    }
+    if (col < nx_ + nu_ + m_)
+      t.push_back({point_variable(col + 1, k, j), 1.0});
+    else
+      on_T(t, (k + rad_.tau[static_cast<size_t>(j)]) / N_);
   };
   const auto scatter_all = [&](const SecondDerivatives& sd, auto&& terms) {
     sd.eval(hin_, hout_);
@@ -230,15 +231,15 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       // The integrand (Radau weight) and the path constraints.
       const double wL = sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)];
       hin_ = load(time(x, k, j), X, control(x, k));
+      hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
       hin_.push_back(wL);                                                       // L
       hin_.push_back(0.0);                                                      // Φ
       hin_.push_back(sigma * sign_ * rad_.b[static_cast<size_t>(j - 1)] / N_);  // M
       for (size_t i = 0; i < np_; ++i) hin_.push_back(y[path_rows_ + p * np_ + i]);
-      scatter_all(h_point_,
-                  [&](size_t col, std::vector<Term>& t) { point_terms(k, j, false, col, t); });
+      scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(k, j, col, t); });
       if (free_T_) {
         // The integrand's weight h b_j = T b_j/N is linear in T: ∂²/∂T∂z of wL·L is (wL/T)·∂L/∂z.
-        fun_.eval(load(time(x, k, j), X, control(x, k)), out_);
+        eval_point(x, k, j);
         const double dt = (k + rad_.tau[static_cast<size_t>(j)]) / N_;
         for (size_t e = 0; e < fun_.pattern().size(); ++e) {
           const auto [f, c] = fun_.pattern()[e];
@@ -247,17 +248,18 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
           if (c == 0)
             emit(0, 0, 2 * v * dt);
           else
-            emit(c < cu ? xi(k, j) + c - 1 : ui(k) + c - cu, 0, v);
+            emit(point_variable(c, k, j), 0, v);
         }
       }
     }
-  // The terminal term at (T, X_{N,0}, U_{N−1}).
+  // The terminal term at (T, X_{N,0}, U_{N−1}, Λ_{N−1,d}).
   hin_ = load(T, state(x, N_, 0), control(x, N_ - 1));
+  hin_.insert(hin_.end(), multipliers(x, N_ - 1, d_), multipliers(x, N_ - 1, d_) + m_);
   hin_.push_back(0.0);            // L
   hin_.push_back(sigma * sign_);  // Φ
   hin_.push_back(0.0);            // M
   hin_.resize(hin_.size() + np_, 0.0);
-  scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(0, 0, true, col, t); });
+  scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(N_ - 1, d_, col, t); });
   // The invariants imposed at t = 0, on X_{0,0}.
   if (start_rows_.empty()) return;
   hin_ = load(0.0, state(x, 0, 0), control(x, 0));
