@@ -244,6 +244,22 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
     if (!spec.periodic.empty() && !spec.initial) spec.initial.emplace();
   }
   if (node["final"]) spec.final = boundary("final");
+  // A coordinate whose rate is bounded away from zero moves one way only: it cannot return to
+  // its start, and Ipopt would only report the problem infeasible.
+  for (const StateRef& p : spec.periodic) {
+    if (p.velocity) continue;
+    for (const StateBound& b : spec.bounds) {
+      if (b.state.coordinate != p.coordinate || !b.state.velocity) continue;
+      if (b.bounds.lower > 0 || b.bounds.upper < 0)
+        throw ModelError(
+            p.loc,
+            fmt::format("expected periodic coordinates that can return to their start, got '{}', "
+                        "whose rate is bounded to [{:g}, {:g}] (it only {}): leave it out of "
+                        "periodic, or let its rate change sign",
+                        m_.coordinates[p.coordinate].name, b.bounds.lower, b.bounds.upper,
+                        b.bounds.lower > 0 ? "grows" : "shrinks"));
+    }
+  }
 
   if (node["guess"] && node["guess"].IsMap()) {
     for (const auto& kv : node["guess"]) {

@@ -73,6 +73,9 @@ class Transcription {
   const double* multipliers(const double* x, int k, int j) const { return x + li(k, j); }
   const double* control(const double* x, int k) const { return x + ui(k); }
   bool maximize() const { return sign_ < 0; }
+  /// How many invariants (C_i, Ċ_i) are imposed at t = 0 and how many x(T) = x(0) rows.
+  size_t start_invariant_rows() const { return start_rows_.size(); }
+  size_t periodic_rows() const { return periodic_.size(); }
   const std::vector<size_t>& control_inputs() const { return controls_; }
 
  private:

@@ -10,6 +10,7 @@
 
 #include "lagrange/io.hpp"
 #include "optimize/optimal_problem.hpp"
+#include "optimize/transcription.hpp"
 
 namespace lagrange {
 namespace {
@@ -88,6 +89,28 @@ TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
   const OptimizeResult fine = kite.solve(80);
   ASSERT_TRUE(fine.optimal) << fine.status;
   EXPECT_LT(std::fabs(fine.objective - power), 0.01 * power);
+}
+
+// Periodicity of a constrained model: x(T) = x(0) only on the components the invariants C = 0,
+// Ċ = 0 leave independent, so the periodic rows and the invariants imposed at t = 0 never exceed
+// the state's dimension (docs/theory.md §10, "Periodic problems"): the kite (8 states, one
+// tether: 6 periodic rows, 2 invariants) and the Cartesian pendulum's orbit (periodic in x only).
+TEST(PeriodicProblems, RowsAndInvariantsNeverExceedTheStateDimension) {
+  struct Case {
+    const char* file;
+    size_t periodic, invariants;
+  };
+  for (const Case& c : {Case{"power_cycle_pointmass.yaml", 6, 2},
+                        Case{"data/pendulum_period_cartesian.yaml", 1, 2}}) {
+    testing::OptimalProblem p(c.file);
+    const collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 4, 3, p.cm->q0, p.cm->v0,
+                                         HessianChoice::LimitedMemory);
+    const size_t nx = p.cm->nq + p.cm->nv, m = p.cm->m;
+    EXPECT_EQ(nlp.periodic_rows(), c.periodic) << c.file;
+    EXPECT_EQ(nlp.start_invariant_rows(), c.invariants) << c.file;
+    EXPECT_LE(nlp.periodic_rows(), nx - 2 * m) << c.file;
+    EXPECT_LE(nlp.periodic_rows() + nlp.start_invariant_rows(), nx) << c.file;
+  }
 }
 
 }  // namespace

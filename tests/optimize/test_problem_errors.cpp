@@ -140,5 +140,22 @@ TEST(OptimalControlErrors, AGuessedPathIsACoordinateInT) {
       << word;
 }
 
+// Periodicity on a coordinate that moves one way only (a reel that only reels out) cannot hold:
+// said at the periodic entry, not left to Ipopt's "infeasible".
+TEST(OptimalControlErrors, APeriodicCoordinateThatCannotReturnIsRefused) {
+  const std::string ok = "  controls: {u: {}}\n  horizon: 1\n  minimize: integral(u^2)\n";
+  const std::string one_way =
+      error_of(ok + "  bounds: {x_dot: {lower: 0.5}}\n  periodic: [x, x_dot]\n");
+  EXPECT_NE(one_way.find("di.yaml:13:14: error: expected periodic coordinates that can return to "
+                         "their start, got 'x', whose rate is bounded to [0.5, inf] (it only "
+                         "grows)"),
+            std::string::npos)
+      << one_way;
+  // A rate that may change sign, or periodicity of the rate alone, is fine.
+  EXPECT_EQ(error_of(ok + "  bounds: {x_dot: {lower: -1, upper: 2}}\n  periodic: [x]\n"),
+            "no error");
+  EXPECT_EQ(error_of(ok + "  bounds: {x_dot: {lower: 0.5}}\n  periodic: [x_dot]\n"), "no error");
+}
+
 }  // namespace
 }  // namespace lagrange
