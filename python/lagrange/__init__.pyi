@@ -166,6 +166,7 @@ class Model:
         Releases the GIL while integrating. Raises SimulationError (with .run, the partial
         trajectory) when the integration fails, ValueError for a bad setting. compile="on"
         warns (RuntimeWarning) when machine code cannot be had and the interpreter runs.
+        Ctrl-C raises KeyboardInterrupt with .run, the rows so far (status 'interrupted').
         """
     def forward(
         self, q: ArrayLike, v: ArrayLike, t: float = 0.0
@@ -235,7 +236,8 @@ class Model:
         """Solve the file's optimal_control problem as `lagrange optimize` does: optimal, status,
         objective, horizon, controls (intervals x controls), control_names, run (a Run),
         violation, worst_constraint, iterations, setup/solve/function seconds, and verify
-        (final_gap, largest_gap, message) or None."""
+        (final_gap, largest_gap, message) or None. Ctrl-C raises KeyboardInterrupt with
+        .result, this namespace at Ipopt's last iterate."""
     def stepper(
         self,
         t_end: Optional[float] = None,
@@ -297,4 +299,5 @@ def sweep(
 ) -> Any:
     """Every case of a grid ({name: values}) or list of cases ([{name: value}]) run on model as
     `lagrange sweep` runs it, here or on an Executor: a pandas DataFrame, one row per case
-    (values, status, reason, failure_time, metrics, wall_s). docs/sweeps.md."""
+    (values, status, reason, failure_time, metrics, wall_s). docs/sweeps.md. Ctrl-C raises
+    KeyboardInterrupt with .frame, the finished cases' rows."""
