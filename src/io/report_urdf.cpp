@@ -191,11 +191,11 @@ nlohmann::json UrdfVisuals::of(const Body& body) {
       }
       const std::string found = resolve_mesh(name, path);
       if (found.empty()) {
-        notes_.push_back(
-            fmt::format("link '{}': mesh '{}' not found (package:// is looked up in "
-                        "$ROS_PACKAGE_PATH and beside the URDF); the link is drawn "
-                        "from its inertia",
-                        body.name, name));
+        notes_.push_back(fmt::format(
+            "link '{}': mesh '{}' not found (package:// is looked up in --package-path, "
+            "$ROS_PACKAGE_PATH and beside the URDF); the link is drawn "
+            "from its inertia",
+            body.name, name));
         return nullptr;
       }
       std::ifstream in(found, std::ios::binary);

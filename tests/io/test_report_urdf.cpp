@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "hardening/cli_runner.hpp"
 #include "io/report_urdf.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/report.hpp"
@@ -163,6 +164,36 @@ TEST(ReportUrdf, MeshFilesAreFoundAsRosFindsThem) {
   const ScopedEnv path("ROS_PACKAGE_PATH", "/nonexistent:" + arm_dir().parent_path().string());
   EXPECT_EQ(io::resolve_mesh("package://urdf_visuals/meshes/tip.stl", "/elsewhere/robot.urdf"),
             tip);
+}
+
+// The scene embedded in a report file.
+nlohmann::json report_scene(const fs::path& html) {
+  const std::string text = hardening::slurp(html);
+  const std::string open = "id=\"lagrange-data\">";
+  const size_t from = text.find(open) + open.size();
+  return nlohmann::json::parse(text.substr(from, text.find("</script>", from) - from))["scene"];
+}
+
+TEST(ReportUrdf, PackagePathFindsTheMeshesOfAUrdfElsewhere) {
+  const ScopedEnv none("ROS_PACKAGE_PATH", "");
+  hardening::ScratchDir dir("report-package-path");
+  fs::copy_file(arm_dir() / "visual_arm.urdf", dir.path() / "visual_arm.urdf");
+  const std::string urdf = (dir.path() / "visual_arm.urdf").string();
+  const auto html = dir.path() / "arm.html";
+  const std::vector<std::string> run{"simulate", urdf, "--t-end", "0.2", "--report", html.string()};
+  ASSERT_EQ(hardening::run_lagrange(dir.path(), run).exit_code, 0);
+  EXPECT_EQ(report_scene(html)["notes"].size(), 1u);
+  EXPECT_FALSE(body(report_scene(html), "tool").contains("visuals"));
+  // tests/io holds the package urdf_visuals/.
+  std::vector<std::string> with = run;
+  with.insert(with.end(), {"--package-path", "/nonexistent", "--package-path",
+                           arm_dir().parent_path().string()});
+  const hardening::RunResult r = hardening::run_lagrange(dir.path(), with);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json scene = report_scene(html);
+  EXPECT_FALSE(scene.contains("notes")) << scene["notes"];
+  ASSERT_TRUE(body(scene, "tool").contains("visuals"));
+  EXPECT_EQ(body(scene, "tool")["visuals"][0]["type"], "mesh");
 }
 
 TEST(ReportUrdf, Base64) {
