@@ -78,15 +78,21 @@ TEST(ReportUrdf, EveryVisualOfTheArmIsInTheScene) {
   const nlohmann::json scene = scene_of(arm_dir() / "visual_arm.urdf");
   EXPECT_FALSE(scene.contains("notes")) << scene["notes"];
   const std::string stl = bytes_of(arm_dir() / "meshes" / "tip.stl");
-  EXPECT_EQ(scene["mesh_bytes"], stl.size());
+  const std::string dae = bytes_of(arm_dir() / "meshes" / "plate.dae");
+  EXPECT_EQ(scene["mesh_bytes"], stl.size() + dae.size());
 
   const auto& base = body(scene, "base")["visuals"];
-  ASSERT_EQ(base.size(), 1u);
+  ASSERT_EQ(base.size(), 2u);
   EXPECT_EQ(base[0]["type"], "cylinder");
   EXPECT_EQ(base[0]["radius"], 0.05);
   EXPECT_EQ(base[0]["length"], 0.1);
   EXPECT_EQ(base[0]["color"], "#0000ff");  // the robot's named material "blue"
   EXPECT_EQ(base[0]["opacity"], 1.0);
+  EXPECT_EQ(base[1]["type"], "mesh");  // a path relative to the URDF's folder
+  EXPECT_EQ(base[1]["format"], "dae");
+  EXPECT_EQ(base[1]["data"], io::base64(dae));
+  expect_near(base[1]["origin"], {0, 0, -0.05});
+  expect_near(base[1]["scale"], {1, 1, 1});
 
   const auto& upper = body(scene, "upper")["visuals"];
   ASSERT_EQ(upper.size(), 2u);
@@ -123,13 +129,17 @@ TEST(ReportUrdf, AMissingMeshKeepsTheInertiaDrawingWithANote) {
                 fs::copy_options::overwrite_existing);
   const nlohmann::json scene = scene_of(dir / "visual_arm.urdf");
   fs::remove_all(dir);
-  ASSERT_EQ(scene["notes"].size(), 1u);
-  const std::string note = scene["notes"][0];
+  ASSERT_EQ(scene["notes"].size(), 2u);  // the plate of 'base', the tip of 'tool'
+  EXPECT_NE(scene["notes"][0].get<std::string>().find("link 'base': mesh 'meshes/plate.dae'"),
+            std::string::npos)
+      << scene["notes"][0];
+  const std::string note = scene["notes"][1];
   EXPECT_NE(note.find("link 'tool'"), std::string::npos) << note;
   EXPECT_NE(note.find("package://urdf_visuals/meshes/tip.stl' not found"), std::string::npos)
       << note;
   EXPECT_FALSE(body(scene, "tool").contains("visuals"));
   EXPECT_TRUE(body(scene, "tool").contains("shape"));  // today's drawing
+  EXPECT_FALSE(body(scene, "base").contains("visuals"));
   EXPECT_TRUE(body(scene, "upper").contains("visuals"));
   EXPECT_FALSE(scene.contains("mesh_bytes"));
 }
@@ -182,7 +192,7 @@ TEST(ReportUrdf, PackagePathFindsTheMeshesOfAUrdfElsewhere) {
   const auto html = dir.path() / "arm.html";
   const std::vector<std::string> run{"simulate", urdf, "--t-end", "0.2", "--report", html.string()};
   ASSERT_EQ(hardening::run_lagrange(dir.path(), run).exit_code, 0);
-  EXPECT_EQ(report_scene(html)["notes"].size(), 1u);
+  EXPECT_EQ(report_scene(html)["notes"].size(), 2u);
   EXPECT_FALSE(body(report_scene(html), "tool").contains("visuals"));
   // tests/io holds the package urdf_visuals/.
   std::vector<std::string> with = run;
@@ -191,7 +201,9 @@ TEST(ReportUrdf, PackagePathFindsTheMeshesOfAUrdfElsewhere) {
   const hardening::RunResult r = hardening::run_lagrange(dir.path(), with);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json scene = report_scene(html);
-  EXPECT_FALSE(scene.contains("notes")) << scene["notes"];
+  // The plate, named relative to the URDF's folder, is still missing there.
+  ASSERT_EQ(scene["notes"].size(), 1u);
+  EXPECT_NE(scene["notes"][0].get<std::string>().find("link 'base'"), std::string::npos);
   ASSERT_TRUE(body(scene, "tool").contains("visuals"));
   EXPECT_EQ(body(scene, "tool")["visuals"][0]["type"], "mesh");
 }

@@ -88,9 +88,15 @@ export class View {
       group.name = b.name;
       this.scene.add(group);
       if (b.visuals) {
-        // A URDF link as its <visual> elements draw it, in the link frame the pose places.
-        for (const v of b.visuals) group.add(visualObject(v));
-        return group;
+        // A URDF link as its <visual> elements draw it, in the link frame the pose places; a mesh
+        // the loaders cannot read leaves the link to the inertia drawing below.
+        try {
+          const objects = b.visuals.map(visualObject);
+          for (const o of objects) group.add(o);
+          return group;
+        } catch (e) {
+          console.warn(`link ${b.name}: its visual could not be drawn (${e.message}); drawn from its inertia`);
+        }
       }
       let geometry;
       if (b.shape === 'sphere') geometry = new THREE.SphereGeometry(b.size[0], 32, 20);

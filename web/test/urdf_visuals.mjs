@@ -2,7 +2,8 @@
 // `report_urdf_visuals`): simulate tests/io/urdf_visuals/visual_arm.urdf with --report, open it
 // in headless Chromium and check that each link is drawn by its visuals (no inertia box), and
 // that the STL mesh's vertices sit where the link's pose and the visual's origin, rotation and
-// scale put them, at several frames of the motion. No console errors or warnings.
+// scale put them, at several frames of the motion; and the COLLADA plate on the fixed base where
+// its origin puts it, in its own z-up axes. No console errors or warnings.
 //
 // Usage: node urdf_visuals.mjs LAGRANGE URDF OUT_DIR
 import { launch, openReport } from '../chromium.mjs';
@@ -80,6 +81,31 @@ try {
     else moved = Math.max(moved, Math.hypot(...drawn.world[1].map((x, k) => x - first[k])));
   }
   assert.ok(moved > 0.05, `the mesh moves with its link (${moved})`);
+  // The COLLADA plate: 4 corners (±0.1, ±0.1, 0) in the base frame, 0.05 below its origin.
+  const base = scene.bodies.findIndex((b) => b.name === 'base');
+  assert.equal(scene.bodies[base].visuals[1].format, 'dae');
+  const corners = await page.evaluate((j) => {
+    const group = window.lagrangeReport.view.bodyGroups[j];
+    group.updateMatrixWorld(true);
+    const meshes = [];
+    group.traverse((o) => {
+      if (o.isMesh) meshes.push(o);
+    });
+    const plate = meshes[meshes.length - 1];
+    const p = plate.geometry.attributes.position;
+    const out = [];
+    for (let i = 0; i < p.count; ++i) {
+      const e = plate.matrixWorld.elements;
+      const v = [p.getX(i), p.getY(i), p.getZ(i)];
+      out.push([0, 1, 2].map((r) => e[r] * v[0] + e[4 + r] * v[1] + e[8 + r] * v[2] + e[12 + r]));
+    }
+    return out;
+  }, base);
+  assert.equal(corners.length, 6, 'two triangles');
+  for (const c of corners) {
+    assert.ok(Math.abs(Math.abs(c[0]) - 0.1) < 1e-6 && Math.abs(Math.abs(c[1]) - 0.1) < 1e-6, `corner ${c}`);
+    assert.ok(Math.abs(c[2] + 0.05) < 1e-6, `corner ${c} at z = -0.05`);
+  }
   assert.deepEqual(messages, []);
   console.log(`urdf visuals: the mesh follows its link at ${frames.length} frames`);
 } catch (e) {
