@@ -37,7 +37,10 @@ InterruptibleRun::InterruptibleRun() {
 }
 
 InterruptibleRun::~InterruptibleRun() {
+  // Left by an exception before raised(): a Ctrl-C that came meanwhile is still Python's.
+  const bool was_installed = installed_;
   restore();
+  if (was_installed && g_sigint.exchange(false)) PyErr_SetInterrupt();
 }
 
 void InterruptibleRun::restore() {
