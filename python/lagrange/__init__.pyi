@@ -84,7 +84,8 @@ class Run:
         """steps, rhs_evals, failed_steps, method, rotation_drift."""
     def report(self, path: str) -> None:
         """Write the HTML report (3-D animation, plots, equations, statistics) to path (.html),
-        as `lagrange simulate --report` does."""
+        as `lagrange simulate --report` does; a URDF link drawn from its inertia because its
+        mesh is missing gives a UserWarning."""
     def _repr_html_(self) -> str:
         """The report inline in a notebook (an iframe)."""
     def to_pandas(self) -> "pandas.DataFrame":  # type: ignore[name-defined]  # noqa: F821

@@ -191,8 +191,15 @@ TEST(ReportUrdf, PackagePathFindsTheMeshesOfAUrdfElsewhere) {
   const std::string urdf = (dir.path() / "visual_arm.urdf").string();
   const auto html = dir.path() / "arm.html";
   const std::vector<std::string> run{"simulate", urdf, "--t-end", "0.2", "--report", html.string()};
-  ASSERT_EQ(hardening::run_lagrange(dir.path(), run).exit_code, 0);
+  const hardening::RunResult without = hardening::run_lagrange(dir.path(), run);
+  ASSERT_EQ(without.exit_code, 0) << without.err;
   EXPECT_EQ(report_scene(html)["notes"].size(), 2u);
+  // The notes also on stderr, once each.
+  EXPECT_NE(without.err.find("lagrange: note: link 'tool': mesh "
+                             "'package://urdf_visuals/meshes/tip.stl' not found"),
+            std::string::npos)
+      << without.err;
+  EXPECT_EQ(without.out.find("of URDF meshes"), std::string::npos) << without.out;
   EXPECT_FALSE(body(report_scene(html), "tool").contains("visuals"));
   // tests/io holds the package urdf_visuals/.
   std::vector<std::string> with = run;
@@ -200,6 +207,8 @@ TEST(ReportUrdf, PackagePathFindsTheMeshesOfAUrdfElsewhere) {
                            arm_dir().parent_path().string()});
   const hardening::RunResult r = hardening::run_lagrange(dir.path(), with);
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(html.string() + " embeds 0.3 KiB of URDF meshes"), std::string::npos)
+      << r.out;  // the 284-byte STL
   const nlohmann::json scene = report_scene(html);
   // The plate, named relative to the URDF's folder, is still missing there.
   ASSERT_EQ(scene["notes"].size(), 1u);
