@@ -2,6 +2,7 @@
 // Optimal control by direct collocation (docs/theory.md §10): the model file's
 // `optimal_control:` problem transcribed with Radau IIA on the implicit DAE and solved by Ipopt.
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <string>
@@ -30,6 +31,9 @@ struct OptimizeOptions {
   std::vector<std::pair<std::string, std::string>> ipopt;
   bool verbose = false;  ///< Ipopt's iteration log on stdout
   HessianChoice hessian = HessianChoice::Auto;
+  /// Set asynchronously (Ctrl-C) to stop Ipopt after its current iteration: the result is then
+  /// the last iterate, not optimal, its trajectory's status Interrupted.
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 /// What optimize() found.

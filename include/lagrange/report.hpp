@@ -34,12 +34,19 @@ std::string report_scene_json(const Equations& eq, const CompiledModel& cm, cons
                               const std::vector<double>& parameters,
                               const ReportLimits& limits = {});
 
+/// What a report drew otherwise than its model says (a URDF link whose mesh is missing, drawn
+/// from its inertia), one line each, and the bytes of URDF meshes it embeds.
+struct ReportNotes {
+  std::vector<std::string> notes;
+  size_t mesh_bytes = 0;
+};
+
 /// Writes the report of `traj` to `path` (atomically): the scene, the trajectory's columns
 /// (decimated), the LaTeX of `derive`, the parameters and the run statistics, with the
 /// front-end (three.js, uPlot, KaTeX) inlined so that the file opens offline.
-void write_report(const Equations& eq, const CompiledModel& cm, const Trajectory& traj,
-                  const std::vector<double>& parameters, const ReportRun& run,
-                  const std::string& path, const ReportLimits& limits = {});
+ReportNotes write_report(const Equations& eq, const CompiledModel& cm, const Trajectory& traj,
+                         const std::vector<double>& parameters, const ReportRun& run,
+                         const std::string& path, const ReportLimits& limits = {});
 
 /// Reads a trajectory CSV written by write_trajectory_csv (and its `.json` sidecar when present:
 /// status and step counts). std::runtime_error naming the file and line for a malformed file.

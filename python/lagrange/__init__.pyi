@@ -84,7 +84,8 @@ class Run:
         """steps, rhs_evals, failed_steps, method, rotation_drift."""
     def report(self, path: str) -> None:
         """Write the HTML report (3-D animation, plots, equations, statistics) to path (.html),
-        as `lagrange simulate --report` does."""
+        as `lagrange simulate --report` does; a URDF link drawn from its inertia because its
+        mesh is missing gives a UserWarning."""
     def _repr_html_(self) -> str:
         """The report inline in a notebook (an iframe)."""
     def to_pandas(self) -> "pandas.DataFrame":  # type: ignore[name-defined]  # noqa: F821
@@ -166,6 +167,7 @@ class Model:
         Releases the GIL while integrating. Raises SimulationError (with .run, the partial
         trajectory) when the integration fails, ValueError for a bad setting. compile="on"
         warns (RuntimeWarning) when machine code cannot be had and the interpreter runs.
+        Ctrl-C raises KeyboardInterrupt with .run, the rows so far (status 'interrupted').
         """
     def forward(
         self, q: ArrayLike, v: ArrayLike, t: float = 0.0
@@ -235,7 +237,8 @@ class Model:
         """Solve the file's optimal_control problem as `lagrange optimize` does: optimal, status,
         objective, horizon, controls (intervals x controls), control_names, run (a Run),
         violation, worst_constraint, iterations, setup/solve/function seconds, and verify
-        (final_gap, largest_gap, message) or None."""
+        (final_gap, largest_gap, message) or None. Ctrl-C raises KeyboardInterrupt with
+        .result, this namespace at Ipopt's last iterate."""
     def stepper(
         self,
         t_end: Optional[float] = None,
@@ -297,4 +300,5 @@ def sweep(
 ) -> Any:
     """Every case of a grid ({name: values}) or list of cases ([{name: value}]) run on model as
     `lagrange sweep` runs it, here or on an Executor: a pandas DataFrame, one row per case
-    (values, status, reason, failure_time, metrics, wall_s). docs/sweeps.md."""
+    (values, status, reason, failure_time, metrics, wall_s). docs/sweeps.md. Ctrl-C raises
+    KeyboardInterrupt with .frame, the finished cases' rows."""

@@ -82,6 +82,9 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
     As for ``lagrange sweep``, the cases' inputs come from one read of the model file per
     process when it can give them (docs/sweeps.md); ``frame.attrs["model_reads"]`` counts the
     reads of every process.
+
+    Ctrl-C raises ``KeyboardInterrupt`` with ``.frame``: the table of the cases finished so far
+    (indexed by their case numbers; the others have no row), as ``lagrange sweep`` keeps them.
     """
     import pandas
 
@@ -93,16 +96,37 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
                     atol=atol, step=step, max_order=max_order)
     model._run_cases(cases, specs, check_only=True, **settings)
     if executor is None:
-        rows, reads = model._run_cases(cases, specs, **settings)
+        try:
+            rows, reads = model._run_cases(cases, specs, **settings)
+        except KeyboardInterrupt as e:
+            e.frame = _frame(pandas, e.rows, e.reads, e.cases)
+            raise
     else:
         size = chunk if chunk is not None else max(1, len(cases) // 32)
         state = pickle.dumps(model)
+        starts = range(0, len(cases), size)
         futures = [executor.submit(_run_chunk, state, cases[i:i + size], specs, settings)
-                   for i in range(0, len(cases), size)]
-        chunks = [f.result() for f in futures]
+                   for i in starts]
+        try:
+            chunks = [f.result() for f in futures]
+        except KeyboardInterrupt as e:
+            # The chunks finished so far are kept; those not started are cancelled.
+            for f in futures:
+                f.cancel()
+            done = [(i, f.result()) for i, f in zip(starts, futures)
+                    if f.done() and not f.cancelled() and f.exception() is None]
+            e.frame = _frame(pandas, [row for _, (chunk_rows, _) in done for row in chunk_rows],
+                             sum(chunk_reads for _, (_, chunk_reads) in done),
+                             [i + k for i, (chunk_rows, _) in done for k in range(len(chunk_rows))])
+            raise
         rows = [row for chunk_rows, _ in chunks for row in chunk_rows]
         reads = sum(chunk_reads for _, chunk_reads in chunks)
-    frame = pandas.DataFrame(rows)
+    return _frame(pandas, rows, reads)
+
+
+def _frame(pandas, rows, reads, cases=None):
+    """The study's table; ``cases``: the case numbers of the rows when some cases have none."""
+    frame = pandas.DataFrame(rows, index=cases)
     frame.index.name = "case"
     frame.attrs["model_reads"] = reads
     return frame

@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "errors.hpp"
 #include "evaluation.hpp"
+#include "interrupt.hpp"
 #include "lagrange/io.hpp"
 #include "optimize.hpp"
 #include "run.hpp"
@@ -90,6 +91,8 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
   auto run = std::make_unique<Run>();
   run->prepared = m.prepared;
   run->integrator = so.integrator.method;
+  InterruptibleRun interruptible;
+  so.interrupt = interruptible.flag();
   {
     py::gil_scoped_release release;
     const auto start = std::chrono::steady_clock::now();
@@ -103,6 +106,8 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
   const std::string message = run->trajectory.message;
   const double failed_at = run->trajectory.failure_time;
   py::object result = py::cast(std::move(run));
+  // Ctrl-C: KeyboardInterrupt carrying the rows so far (.run, status 'interrupted').
+  if (interruptible.raised()) InterruptibleRun::throw_with({{"run", result}});
   if (status == Trajectory::Status::Failed) raise_simulation_error(message, failed_at, result);
   return result;
 }
@@ -239,7 +244,8 @@ void bind_model(py::module_& m) {
            py::arg("compile") = "auto", py::arg("max_order") = py::none(),
            "Simulate from the initial state (unset settings keep the file's simulate: values; "
            "max_order caps the BDF methods' order, 1 to 5), with the GIL released. Raises "
-           "SimulationError carrying the partial run on failure.")
+           "SimulationError carrying the partial run on failure; Ctrl-C raises KeyboardInterrupt "
+           "carrying it as .run.")
       .def("forward", &forward, py::arg("q"), py::arg("v"), py::arg("t") = 0.0,
            "Accelerations v̇ at (t, q, v) (q̈ for plain coordinates); for a constrained model "
            "the tuple (v̇, λ).")
@@ -298,7 +304,8 @@ void bind_model(py::module_& m) {
            "objective, horizon, controls (intervals × controls), control_names, run (the "
            "collocated trajectory as a Run), violation, worst_constraint, iterations, "
            "setup_seconds, solve_seconds, function_seconds and verify (final_gap, largest_gap, "
-           "message, or None).")
+           "message, or None). Ctrl-C raises KeyboardInterrupt carrying that namespace at "
+           "Ipopt's last iterate as .result.")
       .def("stepper", &make_stepper, py::arg("t_end") = py::none(),
            py::arg("integrator") = py::none(), py::arg("rtol") = py::none(),
            py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("compile") = "auto",

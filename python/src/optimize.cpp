@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cli/commands.hpp"
+#include "interrupt.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/optimize.hpp"
 #include "run.hpp"
@@ -49,6 +50,8 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
   OptimizeResult r;
   VerifyResult v;
+  InterruptibleRun interruptible;
+  o.interrupt = interruptible.flag();
   {
     py::gil_scoped_release release;
     try {
@@ -56,8 +59,9 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
     } catch (const std::invalid_argument& e) {
       throw ModelError(spec.loc, e.what());
     }
-    if (verify_result) {
+    if (verify_result && r.trajectory.status != Trajectory::Status::Interrupted) {
       SimulationOptions tight = so;
+      tight.interrupt = o.interrupt;
       tight.integrator.rtol = 1e-10;
       tight.integrator.atol = 1e-12;
       v = verify(dynamics, spec, r, tight);
@@ -99,7 +103,10 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["solve_seconds"] = r.solve_seconds;
   fields["function_seconds"] = r.function_seconds;
   fields["verify"] = verified;
-  return types.attr("SimpleNamespace")(**fields);
+  py::object result = types.attr("SimpleNamespace")(**fields);
+  // Ctrl-C: KeyboardInterrupt carrying the result at Ipopt's last iterate (.result).
+  if (interruptible.raised()) InterruptibleRun::throw_with({{"result", result}});
+  return result;
 }
 
 }  // namespace lagrange::python

@@ -42,7 +42,10 @@ py::dict stats(const Trajectory& traj) {
 void report(const Run& r, const std::string& path) {
   if (r.trajectory.rows() == 0) throw py::value_error("the run has no samples to report");
   cli::check_report(path, *r.prepared->model);
-  cli::write_run_report(*r.prepared, r.trajectory, r.integrator, r.wall_seconds, path);
+  const ReportNotes notes =
+      cli::write_run_report(*r.prepared, r.trajectory, r.integrator, r.wall_seconds, path);
+  for (const std::string& n : notes.notes)
+    if (PyErr_WarnEx(PyExc_UserWarning, n.c_str(), 1) != 0) throw py::error_already_set();
 }
 
 // The report inline in a notebook: the self-contained page in an iframe's srcdoc.

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/sweep_inputs.hpp"
+#include "interrupt.hpp"
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/sweep.hpp"
@@ -98,17 +99,25 @@ py::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, do
     }
   }
   std::vector<sweep::CaseResult> results(cases.size());
+  std::vector<bool> finished(cases.size(), false);  // a case stopped by Ctrl-C has no row
+  for (size_t i = 0; i < cases.size(); ++i) finished[i] = !rejected[i].empty();
+  InterruptibleRun interruptible;
   {
     py::gil_scoped_release release;
     sweep::PoolOptions pool;
-    pool.done = [&](const sweep::CaseResult& r) { results[r.index] = r; };
+    pool.interrupt = interruptible.flag();
+    pool.done = [&](const sweep::CaseResult& r) {
+      results[r.index] = r;
+      finished[r.index] = true;
+    };
     // One library for every case (docs/theory.md §9.3): compiled by the first call in a
     // process, loaded from the cache by the next; the interpreter where it cannot be had.
     pool.evaluation = Evaluation::SharedMachineCode;
     sweep::run_pool(p.compiled, inputs, runnable, metrics, pool);
   }
-  py::list rows;
+  py::list rows, indices;
   for (size_t i = 0; i < cases.size(); ++i) {
+    if (!finished[i]) continue;
     sweep::CaseResult& r = results[i];
     if (!rejected[i].empty()) {
       r.status = Trajectory::Status::Failed;
@@ -123,7 +132,12 @@ py::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, do
     for (size_t k = 0; k < metrics.size(); ++k) row[py::str(metrics[k].name)] = r.metrics[k];
     row["wall_s"] = r.wall_seconds;
     rows.append(row);
+    indices.append(i);
   }
+  // Ctrl-C: KeyboardInterrupt carrying the finished cases' rows, their case numbers and the
+  // model reads (.rows, .cases, .reads).
+  if (interruptible.raised())
+    InterruptibleRun::throw_with({{"rows", rows}, {"cases", indices}, {"reads", py::int_(reads)}});
   return py::make_tuple(rows, reads);
 }
 

@@ -304,9 +304,11 @@ int run_simulate(const Options& opt) {
     if (!opt.plot.empty()) fmt::print("  wrote {}\n", opt.plot);
   }
   if (!opt.report.empty() && traj.rows() > 0) {
-    write_run_report(p, traj, traj.stats.method.empty() ? so.integrator.method : traj.stats.method,
-                     t_sim, opt.report);
+    const ReportNotes notes = write_run_report(
+        p, traj, traj.stats.method.empty() ? so.integrator.method : traj.stats.method, t_sim,
+        opt.report);
     if (!opt.quiet) fmt::print("  wrote {}\n", opt.report);
+    print_report_notes(notes, opt.report, opt.quiet);
   }
   if (traj.status == Trajectory::Status::Failed) {
     fmt::print(stderr, "lagrange: {}\n", traj.message);

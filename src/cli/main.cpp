@@ -11,6 +11,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 
@@ -49,6 +50,12 @@ const CLI::Validator kFileName(
 }  // namespace
 
 int main(int argc, char** argv) {
+  // --package-path: where the report looks up a URDF's package:// meshes, before
+  // $ROS_PACKAGE_PATH (docs/model-language.md, "How a model looks").
+  std::vector<std::string> package_paths;
+  const char* package_help =
+      "folder holding ROS packages, for a URDF's package:// meshes in the report (repeatable; "
+      "searched before $ROS_PACKAGE_PATH)";
   using namespace lagrange::cli;
   CLI::App app{"lagrange: Lagrangian modelling and simulation of mechanical systems"};
   app.require_subcommand(1);
@@ -84,6 +91,7 @@ int main(int argc, char** argv) {
                   "self-contained HTML report: 3-D animation, plots, equations (.html)")
       ->check(kFileName);
   sim->add_option("--set", opt.sets, "parameter value, NAME=VALUE (repeatable)");
+  sim->add_option("--package-path", package_paths, package_help);
   sim->add_option("--initial", opt.initial,
                   "initial value of a coordinate or a rate NAME_dot, NAME=VALUE (repeatable, or "
                   "comma-separated)")
@@ -163,6 +171,7 @@ int main(int argc, char** argv) {
   report->add_option("-o,--output", opt.report, "HTML file to write")->required()->check(kFileName);
   report->add_option("--set", opt.sets, "parameter value the run used, NAME=VALUE (repeatable)");
   report->add_flag("-q,--quiet", opt.quiet, "no summary line");
+  report->add_option("--package-path", package_paths, package_help);
 
   const auto trim_choices = [&](CLI::App* cmd) {
     cmd->add_option("--free", opt.free,
@@ -275,17 +284,25 @@ int main(int argc, char** argv) {
   optimize->add_flag("--verify", opt.verify,
                      "re-simulate the optimal controls at tight tolerance and report the gap");
   optimize->add_option("--ipopt", opt.ipopt, "Ipopt option KEY=VALUE (repeatable)");
-  optimize->add_option("--hessian", opt.hessian,
-                       "exact, limited-memory, or auto (exact unless the equations are too large)")
+  optimize
+      ->add_option("--hessian", opt.hessian,
+                   "exact, limited-memory, or auto (exact unless the equations are too large)")
       ->check(CLI::IsMember({"auto", "exact", "limited-memory"}));
   optimize->add_flag("-v,--verbose", opt.verbose, "print Ipopt's iteration log");
   optimize->add_flag("-q,--quiet", opt.quiet, "no summary");
+  optimize->add_option("--package-path", package_paths, package_help);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
+  }
+  if (!package_paths.empty()) {
+    std::string path;
+    for (const std::string& p : package_paths) path += p + ":";
+    if (const char* ros = std::getenv("ROS_PACKAGE_PATH")) path += ros;
+    setenv("ROS_PACKAGE_PATH", path.c_str(), 1);
   }
   opt.interrupt = install_sigint_handler();
   opt.terminal = isatty(fileno(stderr)) != 0;

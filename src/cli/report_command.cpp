@@ -24,8 +24,9 @@ void check_report(const std::string& path, const Model& /*model*/) {
     throw UsageError(fmt::format("--report {}: expected a file name ending in .html", path));
 }
 
-void write_run_report(const Prepared& p, const Trajectory& traj, const std::string& integrator,
-                      double wall_seconds, const std::string& path) {
+ReportNotes write_run_report(const Prepared& p, const Trajectory& traj,
+                             const std::string& integrator, double wall_seconds,
+                             const std::string& path) {
   ReportRun run;
   run.integrator = integrator;
   run.wall_seconds = wall_seconds;
@@ -33,11 +34,16 @@ void write_run_report(const Prepared& p, const Trajectory& traj, const std::stri
   run.compile_seconds = p.compile_seconds;
   // The recursive formulation has no M or h to show (docs/theory.md §4.9): for trees small
   // enough to derive at once, the report shows the Lagrangian form of the same model.
-  if (p.equations.recursive && p.compiled->nv <= kReportLagrangianJoints) {
-    write_report(derive(*p.model), *p.compiled, traj, p.dynamics->parameters(), run, path);
-    return;
-  }
-  write_report(p.equations, *p.compiled, traj, p.dynamics->parameters(), run, path);
+  if (p.equations.recursive && p.compiled->nv <= kReportLagrangianJoints)
+    return write_report(derive(*p.model), *p.compiled, traj, p.dynamics->parameters(), run, path);
+  return write_report(p.equations, *p.compiled, traj, p.dynamics->parameters(), run, path);
+}
+
+void print_report_notes(const ReportNotes& notes, const std::string& path, bool quiet) {
+  for (const std::string& n : notes.notes) fmt::print(stderr, "lagrange: note: {}\n", n);
+  if (!quiet && notes.mesh_bytes > 0)
+    fmt::print("  {} embeds {:.1f} KiB of URDF meshes\n", path,
+               static_cast<double>(notes.mesh_bytes) / 1024);
 }
 
 int run_report(const Options& opt) {
@@ -52,8 +58,9 @@ int run_report(const Options& opt) {
   }
   if (traj.rows() == 0)
     throw UsageError(fmt::format("{}: the trajectory has no samples", opt.trajectory));
+  ReportNotes notes;
   try {
-    write_run_report(p, traj, "", -1, opt.report);
+    notes = write_run_report(p, traj, "", -1, opt.report);
   } catch (const std::runtime_error& e) {
     if (std::string(e.what()).rfind("the trajectory has no column", 0) == 0)
       throw UsageError(fmt::format("{}: {}", opt.trajectory, e.what()));
@@ -61,6 +68,7 @@ int run_report(const Options& opt) {
   }
   if (!opt.quiet)
     fmt::print("wrote {} ({} samples of {})\n", opt.report, traj.rows(), p.model->name);
+  print_report_notes(notes, opt.report, opt.quiet);
   return 0;
 }
 

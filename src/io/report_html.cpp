@@ -130,9 +130,9 @@ std::string report_scene_json(const Equations& eq, const CompiledModel& cm, cons
   return io::scene(eq, cm, traj, parameters, limits).dump();
 }
 
-void write_report(const Equations& eq, const CompiledModel& cm, const Trajectory& traj,
-                  const std::vector<double>& parameters, const ReportRun& run,
-                  const std::string& path, const ReportLimits& limits) {
+ReportNotes write_report(const Equations& eq, const CompiledModel& cm, const Trajectory& traj,
+                         const std::vector<double>& parameters, const ReportRun& run,
+                         const std::string& path, const ReportLimits& limits) {
   const Model& model = *eq.model;
   nlohmann::json data;
   data["name"] = model.name;
@@ -154,6 +154,10 @@ void write_report(const Equations& eq, const CompiledModel& cm, const Trajectory
       "<script>\n{}\n</script>\n</body>\n</html>\n",
       html_escape(model.name), io::report_style(), script_safe(data.dump()), io::report_script());
   write_file_atomically(path, html);
+  ReportNotes out;
+  if (data["scene"].contains("notes")) out.notes = data["scene"]["notes"];
+  if (data["scene"].contains("mesh_bytes")) out.mesh_bytes = data["scene"]["mesh_bytes"];
+  return out;
 }
 
 }  // namespace lagrange

@@ -16,6 +16,7 @@
 
 #include "io/report_driven.hpp"
 #include "io/report_skeleton.hpp"
+#include "io/report_urdf.hpp"
 #include "io/report_visual.hpp"
 
 namespace lagrange::io {
@@ -402,8 +403,10 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     if (length > 0) mean_link += length, ++measured;
   if (measured > 0) mean_link /= static_cast<double>(measured);
 
-  // Bodies: shape from the declared shape or the inertia, centred on the centre of mass.
+  // Bodies: shape from the declared shape or the inertia, centred on the centre of mass; a URDF
+  // link also as its <visual> geometry says, drawn instead when the front end can.
   nlohmann::json jbodies = nlohmann::json::array();
+  UrdfVisuals urdf;
   for (size_t j = 0; j < nb; ++j) {
     const double* s = &statics[3 + 13 * j];
     Eigen::Matrix3d I;
@@ -436,6 +439,7 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
     b["axes"] = axes;
     b["center"] = {s[10], s[11], s[12]};
     if (const std::string* c = visual_lookup(visual.color, bodies[j]->name)) b["color"] = *c;
+    if (nlohmann::json v = urdf.of(*bodies[j]); !v.is_null()) b["visuals"] = std::move(v);
     jbodies.push_back(b);
   }
 
@@ -465,6 +469,8 @@ nlohmann::json scene(const Equations& eq, const CompiledModel& cm, const Traject
       flat >= 0 ? nlohmann::json{int(flat == 0), int(flat == 1), int(flat == 2)} : nlohmann::json();
   j["points"] = jpoints;
   j["bodies"] = jbodies;
+  if (!urdf.notes().empty()) j["notes"] = urdf.notes();
+  if (urdf.mesh_bytes() > 0) j["mesh_bytes"] = urdf.mesh_bytes();
   j["segments"] = segments;
   j["trail"] = trail;
   std::vector<double> times, flat_pos, flat_pose;

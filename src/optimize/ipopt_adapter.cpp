@@ -54,7 +54,8 @@ std::string words(Ipopt::SolverReturn s) {
 
 class Adapter : public Ipopt::TNLP {
  public:
-  Adapter(Transcription& nlp, IpoptOutcome& out) : nlp_(nlp), out_(out) {}
+  Adapter(Transcription& nlp, IpoptOutcome& out, const std::atomic<bool>* interrupt)
+      : nlp_(nlp), out_(out), interrupt_(interrupt) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
                     IndexStyleEnum& style) override {
@@ -111,6 +112,13 @@ class Adapter : public Ipopt::TNLP {
     }
     return timed([&] { nlp_.hessian(x, sigma, y, values); });
   }
+  // After each iteration: false stops Ipopt (USER_REQUESTED_STOP) at the current iterate.
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number, Number, Number, Number, Number,
+                             Number, Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    if (interrupt_ != nullptr && interrupt_->load()) out_.interrupted = true;
+    return !out_.interrupted;
+  }
   void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*,
                          const Number*, Index, const Number*, const Number*, Number,
                          const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
@@ -137,6 +145,7 @@ class Adapter : public Ipopt::TNLP {
   }
   Transcription& nlp_;
   IpoptOutcome& out_;
+  const std::atomic<bool>* interrupt_;
 };
 
 /// Sets one option by the form of its value: an integer, a number, else a word.
@@ -153,7 +162,7 @@ bool set_option(Ipopt::OptionsList& list, const std::string& key, const std::str
 
 IpoptOutcome solve_with_ipopt(Transcription& nlp,
                               const std::vector<std::pair<std::string, std::string>>& options,
-                              bool verbose) {
+                              bool verbose, const std::atomic<bool>* interrupt) {
   IpoptOutcome out;
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   Ipopt::OptionsList& list = *app->Options();
@@ -171,7 +180,7 @@ IpoptOutcome solve_with_ipopt(Transcription& nlp,
   out.exact_hessian = approximation == "exact";
   if (app->Initialize() != Ipopt::Solve_Succeeded)
     throw std::runtime_error("Ipopt could not be initialised");
-  Ipopt::SmartPtr<Ipopt::TNLP> tnlp = new Adapter(nlp, out);
+  Ipopt::SmartPtr<Ipopt::TNLP> tnlp = new Adapter(nlp, out, interrupt);
   app->OptimizeTNLP(tnlp);
   if (Ipopt::IsValid(app->Statistics())) out.iterations = app->Statistics()->IterationCount();
   if (out.x.empty()) {

@@ -1,6 +1,7 @@
 #pragma once
 // Ipopt's TNLP over a Transcription: a thin class that copies arrays, and the solve around it.
 
+#include <atomic>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,13 +18,15 @@ struct IpoptOutcome {
   int iterations = 0;
   double function_seconds = 0.0;  ///< spent in the transcription's functions
   bool exact_hessian = false;     ///< Ipopt used the transcription's Hessian
+  bool interrupted = false;       ///< stopped because `interrupt` was set
 };
 
 /// Solve the NLP with Ipopt (MUMPS, limited-memory Hessian) from the transcription's guess,
 /// `options` applied after the defaults (a value is an integer, a number or a word by its form).
-/// std::invalid_argument for an option Ipopt rejects.
+/// std::invalid_argument for an option Ipopt rejects. Ipopt stops after the iteration during
+/// which `interrupt` (when given) is set.
 IpoptOutcome solve_with_ipopt(Transcription& nlp,
                               const std::vector<std::pair<std::string, std::string>>& options,
-                              bool verbose);
+                              bool verbose, const std::atomic<bool>* interrupt = nullptr);
 
 }  // namespace lagrange::collocation

@@ -121,7 +121,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
 
   const auto solve_start = std::chrono::steady_clock::now();
   collocation::IpoptOutcome out =
-      collocation::solve_with_ipopt(nlp, options.ipopt, options.verbose);
+      collocation::solve_with_ipopt(nlp, options.ipopt, options.verbose, options.interrupt);
   r.solve_seconds = seconds_since(solve_start);
   r.function_seconds = out.function_seconds;
   r.optimal = out.optimal;
@@ -164,7 +164,12 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     r.controls.insert(r.controls.end(), nlp.control(x, k),
                       nlp.control(x, k) + spec.controls.size());
   r.trajectory = collocated(nlp, dyn, x, r.control_names);
-  if (!r.optimal) {
+  if (out.interrupted) {
+    r.optimal = false;
+    r.status = "interrupted after " + std::to_string(r.iterations) + " iterations";
+    r.trajectory.status = Trajectory::Status::Interrupted;
+    r.trajectory.message = r.status;
+  } else if (!r.optimal) {
     r.trajectory.status = Trajectory::Status::Failed;
     r.trajectory.message = "not optimal: " + r.status;
   }

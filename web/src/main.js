@@ -66,6 +66,7 @@ function main() {
       viewBox,
       el('div', { className: 'controls' }, play, speed, slider, label),
       el('div', { className: 'hint', textContent: 'drag: orbit · right-drag: pan · wheel: zoom · space: play/pause' }),
+      ...(scene.notes ?? []).map((n) => el('div', { className: 'hint note', textContent: n })),
       el('h2', {}, 'Plots'),
       plotBox,
       el('div', { className: 'columns' }, el('div', {}, el('h2', {}, 'Parameters'), table(params)), el('div', {}, el('h2', {}, 'Run'), statistics(data.stats))),

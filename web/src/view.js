@@ -7,6 +7,7 @@ import { bracket, interpolate } from './timeline.js';
 import { Skeleton } from './skeleton.js';
 import { Rings } from './rings.js';
 import { Fit } from './framing.js';
+import { visualObject } from './visuals.js';
 
 const PALETTE = ['#d9534f', '#2f7ed8', '#f0ad4e', '#5cb85c', '#8e44ad', '#16a085'];
 const BODY_COLOR = '#e8a33d';
@@ -84,6 +85,19 @@ export class View {
     this.bodyGroups = s.bodies.map((b) => {
       const group = new THREE.Group();
       group.matrixAutoUpdate = false;
+      group.name = b.name;
+      this.scene.add(group);
+      if (b.visuals) {
+        // A URDF link as its <visual> elements draw it, in the link frame the pose places; a mesh
+        // the loaders cannot read leaves the link to the inertia drawing below.
+        try {
+          const objects = b.visuals.map(visualObject);
+          for (const o of objects) group.add(o);
+          return group;
+        } catch (e) {
+          console.warn(`link ${b.name}: its visual could not be drawn (${e.message}); drawn from its inertia`);
+        }
+      }
       let geometry;
       if (b.shape === 'sphere') geometry = new THREE.SphereGeometry(b.size[0], 32, 20);
       else if (b.shape === 'capsule') {
@@ -103,8 +117,6 @@ export class View {
       const edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 30), new THREE.LineBasicMaterial({ color: '#5a4a30' }));
       mesh.add(edges);
       group.add(mesh);
-      group.name = b.name;
-      this.scene.add(group);
       return group;
     });
     const rod = new THREE.CylinderGeometry(1, 1, 1, 12);
