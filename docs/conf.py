@@ -20,7 +20,7 @@ project = "lagrange"
 author = "the lagrange authors"
 copyright = "the lagrange authors"
 
-extensions = ["myst_parser", "sphinx.ext.autodoc", "lagrange_cli", "lagrange_notebooks"]
+extensions = ["myst_parser", "sphinx.ext.autodoc", "lagrange_cli", "lagrange_notebooks", "lagrange_cpp"]
 source_suffix = {".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**/.ipynb_checkpoints"]
