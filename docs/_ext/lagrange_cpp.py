@@ -10,6 +10,7 @@ that does not parse) is a Sphinx warning, so `-W` fails on it. In the `///` line
 The directive `lagrange-cpp-headers` lists every header with the comment that opens it, so that
 a new header appears in the reference without an edit to the page.
 """
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -42,7 +43,7 @@ def _doxyfile(out):
         "GENERATE_HTML = NO",
         "GENERATE_LATEX = NO",
         "EXTRACT_ALL = YES",  # a member without a comment is still listed, with its declaration
-        "JAVADOC_AUTOBRIEF = YES",
+        "JAVADOC_AUTOBRIEF = NO",  # one paragraph: "e.g." does not end a brief description
         "QUIET = YES",
         "WARN_IF_UNDOCUMENTED = NO",
         "WARN_IF_DOC_ERROR = YES",
@@ -98,7 +99,11 @@ class CppHeaders(SphinxDirective):
             para += nodes.literal(text=f"lagrange/{header.name}")
             text = lead_comment(header)
             if text:
-                para += nodes.Text(f": {text}")
+                para += nodes.Text(": ")
+                # `code` in the comment as code, the rest as text
+                for i, part in enumerate(re.split(r"`([^`]+)`", text)):
+                    if part:
+                        para += nodes.literal(text=part) if i % 2 else nodes.Text(part)
             items += nodes.list_item("", para)
         return [items]
 
