@@ -38,18 +38,19 @@ def execute(path, python_path=None, timeout=300):
     env.pop("MPLBACKEND", None)  # the kernel's inline backend draws the figures
     client = NotebookClient(nb, timeout=timeout, kernel_name="python3",
                             resources={"metadata": {"path": str(path.parent)}})
-    # The kernel's own stderr (debugpy's note on frozen modules at each start) is shown only
-    # when the notebook fails.
-    with tempfile.TemporaryFile(mode="w+") as stderr:
+    # What the kernel process prints outside the notebook is kept, and shown when the kernel
+    # fails. (debugpy's four-line note on frozen modules, at each kernel start, still reaches the
+    # terminal: it is harmless, and Debian's kernel spec gives no place for -Xfrozen_modules=off.)
+    with tempfile.TemporaryFile(mode="w+") as console:
         try:
-            client.execute(env=env, stderr=stderr)
+            client.execute(env=env, stdout=console, stderr=console)
         except CellExecutionError as e:
             text = re.sub(r"\x1b\[[0-9;]*m", "", str(e))  # IPython's colours
             raise NotebookFailed(f"{_name(path)}: a cell raised\n{text}") from None
         except Exception as e:
-            stderr.seek(0)
+            console.seek(0)
             raise NotebookFailed(f"{_name(path)}: {type(e).__name__}: {e}\n"
-                                 f"the kernel's stderr:\n{stderr.read()}") from None
+                                 f"the kernel printed:\n{console.read()}") from None
     return nb
 
 
