@@ -44,7 +44,8 @@ def main():
     src = Path(a.source).resolve()
     sys.path.insert(0, str(src / "docs" / "_ext"))  # lagrange_notebooks, as the docs build
 
-    notebooks = [Path(n) for n in a.notebooks] or sorted((src / "docs" / "notebooks").glob("*.ipynb"))
+    notebooks = ([Path(n) for n in a.notebooks]
+                 or sorted((src / "docs" / "notebooks").glob("*.ipynb")))
     if not notebooks:
         print(f"FAIL no notebooks in {src / 'docs' / 'notebooks'}")
         return 1
