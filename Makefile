@@ -36,7 +36,9 @@ test: build
 
 # The HTML manual (docs/: Sphinx, furo, myst-parser, all Debian's) into $(BUILD)/docs/html,
 # offline; a Sphinx warning is an error. It needs the command (the command-line reference is
-# its own --help) and the Python module (the API reference is its docstrings).
+# its own --help) and the Python module (the API reference is its docstrings; the notebooks of
+# docs/notebooks run on it, and a cell that raises fails the build); Doxygen and breathe
+# render the C++ reference from include/lagrange.
 docs: configure
 	@LAGRANGE_DOCS=1 ./scripts/install-deps.sh
 	@cmake --build $(BUILD) -j $(JOBS) --target lagrange _lagrange

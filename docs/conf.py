@@ -20,10 +20,10 @@ project = "lagrange"
 author = "the lagrange authors"
 copyright = "the lagrange authors"
 
-extensions = ["myst_parser", "sphinx.ext.autodoc", "lagrange_cli"]
+extensions = ["myst_parser", "sphinx.ext.autodoc", "lagrange_cli", "lagrange_notebooks", "lagrange_cpp"]
 source_suffix = {".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store"]
+exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "**/.ipynb_checkpoints"]
 
 myst_enable_extensions = ["colon_fence", "deflist"]
 myst_heading_anchors = 4  # `[..](model-language.md#rigid-bodies)` links resolve
@@ -33,6 +33,9 @@ html_title = "lagrange manual"
 html_static_path = []
 html_show_sourcelink = False
 pygments_style = "default"
+
+# The notebooks (docs/notebooks, docs/_ext/lagrange_notebooks.py) run against this build's module.
+lagrange_build = str(build)
 
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"

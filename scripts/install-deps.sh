@@ -20,8 +20,14 @@ command -v npm >/dev/null 2>&1 || packages+=(npm)
 if [ "${LAGRANGE_FUZZ:-0}" = 1 ]; then packages+=(clang libclang-rt-14-dev); fi
 # The benchmarks' peers (bench/work_precision.py): SciPy's solve_ivp, Debian's build.
 if [ "${LAGRANGE_BENCH:-0}" = 1 ]; then packages+=(python3-numpy python3-scipy); fi
-# The manual (`make docs`): Debian's Sphinx with the furo theme and myst-parser (Markdown pages).
-if [ "${LAGRANGE_DOCS:-0}" = 1 ]; then packages+=(python3-sphinx furo python3-myst-parser); fi
+# The manual (`make docs`): Debian's Sphinx with the furo theme and myst-parser (Markdown pages);
+# the notebooks executed on a Jupyter kernel (nbconvert's nbclient, ipykernel; SciPy for the LQR
+# and the elliptic integral); the C++ reference from the headers (Doxygen's XML through breathe).
+if [ "${LAGRANGE_DOCS:-0}" = 1 ]; then
+  packages+=(python3-sphinx furo python3-myst-parser)
+  packages+=(python3-nbconvert python3-nbformat python3-nbclient python3-ipykernel python3-scipy)
+  packages+=(doxygen python3-breathe)
+fi
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)

@@ -58,6 +58,7 @@ using StepHook = std::function<bool(double t, double* y)>;
 /// row of the trajectory kept in memory (8 bytes per column); a finer grid is refused up front.
 constexpr double kMaxOutputIntervals = 1e8;
 
+/// How integrate() and integrate_dae() run: the method, its tolerances, step and limits.
 struct IntegratorOptions {
   std::string method = "dop853";  ///< one of integrator_methods() (ODE); ida (DAE)
   double rtol = 1e-8;
@@ -96,6 +97,7 @@ const std::vector<std::string>& integrator_methods();
 /// integrator_methods() joined by ", " (for messages that list the valid names).
 std::string integrator_method_list();
 
+/// What an integration did: steps taken and rejected, right-hand-side evaluations, the method.
 struct IntegratorStats {
   long steps = 0;
   long rhs_evals = 0;

@@ -16,7 +16,6 @@
 
 namespace lagrange {
 
-/// How optimize() transcribes and solves; unset sizes keep the problem's own.
 /// What Ipopt gets for the Hessian of the Lagrangian (docs/theory.md §10, "Hessian"): the exact
 /// one (a fixed horizon), its limited-memory approximation, or the exact one unless the model's
 /// equations exceed kHessianTerms distinct terms, beyond which the symbolic second derivatives
@@ -24,6 +23,7 @@ namespace lagrange {
 enum class HessianChoice { Auto, Exact, LimitedMemory };
 constexpr size_t kHessianTerms = 2000;
 
+/// How optimize() transcribes and solves; unset sizes keep the problem's own.
 struct OptimizeOptions {
   int intervals = 0;  ///< collocation intervals N (0: the problem's)
   int degree = 0;     ///< Radau IIA points per interval, 1 to 5 (0: the problem's)

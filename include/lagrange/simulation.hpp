@@ -60,6 +60,7 @@ struct JacobianSource {
   explicit operator bool() const { return ode || dae; }
 };
 
+/// How simulate() runs: the time grid, the integrator, the Jacobian it may use, projection.
 struct SimulationOptions {
   double t0 = 0.0;
   double t_end = 10.0;

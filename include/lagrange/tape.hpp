@@ -84,6 +84,7 @@ class Tape {
     Atan, Atan2, Sinh, Cosh, Tanh, Exp, Log, Abs, SumProd
   };
   // clang-format on
+  /// One instruction: op applied to registers a and b (or inputs, arguments, c) into dst.
   struct Instr {
     Op op;
     std::uint32_t dst;    ///< register written

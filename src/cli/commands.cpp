@@ -268,11 +268,20 @@ int run_simulate(const Options& opt) {
                p.equations.recursive ? ", recursive (articulated-body algorithm)" : "");
     if (rows > 0) {
       const double e0 = traj.at(0, "energy"), e1 = traj.at(rows - 1, "energy");
+      // Relative to the starting energy, unless that is zero next to the energies exchanged
+      // (|e0| <= 1e-9 max(|T| + |V|), e.g. a pendulum released at rest from V = 0): then the
+      // quotient only measures rounding, and the absolute change is printed instead.
+      const size_t kin = traj.column_index("kinetic"), pot = traj.column_index("potential");
+      const size_t width = traj.columns.size();
+      double exchanged = 0.0;
+      for (size_t r = 0; r < rows; ++r)
+        exchanged = std::max(
+            exchanged, std::abs(traj.data[r * width + kin]) + std::abs(traj.data[r * width + pot]));
+      const bool absolute = std::abs(e0) <= 1e-9 * exchanged;
       fmt::print(
-          "  t = {:.6g} .. {:.6g}, {} samples; energy {:.10g} -> {:.10g} (relative change "
-          "{:.2e})\n",
-          traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1,
-          std::abs(e1 - e0) / std::max(std::abs(e0), 1e-300));
+          "  t = {:.6g} .. {:.6g}, {} samples; energy {:.10g} -> {:.10g} ({} change {:.2e})\n",
+          traj.at(0, "t"), traj.at(rows - 1, "t"), rows, e0, e1, absolute ? "absolute" : "relative",
+          absolute ? std::abs(e1 - e0) : std::abs(e1 - e0) / std::abs(e0));
       std::string last;
       const size_t shown = std::min<size_t>(cm->nq, 6);
       for (size_t i = 0; i < shown; ++i)

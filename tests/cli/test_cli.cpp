@@ -89,6 +89,32 @@ TEST(Cli, PlotOptionsAreCheckedBeforeTheRun) {
   EXPECT_FALSE(fs::exists(csv.string() + ".json"));
 }
 
+// The summary's energy change is relative to the starting energy, and absolute when that is
+// zero next to the kinetic and potential energies: the Cartesian pendulum released at rest from
+// the horizontal starts at E = 0, where the quotient printed "relative change 2.03e+290".
+TEST(Cli, EnergyChangeIsAbsoluteWhenTheStartingEnergyIsZero) {
+  auto change = [](const std::string& output, const std::string& kind) {
+    const std::string key = "(" + kind + " change ";
+    const size_t at = output.find(key);
+    if (at == std::string::npos) return -1.0;
+    return std::stod(output.substr(at + key.size()));
+  };
+  const Result zero = run("simulate " + std::string(LAGRANGE_SOURCE_DIR) +
+                          "/docs/tutorials/cartesian_pendulum.yaml --t-end 1");
+  ASSERT_EQ(zero.code, 0) << zero.output;
+  EXPECT_NE(zero.output.find("energy 0 -> "), std::string::npos) << zero.output;
+  EXPECT_EQ(zero.output.find("relative change"), std::string::npos) << zero.output;
+  const double absolute = change(zero.output, "absolute");
+  EXPECT_GE(absolute, 0.0) << zero.output;
+  EXPECT_LT(absolute, 1e-6) << zero.output;  // joules; rtol 1e-10 over one second
+  const Result nonzero = run("simulate " + example("pendulum.yaml") + " --t-end 1");
+  ASSERT_EQ(nonzero.code, 0) << nonzero.output;
+  EXPECT_EQ(nonzero.output.find("absolute change"), std::string::npos) << nonzero.output;
+  const double relative = change(nonzero.output, "relative");
+  EXPECT_GE(relative, 0.0) << nonzero.output;
+  EXPECT_LT(relative, 1e-6) << nonzero.output;
+}
+
 TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
   const fs::path a = scratch("a.csv"), b = scratch("b.csv");
   ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 1 -o " + a.string()).code, 0);

@@ -7,11 +7,13 @@ tutorial without console errors and its search page lists model-language for "Ba
 (tests/docs/site_browser.mjs).
 
 usage: check_site.py --source SRC --build BUILD
-Exit 77 (ctest: skipped) when Debian's Sphinx, furo or myst-parser is not installed
-(LAGRANGE_DOCS=1 scripts/install-deps.sh installs them).
+Exit 77 (ctest: skipped) when Debian's Sphinx, furo, myst-parser, breathe, doxygen, nbclient,
+nbformat, ipykernel or SciPy is not installed (LAGRANGE_DOCS=1 scripts/install-deps.sh installs
+them): the build runs the notebooks and Doxygen.
 """
 import argparse
 import html.parser
+import importlib.util
 import json
 import os
 import re
@@ -47,7 +49,11 @@ def main():
     ap.add_argument("--build", required=True)
     a = ap.parse_args()
     try:
-        import sphinx, furo, myst_parser  # noqa: F401
+        import sphinx, furo, myst_parser, breathe, nbclient, nbformat, scipy  # noqa: F401
+        if importlib.util.find_spec("ipykernel") is None:
+            raise ImportError("No module named 'ipykernel'")
+        if shutil.which("doxygen") is None:
+            raise ImportError("no doxygen")
     except ImportError as e:
         print(f"skipped: {e} (LAGRANGE_DOCS=1 scripts/install-deps.sh)")
         return 77
