@@ -1,5 +1,4 @@
-// `lagrange optimize MODEL [-o out.csv] [--report out.html] [--hessian H] [--intervals N] [--degree
-// d] [--set …] [--verify]
+// `lagrange optimize MODEL [-o out.csv] [--report out.html] [--hessian H] [--intervals N] [--degree d] [--set …] [--verify]
 // [--ipopt KEY=VALUE …]` (docs/model-language.md, "Optimal control"; docs/theory.md §10).
 // Exit codes: 0 optimal, 1 a mistake in the model file, 2 usage, 3 Ipopt failed or infeasible.
 
@@ -18,8 +17,8 @@ namespace lagrange::cli {
 int run_optimize(const Options& opt) {
   // Output locations are checked before the solve, not found unwritable after it (issue 37).
   for (const auto& [path, option] :
-       {std::pair{opt.csv, "-o"},
-        std::pair{opt.csv.empty() ? std::string() : opt.csv + ".json", "-o"},
+       {std::pair{opt.csv, "-o"}, std::pair{opt.csv.empty() ? std::string() : opt.csv + ".json",
+                                            "-o"},
         std::pair{opt.report, "--report"}})
     if (!path.empty()) check_output(path, option);
   Prepared p = prepare(opt.model, opt.sets, {}, "--initial", "lagrangian");
