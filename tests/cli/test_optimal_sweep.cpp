@@ -1,12 +1,20 @@
-// An optimisation study's order and starts (src/cli/optimal_sweep.cpp, docs/sweeps.md "Optimal
-// control: a power curve"): the cases run outwards from the model file's own values, each
-// started from the nearest solved case.
+// An optimisation study (src/cli/optimal_sweep.cpp, docs/sweeps.md "Optimal control: a power
+// curve"): the cases run outwards from the model file's own values, each started from the
+// nearest solved case; `lagrange sweep --optimize` on a rotor in the wind (tests/cli/data/
+// wind_rotor.yaml) gives the power curve of its closed form, a warm-started case reaches the cold
+// solve's optimum in fewer iterations, and a case that cannot be solved is recorded while the
+// curve goes on.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+#include <sstream>
 #include <vector>
 
 #include "cli/optimal_sweep.hpp"
+#include "hardening/cli_runner.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::cli {
 namespace {
@@ -61,6 +69,155 @@ TEST(OptimalSweepOrder, AGridFillsOutwardsInUnitsOfEachSpan) {
   const std::optional<size_t> from = nearest_case(cases, 8, {4, 5, 7});
   ASSERT_TRUE(from.has_value());
   EXPECT_TRUE(*from == 5 || *from == 7) << *from;
+}
+
+namespace fs = std::filesystem;
+using hardening::run_lagrange;
+using hardening::RunResult;
+using hardening::ScratchDir;
+using hardening::slurp;
+
+const std::string kRotor = std::string(LAGRANGE_SOURCE_DIR) + "/tests/cli/data/wind_rotor.yaml";
+
+using Row = std::map<std::string, std::string>;
+
+// The summary's rows by column name (the `reason` field, which may hold commas, is quoted).
+std::vector<Row> read_summary(const fs::path& path) {
+  const auto fields = [](const std::string& line) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        out.emplace_back();
+      } else {
+        out.back() += c;
+      }
+    }
+    return out;
+  };
+  std::istringstream in(slurp(path));
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = fields(line);
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = fields(line);
+    Row row;
+    for (size_t i = 0; i < header.size() && i < f.size(); ++i) row[header[i]] = f[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The rotor's best mean power at wind W (the file's header): steady, u = k (W − r w)² ≤ 40, the
+// power u w − c u² maximised over the rotor speed w ≥ 1 by golden-section search on the branch
+// where u is free, or at u = 40 when that bound holds (w = W − √(40/k)).
+double rotor_power(double W) {
+  const double k = 0.5, r = 1.0, c = 0.002, umax = 40;
+  const auto power = [&](double w) {
+    const double u = k * (W - r * w) * (W - r * w);
+    return u * w - c * u * u;
+  };
+  double a = std::max(1.0, (W - std::sqrt(umax / k)) / r), b = W / r;  // where u ≤ umax
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  for (int i = 0; i < 200; ++i) {
+    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    if (power(x1) < power(x2)) {
+      a = x1;
+    } else {
+      b = x2;
+    }
+  }
+  return power((a + b) / 2);
+}
+
+TEST(OptimalSweep, TheRotorsPowerCurveIsItsClosedFormAndACaseThatCannotBeSolvedIsRecorded) {
+  ScratchDir dir("optimal_sweep");
+  const fs::path study = dir.path() / "curve";
+  // W = 0.5 is below the cut-in wind (the rotor cannot hold w ≥ 1): infeasible, run last on
+  // its side after the cases from the file's W = 8 down.
+  const RunResult r = run_lagrange(
+      dir.path(), {"sweep", kRotor, "--optimize", "--vary", "W=0.5,4,6,8,10,12,14,16", "--metric",
+                   "u_max=max(u)", "--keep-trajectories", "-o", study.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<Row> rows = read_summary(study / "summary.csv");
+  ASSERT_EQ(rows.size(), 8u);
+  // The failed case is recorded with Ipopt's reason, and the curve beyond it is complete.
+  EXPECT_EQ(rows[0].at("status"), "failed");
+  EXPECT_NE(rows[0].at("reason").find("infeasib"), std::string::npos) << rows[0].at("reason");
+  EXPECT_TRUE(fs::exists(study / "case_0.csv"));  // what it computed is kept
+  double previous = 0.0;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const Row& row = rows[i];
+    ASSERT_EQ(row.at("status"), "ok") << i << " " << row.at("reason");
+    const double W = std::stod(row.at("W")), P = std::stod(row.at("objective"));
+    // The closed form, to the solver's tolerance: the steady optimum is exact in collocation.
+    EXPECT_NEAR(P, rotor_power(W), 1e-6 * rotor_power(W)) << "W = " << W;
+    EXPECT_GT(P, previous) << "W = " << W;  // monotone
+    previous = P;
+    // Every case but the file's own value started from a neighbour's solution (case 3, W = 8).
+    if (i == 3) {
+      EXPECT_EQ(row.at("warm_start"), "");
+    } else {
+      const size_t from = std::stoul(row.at("warm_start"));
+      EXPECT_EQ(from, i < 3 ? i + 1 : i - 1) << "W = " << W;
+    }
+  }
+  // Below the generator's bound (u < 40, up to W = 12) the power grows like W³: at c = 0 it
+  // would be 4 k W³ / (27 r); the copper loss c u² takes at most 3 % of it here.
+  for (size_t i = 1; i <= 5; ++i) {
+    const double W = std::stod(rows[i].at("W")), P = std::stod(rows[i].at("objective"));
+    EXPECT_LT(std::stod(rows[i].at("u_max")), 40 - 1e-3);
+    EXPECT_NEAR(P / (4 * 0.5 * W * W * W / 27), 1.0, 0.03) << "W = " << W;
+  }
+  // Above it the bound holds and the power grows about linearly.
+  EXPECT_NEAR(std::stod(rows[7].at("u_max")), 40, 1e-6);
+}
+
+TEST(OptimalSweep, AWarmStartedCaseReachesTheColdOptimumInFewerIterations) {
+  ScratchDir dir("optimal_warm");
+  const fs::path study = dir.path() / "curve";
+  const RunResult r = run_lagrange(
+      dir.path(), {"sweep", kRotor, "--optimize", "--vary", "W=8,10", "-o", study.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<Row> rows = read_summary(study / "summary.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[1].at("warm_start"), "0");
+  // The same wind solved alone, from the problem's own guess.
+  const RunResult cold = run_lagrange(dir.path(), {"optimize", kRotor, "--set", "W=10"});
+  ASSERT_EQ(cold.exit_code, 0) << cold.err;
+  const auto field = [&](const std::string& label) {
+    const size_t at = cold.out.find(label);
+    EXPECT_NE(at, std::string::npos) << cold.out;
+    return cold.out.substr(at + label.size());
+  };
+  const double objective = std::stod(field("objective"));
+  const int iterations = std::stoi(field("optimal solution found ("));
+  EXPECT_NEAR(std::stod(rows[1].at("objective")), objective, 1e-6 * objective);
+  EXPECT_LT(std::stoi(rows[1].at("iterations")), iterations);
+}
+
+TEST(OptimalSweep, MistakesAreRefusedBeforeAnythingRuns) {
+  ScratchDir dir("optimal_refused");
+  const std::string pendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/double_pendulum.yaml";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"sweep", pendulum, "--optimize", "--vary", "l2=1,2"}, "no optimal_control section"},
+      {{"sweep", kRotor, "--optimize", "--vary", "W=4,8", "--t-end", "3"}, "--t-end"},
+      {{"sweep", kRotor, "--vary", "W=4,8", "--intervals", "5"}, "apply to --optimize"},
+      {{"sweep", kRotor, "--optimize", "--vary", "W=4,8", "--metric", "objective=max(u)"},
+       "named like a column"},
+      {{"sweep", kRotor, "--optimize", "--vary", "W=4,8", "--vary", "k=1,2", "--plot", "a.svg"},
+       "one --vary"}};
+  for (const auto& [args, fragment] : bad) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"-o", (dir.path() / "st").string()});
+    const RunResult r = run_lagrange(dir.path(), a);
+    EXPECT_EQ(r.exit_code, 2) << fragment << "\n" << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "st" / "summary.csv")) << fragment;
+  }
 }
 
 }  // namespace
