@@ -162,7 +162,9 @@ void set_up(const Options& opt, Study& s) {
           fmt::format("--set {}: the parameter is varied (--vary or --random), which "
                       "would override the value set; give one or the other",
                       name));
-  s.prepared = prepare(opt.model, opt.sets, {}, "--initial", opt.dynamics);
+  // Collocation needs the Lagrangian form (as `lagrange optimize` derives it).
+  s.prepared =
+      prepare(opt.model, opt.sets, {}, "--initial", opt.optimize ? "lagrangian" : opt.dynamics);
   const Prepared& p = s.prepared;
   for (const auto& [name, value] : s.plan.cases.front().values)
     if (p.model->parameter_index(name) < 0) {
