@@ -14,6 +14,7 @@
 
 #include "cli/optimal_sweep.hpp"
 #include "hardening/cli_runner.hpp"
+#include "lagrange/io.hpp"
 #include "support/test_paths.hpp"
 
 namespace lagrange::cli {
@@ -197,6 +198,20 @@ TEST(OptimalSweep, AWarmStartedCaseReachesTheColdOptimumInFewerIterations) {
   const int iterations = std::stoi(field("optimal solution found ("));
   EXPECT_NEAR(std::stod(rows[1].at("objective")), objective, 1e-6 * objective);
   EXPECT_LT(std::stoi(rows[1].at("iterations")), iterations);
+}
+
+TEST(OptimalSweep, PlotsTheCurveOfTheCasesThatSucceeded) {
+  if (!plot_format_available(PlotFormat::Svg)) GTEST_SKIP() << "gnuplot with svg is not installed";
+  ScratchDir dir("optimal_plot");
+  const fs::path study = dir.path() / "curve", svg = dir.path() / "curve.svg";
+  const RunResult r =
+      run_lagrange(dir.path(), {"sweep", kRotor, "--optimize", "--vary", "W=0.5,4,8", "--plot",
+                                svg.string(), "-o", study.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = slurp(svg);
+  EXPECT_NE(text.find("<svg"), std::string::npos);
+  EXPECT_NE(text.find("objective"), std::string::npos);
+  EXPECT_FALSE(fs::exists(svg.string() + ".part"));
 }
 
 TEST(OptimalSweep, MistakesAreRefusedBeforeAnythingRuns) {
