@@ -30,6 +30,11 @@ bool plot_format_available(PlotFormat format);
 /// `path` (throws std::runtime_error when gnuplot is missing or fails).
 void plot_trajectory(const Trajectory& traj, const std::vector<std::string>& columns,
                      const std::string& path, const std::string& title);
+/// A plot of columns 1… of a row-major `table` against its column 0, points joined by lines,
+/// SVG or PNG by the extension of `path`; a row whose value is not finite is left out of that
+/// curve (a sweep's failed case). std::runtime_error when gnuplot is missing or fails.
+void plot_columns(const std::vector<std::string>& names, const std::vector<double>& table,
+                  const std::string& path, const std::string& title);
 
 /// Expression-tree nodes up to which `derive` prints the equations in full (about 1 MB of text).
 constexpr size_t kFullExpansionLimit = 100000;

@@ -102,11 +102,13 @@ Metric parse_metric(const std::string& spec, const std::string& context = "");
 void bind_metrics(std::vector<Metric>& metrics, const std::vector<std::string>& columns,
                   const std::vector<std::string>& parameters);
 
-/// A study's metrics, bound to `cm`'s trajectory columns and parameters: the model file's
+/// A study's metrics, bound to `cm`'s trajectory columns (or to `bound_to` when given: an
+/// optimisation's trajectory, whose controls follow them) and parameters: the model file's
 /// `metrics:` (errors located there, as ModelError) then those of `specs` (`--metric`; a name
 /// given twice is a StudyError).
 std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
-                                  const std::vector<std::string>& specs);
+                                  const std::vector<std::string>& specs,
+                                  const std::vector<std::string>& bound_to = {});
 
 /// The metric over `traj` with the case's `parameters` (NaN when no sample falls in its
 /// window); the metric must be bound to `traj`'s columns.

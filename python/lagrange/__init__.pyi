@@ -297,8 +297,15 @@ def sweep(
     atol: Optional[float] = None,
     step: Optional[float] = None,
     max_order: Optional[int] = None,
+    optimize: bool = False,
+    intervals: Optional[int] = None,
+    degree: Optional[int] = None,
+    ipopt: Optional[Mapping[str, Any]] = None,
+    hessian: str = "auto",
 ) -> Any:
     """Every case of a grid ({name: values}) or list of cases ([{name: value}]) run on model as
     `lagrange sweep` runs it, here or on an Executor: a pandas DataFrame, one row per case
-    (values, status, reason, failure_time, metrics, wall_s). docs/sweeps.md. Ctrl-C raises
-    KeyboardInterrupt with .frame, the finished cases' rows."""
+    (values, status, reason, failure_time, metrics, wall_s). optimize=True: each case solves the
+    optimal_control problem, started from the nearest solved case, as `lagrange sweep
+    --optimize` (objective, horizon, iterations, violation, warm_start, solve_s). docs/sweeps.md.
+    Ctrl-C raises KeyboardInterrupt with .frame, the finished cases' rows."""

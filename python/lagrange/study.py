@@ -66,7 +66,8 @@ def _run_chunk(state, cases, metrics, settings):
 
 
 def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=None,
-          output_step=None, integrator=None, rtol=None, atol=None, step=None, max_order=None):
+          output_step=None, integrator=None, rtol=None, atol=None, step=None, max_order=None,
+          optimize=False, intervals=None, degree=None, ipopt=None, hessian="auto"):
     """Run every case of a study on ``model`` and return a pandas DataFrame, one row per case:
     the parameter values, ``status`` ("ok" or "failed"), ``reason``, ``failure_time``, the
     metrics and ``wall_s``.
@@ -83,10 +84,36 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
     process when it can give them (docs/sweeps.md); ``frame.attrs["model_reads"]`` counts the
     reads of every process.
 
+    ``optimize=True``: every case solves the model's optimal_control problem, as ``lagrange
+    sweep --optimize`` does (docs/sweeps.md, "Optimal control: a power curve"), here and one
+    after another, each started from the nearest case solved before it; ``intervals``,
+    ``degree``, ``ipopt`` ({key: value}) and ``hessian`` are those of ``Model.optimize``, the
+    simulation settings and ``executor`` do not apply. Columns: the parameters, ``status``,
+    ``reason``, ``objective``, ``horizon``, ``iterations``, ``violation``, ``warm_start`` (the
+    case started from, or None), the metrics (over the collocated trajectory), ``solve_s`` and
+    ``wall_s``.
+
     Ctrl-C raises ``KeyboardInterrupt`` with ``.frame``: the table of the cases finished so far
     (indexed by their case numbers; the others have no row), as ``lagrange sweep`` keeps them.
     """
     import pandas
+
+    if optimize:
+        given = [name for name, value in dict(executor=executor, chunk=chunk, t_end=t_end,
+                                              output_step=output_step, integrator=integrator,
+                                              rtol=rtol, atol=atol, step=step,
+                                              max_order=max_order).items() if value is not None]
+        if given:
+            raise ValueError(f"sweep(optimize=True): {', '.join(given)} do not apply (each case "
+                             "is solved by collocation, one after another here)")
+        rows = model._optimize_cases(_cases(grid_or_samples), _metric_specs(metrics),
+                                     intervals=intervals, degree=degree, ipopt=ipopt or {},
+                                     hessian=hessian)
+        frame = pandas.DataFrame(rows)
+        frame.index.name = "case"
+        return frame
+    if intervals is not None or degree is not None or ipopt is not None or hessian != "auto":
+        raise ValueError("sweep: intervals, degree, ipopt and hessian apply to optimize=True")
 
     if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1):
         raise ValueError(f"sweep: chunk must be a whole number of cases, 1 or more, got {chunk!r}")

@@ -336,6 +336,31 @@ void bind_model(py::module_& m) {
           py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("step") = py::none(),
           py::arg("max_order") = py::none(), py::arg("check_only") = false,
           "The cases of a study (lagrange.sweep) run here, one dict per case.")
+      .def(
+          "_optimize_cases",
+          [](const PyModel& pm, const std::vector<std::map<std::string, double>>& cases,
+             const std::vector<std::string>& metrics, std::optional<int> intervals,
+             std::optional<int> degree, const std::map<std::string, py::object>& ipopt,
+             const std::string& hessian) {
+            if ((intervals && *intervals < 1) || (degree && (*degree < 1 || *degree > 5)))
+              throw py::value_error("expected intervals >= 1 and degree from 1 to 5");
+            if (hessian != "auto" && hessian != "exact" && hessian != "limited-memory")
+              throw py::value_error("expected hessian 'auto', 'exact' or 'limited-memory', got '" +
+                                    hessian + "'");
+            OptimizeOptions o;
+            o.intervals = intervals.value_or(0);
+            o.degree = degree.value_or(0);
+            o.hessian = hessian == "exact"            ? HessianChoice::Exact
+                        : hessian == "limited-memory" ? HessianChoice::LimitedMemory
+                                                      : HessianChoice::Auto;
+            for (const auto& [key, value] : ipopt)
+              o.ipopt.emplace_back(key, py::str(value).cast<std::string>());
+            return optimize_cases(pm, cases, metrics, o);
+          },
+          py::arg("cases"), py::arg("metrics"), py::kw_only(), py::arg("intervals") = py::none(),
+          py::arg("degree") = py::none(), py::arg("ipopt") = std::map<std::string, py::object>{},
+          py::arg("hessian") = "auto",
+          "The cases of an optimisation study (lagrange.sweep(optimize=True)), one dict per case.")
       .def("__repr__",
            [](const PyModel& pm) {
              const CompiledModel& cm = *prepared(pm).compiled;

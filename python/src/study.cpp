@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 
 #include "cli/commands.hpp"
+#include "cli/optimal_sweep.hpp"
 #include "cli/sweep_inputs.hpp"
 #include "interrupt.hpp"
 #include "lagrange/dynamics.hpp"
@@ -14,6 +18,7 @@
 #include "lagrange/sweep.hpp"
 
 namespace py = pybind11;
+namespace fs = std::filesystem;
 
 namespace lagrange::python {
 
@@ -139,6 +144,94 @@ py::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, do
   if (interruptible.raised())
     InterruptibleRun::throw_with({{"rows", rows}, {"cases", indices}, {"reads", py::int_(reads)}});
   return py::make_tuple(rows, reads);
+}
+
+py::list optimize_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
+                        const std::vector<std::string>& metric_specs,
+                        const OptimizeOptions& options) {
+  const cli::Prepared& p = *m.prepared;
+  if (!p.model->optimal_control)
+    throw py::value_error(p.model->name +
+                          " has no optimal_control section (docs/model-language.md, \"Optimal "
+                          "control\")");
+  if (p.equations.recursive)
+    throw py::value_error(
+        "sweep(optimize=True) needs the Lagrangian form of the model: load it with "
+        "dynamics='lagrangian' (as `lagrange sweep --optimize` derives it)");
+  if (!m.initial.empty())
+    throw py::value_error(
+        "sweep: this model was loaded with initial= values; a study reads each case's initial "
+        "state from the model file, so load it without initial= (or write them in the file)");
+  std::vector<sweep::Case> study;
+  for (const auto& c : cases) {
+    sweep::Case one{study.size(), {c.begin(), c.end()}};
+    if (!study.empty() &&
+        (one.values.size() != study[0].values.size() ||
+         !std::equal(one.values.begin(), one.values.end(), study[0].values.begin(),
+                     [](const auto& a, const auto& b) { return a.first == b.first; })))
+      throw py::value_error("sweep(optimize=True): every case must give the same parameters");
+    for (const auto& [name, value] : one.values)
+      if (p.model->parameter_index(name) < 0)
+        throw py::value_error("sweep: no parameter '" + name + "' in " + m.source.path);
+    study.push_back(std::move(one));
+  }
+  cli::OptimalStudy os;
+  os.prepared = &p;
+  os.options = options;
+  try {
+    os.metrics = sweep::study_metrics(*p.model, *p.compiled, metric_specs,
+                                      cli::optimal_trajectory_columns(p));
+  } catch (const sweep::StudyError& e) {
+    throw py::value_error(e.what());
+  }
+  py::list rows;
+  if (study.empty()) return rows;
+  const cli::CaseInputSource from{
+      m.source, m.overrides, [&p](const Model& cm) {
+        return sweep::case_input(cm, *p.compiled, cli::simulation_options(cm, cli::RunSettings{}));
+      }};
+  std::vector<double> origin;
+  for (const auto& [name, value] : study[0].values)
+    origin.push_back(
+        p.model->parameters.at(static_cast<size_t>(p.model->parameter_index(name))).value);
+  std::vector<size_t> all(study.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const std::vector<size_t> order = cli::warm_start_order(study, all, origin);
+  const fs::path scratch =
+      fs::temp_directory_path() / fmt::format("lagrange-warm-start-{}-{}.csv", getpid(),
+                                              reinterpret_cast<std::uintptr_t>(&study));
+  os.guess_path = scratch.string();
+  // Each case's inputs from its own read of the model file (GiNaC: with the GIL held, as the
+  // whole study is: a case's solve is seconds, its read milliseconds).
+  std::vector<cli::OptimalCaseResult> results(study.size());
+  std::map<size_t, Trajectory> solved;
+  Dynamics dyn(p.compiled, p.dynamics->parameters());
+  cli::run_optimal_cases(
+      os, dyn, study, order, [&](size_t i) { return cli::read_case_inputs(from, study[i].values); },
+      solved, [&](const cli::OptimalCaseResult& r, const Trajectory&) { results[r.index] = r; });
+  for (const fs::path& f : {scratch, fs::path(scratch.string() + ".json")}) {
+    std::error_code ec;
+    fs::remove(f, ec);
+  }
+  for (size_t i = 0; i < study.size(); ++i) {
+    const cli::OptimalCaseResult& r = results[i];
+    py::dict row;
+    for (const auto& [name, value] : cases[i]) row[py::str(name)] = value;
+    row["status"] = r.optimal ? "ok" : "failed";
+    row["reason"] = r.retry.empty() ? r.reason
+                                    : (r.reason.empty() ? "" : r.reason + "; ") + "started " +
+                                          r.retry + "; solved again from the problem's guess";
+    row["objective"] = r.objective;
+    row["horizon"] = r.horizon;
+    row["iterations"] = r.iterations;
+    row["violation"] = r.violation;
+    row["warm_start"] = r.started_from ? py::object(py::int_(*r.started_from)) : py::none();
+    for (size_t k = 0; k < os.metrics.size(); ++k) row[py::str(os.metrics[k].name)] = r.metrics[k];
+    row["solve_s"] = r.solve_seconds;
+    row["wall_s"] = r.wall_seconds;
+    rows.append(row);
+  }
+  return rows;
 }
 
 }  // namespace lagrange::python

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lagrange/optimize.hpp"
 #include "model.hpp"
 
 namespace lagrange::python {
@@ -22,5 +23,13 @@ namespace lagrange::python {
 pybind11::tuple run_cases(const PyModel& m, const std::vector<std::map<std::string, double>>& cases,
                           const std::vector<std::string>& metrics, const cli::RunSettings& settings,
                           bool check_only);
+
+/// The cases of an optimisation study (lagrange.sweep(optimize=True); docs/sweeps.md "Optimal
+/// control: a power curve"), solved one after another here, each started from the nearest
+/// solved case: one dict per case, in case order.
+pybind11::list optimize_cases(const PyModel& m,
+                              const std::vector<std::map<std::string, double>>& cases,
+                              const std::vector<std::string>& metrics,
+                              const OptimizeOptions& options);
 
 }  // namespace lagrange::python

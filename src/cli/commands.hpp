@@ -51,11 +51,12 @@ struct Options {
   std::string study;                               ///< sweep -o: the study directory
   size_t jobs = 0;                                 ///< sweep -j (0: every core)
   bool resume = false, keep_trajectories = false;  ///< sweep --resume, --keep-trajectories
+  bool optimize = false;           ///< sweep --optimize: each case solves optimal_control
   int intervals = 0, degree = 0;   ///< optimize --intervals, --degree (0: the problem's)
   bool verify = false;             ///< optimize --verify
   bool verbose = false;            ///< optimize -v: Ipopt's iteration log
-  std::vector<std::string> ipopt;
-  std::string hessian = "auto";  ///< optimize: auto, exact or limited-memory  ///< optimize --ipopt KEY=VALUE
+  std::vector<std::string> ipopt;  ///< optimize --ipopt KEY=VALUE
+  std::string hessian = "auto";    ///< optimize: auto, exact or limited-memory
   bool quiet = false;
   bool expand = false;  ///< derive: print the full expansion even for large models
   bool terminal = false;

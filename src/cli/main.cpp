@@ -264,6 +264,19 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "on", "off"}));
   sweep->add_option("--dynamics", opt.dynamics, "auto (default) | lagrangian | recursive")
       ->check(CLI::IsMember({"auto", "lagrangian", "recursive"}));
+  sweep->add_flag("--optimize", opt.optimize,
+                  "each case solves the model's optimal_control problem, started from the "
+                  "nearest case solved before it (a power curve over the wind speed)");
+  sweep->add_option("--intervals", opt.intervals, "--optimize: collocation intervals N")
+      ->check(CLI::Range(1, 100000));
+  sweep->add_option("--degree", opt.degree, "--optimize: Radau IIA points per interval, 1-5")
+      ->check(CLI::Range(1, 5));
+  sweep->add_option("--ipopt", opt.ipopt, "--optimize: Ipopt option KEY=VALUE (repeatable)");
+  sweep->add_option("--hessian", opt.hessian, "--optimize: exact, limited-memory or auto")
+      ->check(CLI::IsMember({"auto", "exact", "limited-memory"}));
+  sweep->add_option("--plot", opt.plot,
+                    "FILE.svg or .png: the objective (--optimize) and the metrics against the "
+                    "one --vary parameter, through gnuplot");
   sweep->add_flag("-q,--quiet", opt.quiet, "no progress line and no summary");
 
   auto* optimize = app.add_subcommand(

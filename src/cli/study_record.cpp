@@ -60,6 +60,12 @@ std::string study_record(const Options& opt, const CompiledModel& cm,
   if (opt.max_order) d += fmt::format("--max-order {}\n", *opt.max_order);
   if (opt.integrator) d += fmt::format("--integrator {}\n", *opt.integrator);
   d += fmt::format("--dynamics {}\n", opt.dynamics);
+  if (opt.optimize) {  // what decides an optimisation study's rows (docs/sweeps.md)
+    d += fmt::format("--optimize\n--hessian {}\n", opt.hessian);
+    if (opt.intervals > 0) d += fmt::format("--intervals {}\n", opt.intervals);
+    if (opt.degree > 0) d += fmt::format("--degree {}\n", opt.degree);
+    list("--ipopt", opt.ipopt);
+  }
   return d;
 }
 

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -20,6 +21,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/optimal_sweep.hpp"
 #include "cli/prepare.hpp"
 #include "cli/study_lock.hpp"
 #include "cli/study_record.hpp"
@@ -28,6 +30,7 @@
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
+#include "lagrange/report.hpp"
 #include "lagrange/sweep.hpp"
 
 #ifdef LAGRANGE_HAVE_MPI
@@ -106,7 +109,51 @@ struct Study {
   Study& operator=(const Study&) = delete;
 };
 
+// --optimize: a model with an optimal_control section, none of simulate's settings (the
+// transcription has its own time grid).
+void check_optimization(const Options& opt, const Prepared& p) {
+  if (!p.model->optimal_control)
+    throw UsageError(
+        fmt::format("--optimize: {} has no optimal_control section (docs/model-language.md, "
+                    "\"Optimal control\")",
+                    opt.model));
+  for (const auto& [given, option] : {std::pair{opt.t_end.has_value(), "--t-end"},
+                                      {opt.output_step.has_value(), "--output-step"},
+                                      {opt.integrator.has_value(), "--integrator"},
+                                      {opt.rtol.has_value(), "--rtol"},
+                                      {opt.atol.has_value(), "--atol"},
+                                      {opt.step.has_value(), "--step"},
+                                      {opt.max_order.has_value(), "--max-order"}})
+    if (given)
+      throw UsageError(fmt::format(
+          "{} is a simulation setting; with --optimize each case is solved by collocation "
+          "(--intervals, --degree, --ipopt set it)",
+          option));
+}
+
+// --plot FILE: one varied parameter to plot against, an image format gnuplot writes.
+void check_plot(const Options& opt) {
+  if (opt.plot.empty()) return;
+  if (opt.vary.size() != 1 || !opt.random.empty())
+    throw UsageError(
+        "--plot draws the summary against one parameter: give one --vary and no --random");
+  PlotFormat format;
+  try {
+    format = plot_format(opt.plot);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(fmt::format("--plot: {}", e.what()));
+  }
+  if (!plot_format_available(format))
+    throw UsageError(fmt::format(
+        "--plot {}: gnuplot with the '{}' terminal is needed and was not found; install it, or "
+        "plot STUDY/summary.csv yourself",
+        opt.plot, gnuplot_terminal(format)));
+}
+
 void set_up(const Options& opt, Study& s) {
+  if (!opt.optimize &&
+      (opt.intervals > 0 || opt.degree > 0 || !opt.ipopt.empty() || opt.hessian != "auto"))
+    throw UsageError("--intervals, --degree, --ipopt and --hessian apply to --optimize");
   s.plan = plan(opt);
   const ParameterOverrides sets = parse_sets(opt.sets);
   for (const auto& [name, value] : s.plan.cases.front().values)
@@ -115,7 +162,9 @@ void set_up(const Options& opt, Study& s) {
           fmt::format("--set {}: the parameter is varied (--vary or --random), which "
                       "would override the value set; give one or the other",
                       name));
-  s.prepared = prepare(opt.model, opt.sets, {}, "--initial", opt.dynamics);
+  // Collocation needs the Lagrangian form (as `lagrange optimize` derives it).
+  s.prepared =
+      prepare(opt.model, opt.sets, {}, "--initial", opt.optimize ? "lagrangian" : opt.dynamics);
   const Prepared& p = s.prepared;
   for (const auto& [name, value] : s.plan.cases.front().values)
     if (p.model->parameter_index(name) < 0) {
@@ -124,8 +173,11 @@ void set_up(const Options& opt, Study& s) {
       throw UsageError(fmt::format("no parameter '{}' in {} (parameters: {})", name, opt.model,
                                    known.empty() ? "none" : known));
     }
+  if (opt.optimize) check_optimization(opt, p);
   try {
-    s.plan.metrics = sweep::study_metrics(*p.model, *p.compiled, opt.metrics);
+    s.plan.metrics = sweep::study_metrics(
+        *p.model, *p.compiled, opt.metrics,
+        opt.optimize ? optimal_trajectory_columns(p) : std::vector<std::string>{});
   } catch (const sweep::StudyError& e) {
     throw UsageError(e.what());
   }
@@ -134,9 +186,23 @@ void set_up(const Options& opt, Study& s) {
   simulation_options(*p.model, s.settings);  // a bad --t-end or tolerance: refused up front
   s.header = {"case"};
   for (const auto& [name, value] : s.plan.cases.front().values) s.header.push_back(name);
-  for (const char* c : {"status", "reason", "failure_time"}) s.header.emplace_back(c);
-  for (const auto& m : s.plan.metrics) s.header.push_back(sweep::csv_field(m.name));
-  s.header.emplace_back("wall_s");
+  if (opt.optimize) {  // docs/sweeps.md, "Optimal control"
+    for (const auto& m : s.plan.metrics)
+      if (std::count(kOptimalColumns.begin(), kOptimalColumns.end(), m.name) ||
+          std::count(kOptimalTrailingColumns.begin(), kOptimalTrailingColumns.end(), m.name))
+        throw UsageError(fmt::format(
+            "metric '{}' is named like a column every optimisation study has; give it another "
+            "name",
+            m.name));
+    s.header.insert(s.header.end(), kOptimalColumns.begin(), kOptimalColumns.end());
+    for (const auto& m : s.plan.metrics) s.header.push_back(sweep::csv_field(m.name));
+    s.header.insert(s.header.end(), kOptimalTrailingColumns.begin(), kOptimalTrailingColumns.end());
+  } else {
+    for (const char* c : {"status", "reason", "failure_time"}) s.header.emplace_back(c);
+    for (const auto& m : s.plan.metrics) s.header.push_back(sweep::csv_field(m.name));
+    s.header.emplace_back("wall_s");
+  }
+  check_plot(opt);
   // A case's inputs from its model read: its settings, the Jacobian derived once.
   s.from = {ModelSource{opt.model, std::nullopt}, parse_sets(opt.sets),
             [&p = s.prepared, &settings = s.settings](const Model& m) {
@@ -435,10 +501,172 @@ int end_process(int code) {
 #endif
 }
 
+// A summary line's fields (RFC 4180: a quoted field may hold commas and doubled quotes).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      out.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+// --plot: the objective (with --optimize) and the metrics of the cases that succeeded, from
+// STUDY/summary.csv, against the one varied parameter (docs/sweeps.md, "Optimal control").
+void plot_summary(const Options& opt, const Study& s) {
+  const auto column = [&](const std::string& name) {
+    return static_cast<size_t>(std::find(s.header.begin(), s.header.end(), name) -
+                               s.header.begin());
+  };
+  std::vector<std::string> names{s.header.at(1)};
+  std::vector<size_t> ys;
+  if (opt.optimize) {
+    names.emplace_back("objective");
+    ys.push_back(column("objective"));
+  }
+  for (const auto& m : s.plan.metrics) {
+    names.push_back(m.name);
+    ys.push_back(column(sweep::csv_field(m.name)));
+  }
+  if (ys.empty()) {
+    fmt::print(stderr, "warning: --plot: nothing to plot (no metric)\n");
+    return;
+  }
+  const size_t status = column("status");
+  std::ifstream in(fs::path(opt.study) / "summary.csv");
+  std::string line;
+  std::getline(in, line);  // the header
+  std::vector<double> table;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() != s.header.size()) continue;
+    table.push_back(std::strtod(f[1].c_str(), nullptr));
+    for (const size_t y : ys)
+      table.push_back(f[status] == "ok" ? std::strtod(f[y].c_str(), nullptr) : std::nan(""));
+  }
+  const std::string title =
+      opt.optimize
+          ? fmt::format("{}: {} {}", s.prepared.model->name,
+                        s.prepared.model->optimal_control->maximize ? "maximize" : "minimize",
+                        s.prepared.model->optimal_control->objective_text)
+          : s.prepared.model->name;
+  plot_columns(names, table, opt.plot, title);
+}
+
+// An optimisation study (docs/sweeps.md, "Optimal control"): the cases solved one after
+// another in one process, each started from the nearest solution found before it.
+int run_optimal_sweep(const Options& opt) {
+  Study s;
+  set_up(opt, s);
+  if (opt.jobs > 1)
+    fmt::print(stderr,
+               "warning: --optimize solves the cases one after another, each started from the "
+               "nearest solved case (docs/sweeps.md, \"Optimal control\"): -j {} does not "
+               "apply\n",
+               opt.jobs);
+  std::unique_ptr<StudyLock> lock;
+  const KeepWorkOnInterrupt keep;  // Ctrl-C: the running case finishes, the rows are kept
+  const auto summary = open_summary(opt, s, lock);
+  choose_evaluation(opt, s, true);
+  const size_t already = summary->done().size();
+  Progress progress(opt, s.plan.cases.size(), already);
+  OptimalStudy study;
+  study.prepared = &s.prepared;
+  study.options.intervals = opt.intervals;
+  study.options.degree = opt.degree;
+  study.options.hessian = opt.hessian == "exact"            ? HessianChoice::Exact
+                          : opt.hessian == "limited-memory" ? HessianChoice::LimitedMemory
+                                                            : HessianChoice::Auto;
+  for (const std::string& a : opt.ipopt) {
+    const size_t eq = a.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw UsageError(fmt::format("expected --ipopt KEY=VALUE, got '{}'", a));
+    study.options.ipopt.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+  }
+  study.metrics = s.plan.metrics;
+  study.guess_path = (fs::path(opt.study) / ".warm_start.csv").string();
+  // A resumed study starts from the solutions an earlier run kept (--keep-trajectories).
+  const std::vector<size_t> attempted(summary->done().begin(), summary->done().end());
+  std::map<size_t, Trajectory> solved;
+  for (const size_t i : attempted) {
+    const fs::path kept = fs::path(opt.study) / fmt::format("case_{}.csv", i);
+    if (!fs::exists(kept)) continue;
+    try {
+      Trajectory t = read_trajectory_csv(kept.string());
+      if (t.status == Trajectory::Status::Complete) solved.emplace(i, std::move(t));
+    } catch (const std::exception&) {
+      // not a solution to start from: the case nearest it starts from another
+    }
+  }
+  // The first case is the one nearest the model file's own values, which its guess is for.
+  std::vector<double> origin;
+  for (const auto& [name, value] : s.plan.cases.front().values)
+    origin.push_back(s.prepared.model->parameters
+                         .at(static_cast<size_t>(s.prepared.model->parameter_index(name)))
+                         .value);
+  const std::vector<size_t> order =
+      warm_start_order(s.plan.cases, pending_cases(s, *summary), origin, attempted);
+  Reading reading;
+  const auto read = [&](size_t index) {
+    if (std::optional<sweep::CaseRead> r = replayed_case(s, index)) return std::move(*r);
+    const auto start = Clock::now();
+    sweep::CaseRead r = read_case_inputs(s.from, s.plan.cases.at(index).values);
+    ++reading.files;
+    reading.seconds += seconds_since(start);
+    return r;
+  };
+  const auto done = [&](const OptimalCaseResult& r, const Trajectory& traj) {
+    if (opt.keep_trajectories && traj.rows() > 0)
+      write_trajectory_csv(traj,
+                           (fs::path(opt.study) / fmt::format("case_{}.csv", r.index)).string());
+    const sweep::Case& c = s.plan.cases[r.index];
+    std::vector<std::string> row{std::to_string(c.index)};
+    for (const auto& [name, value] : c.values) row.push_back(sweep::csv_field(value));
+    row.emplace_back(r.optimal ? "ok" : "failed");
+    row.push_back(sweep::csv_field(
+        r.retry.empty() ? r.reason
+                        : fmt::format("{}started {}; solved again from the problem's guess",
+                                      r.reason.empty() ? "" : r.reason + "; ", r.retry)));
+    for (const double x : {r.objective, r.horizon}) row.push_back(sweep::csv_field(x));
+    row.push_back(std::to_string(r.iterations));
+    row.push_back(sweep::csv_field(r.violation));
+    row.push_back(r.started_from ? std::to_string(*r.started_from) : "");
+    for (const double x : r.metrics) row.push_back(sweep::csv_field(x));
+    row.push_back(fmt::format("{:.6f}", r.solve_seconds));
+    row.push_back(fmt::format("{:.6f}", r.wall_seconds));
+    summary->append(r.index, row);
+    progress.add(r.optimal);
+  };
+  run_optimal_cases(study, *s.prepared.dynamics, s.plan.cases, order, read, solved, done,
+                    opt.interrupt);
+  for (const std::string& f : {study.guess_path, study.guess_path + ".json"}) fs::remove(f);
+  const int code = conclude(opt, s, *summary, progress, already,
+                            "1 worker (each case started from the nearest solved one)", reading);
+  if (code == 0 && !opt.plot.empty()) {
+    plot_summary(opt, s);
+    if (!opt.quiet) fmt::print("  plotted {}\n", opt.plot);
+  }
+  return code;
+}
+
 }  // namespace
 
 int run_sweep(const Options& opt) {
   sweep::keep_freed_memory();
+  if (opt.optimize && started_by_mpirun())
+    throw UsageError(
+        "--optimize solves the cases one after another, each started from a neighbour's "
+        "solution: run it without mpirun");
 #ifdef LAGRANGE_HAVE_MPI
   if (started_by_mpirun()) {
     const KeepWorkOnInterrupt keep;  // an interrupted study keeps its finished cases
@@ -451,6 +679,7 @@ int run_sweep(const Options& opt) {
         "MPI: every rank would run the whole study. Run it without mpirun (it uses every core; "
         "-j N chooses), or build lagrange with OpenMPI (libopenmpi-dev) installed");
 #endif
+  if (opt.optimize) return end_process(run_optimal_sweep(opt));
   Study s;
   set_up(opt, s);
   std::unique_ptr<StudyLock> lock;
@@ -498,9 +727,14 @@ int run_sweep(const Options& opt) {
   } catch (const sweep::WorkerDied& e) {
     return end_process(worker_died(opt, s, progress, e));
   }
-  return end_process(
+  const int code =
       conclude(opt, s, *summary, progress, already,
-               fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading));
+               fmt::format("{} worker{}", pool.workers, pool.workers == 1 ? "" : "s"), reading);
+  if (code == 0 && !opt.plot.empty()) {
+    plot_summary(opt, s);
+    if (!opt.quiet) fmt::print("  plotted {}\n", opt.plot);
+  }
+  return end_process(code);
 }
 
 }  // namespace lagrange::cli

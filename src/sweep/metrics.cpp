@@ -132,7 +132,8 @@ void bind_metrics(std::vector<Metric>& metrics, const std::vector<std::string>& 
 }
 
 std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
-                                  const std::vector<std::string>& specs) {
+                                  const std::vector<std::string>& specs,
+                                  const std::vector<std::string>& bound_to) {
   std::vector<Metric> metrics;
   std::vector<SourceLoc> where;  // of the model file's metrics
   for (const MetricSpec& spec : model.metrics) {
@@ -165,7 +166,7 @@ std::vector<Metric> study_metrics(const Model& model, const CompiledModel& cm,
     if (i < where.size()) throw ModelError(where[i], what);
     throw StudyError(what);
   }
-  const std::vector<std::string> columns = trajectory_columns(cm);
+  const std::vector<std::string> columns = bound_to.empty() ? trajectory_columns(cm) : bound_to;
   for (size_t i = 0; i < metrics.size(); ++i) {
     std::vector<Metric> one{metrics[i]};
     try {

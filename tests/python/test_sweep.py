@@ -180,3 +180,38 @@ def test_loads_refuses_a_label_that_could_spoof_a_location_and_oversized_text():
         lagrange.loads(text, label="model.yaml:1:1: error: fake\nreal.yaml")
     with pytest.raises(lagrange.ModelError, match="expected a model of at most 16 MiB"):
         lagrange.loads(text + "#" * (16 << 20))
+
+
+ROTOR = str(SOURCE_DIR / "tests" / "cli" / "data" / "wind_rotor.yaml")
+
+
+def test_an_optimisation_study_is_the_commands(cli, tmp_path):
+    """sweep(optimize=True) gives `lagrange sweep --optimize`'s rows on the rotor's power curve
+    (tests/cli/data/wind_rotor.yaml): the same starts, objectives and iterations, the
+    infeasible case below the cut-in wind failed and the others solved."""
+    import pandas
+
+    study = tmp_path / "curve"
+    winds = [0.5, 4.0, 8.0, 12.0, 16.0]
+    subprocess.run([cli, "sweep", ROTOR, "--optimize", "--vary", "W=" + ",".join(map(repr, winds)),
+                    "--metric", "u_max=max(u)", "-o", str(study), "-q"], check=True,
+                   capture_output=True)
+    with open(study / "summary.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    frame = lagrange.sweep(lagrange.load(ROTOR), {"W": winds}, {"u_max": "max(u)"}, optimize=True)
+    assert list(frame["status"]) == ["failed", "ok", "ok", "ok", "ok"]
+    for (_, got), row in zip(frame.iterrows(), rows):
+        assert got["status"] == row["status"]
+        assert got["iterations"] == int(row["iterations"])
+        assert pandas.isna(got["warm_start"]) == (row["warm_start"] == "")
+        if row["status"] == "ok":
+            assert got["objective"] == float(row["objective"])
+            assert got["u_max"] == float(row["u_max"])
+    # Monotone in the wind, every case after the file's W = 8 started from its neighbour.
+    ok = frame[frame["status"] == "ok"]
+    assert np.all(np.diff(ok["objective"].to_numpy()) > 0)
+    # (W = 0.5 started from W = 4, failed, and was solved again from the problem's guess.)
+    starts = [None if pandas.isna(x) else int(x) for x in frame["warm_start"]]
+    assert starts == [None, 2, None, 2, 3]
+    with pytest.raises(ValueError, match="do not apply"):
+        lagrange.sweep(lagrange.load(ROTOR), {"W": winds}, {}, optimize=True, t_end=3)

@@ -1,0 +1,190 @@
+// An optimisation study's cases (cli/optimal_sweep.hpp): the order they are solved in, each
+// started from the nearest solution found before it (docs/sweeps.md, "Optimal control").
+
+#include "cli/optimal_sweep.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "lagrange/io.hpp"
+
+namespace lagrange::cli {
+
+const std::vector<std::string> kOptimalColumns = {"status",     "reason",    "objective", "horizon",
+                                                  "iterations", "violation", "warm_start"};
+const std::vector<std::string> kOptimalTrailingColumns = {"solve_s", "wall_s"};
+
+namespace {
+
+// Each varied parameter's span over the study (1 where it does not vary), the unit of the
+// distance between cases (docs/sweeps.md, "Optimal control").
+std::vector<double> spans(const std::vector<sweep::Case>& cases) {
+  const size_t k = cases.empty() ? 0 : cases.front().values.size();
+  std::vector<double> lo(k, std::numeric_limits<double>::infinity()), hi(k, -lo[0]);
+  for (const sweep::Case& c : cases)
+    for (size_t i = 0; i < k; ++i) {
+      lo[i] = std::min(lo[i], c.values[i].second);
+      hi[i] = std::max(hi[i], c.values[i].second);
+    }
+  std::vector<double> span(k, 1.0);
+  for (size_t i = 0; i < k; ++i)
+    if (hi[i] > lo[i]) span[i] = hi[i] - lo[i];
+  return span;
+}
+
+// The squared distance between a case's values and `at`, each divided by its span.
+double distance(const sweep::Case& c, const std::vector<double>& at,
+                const std::vector<double>& span) {
+  double d = 0.0;
+  for (size_t i = 0; i < span.size(); ++i) {
+    const double x = (c.values[i].second - at[i]) / span[i];
+    d += x * x;
+  }
+  return d;
+}
+
+std::vector<double> values_of(const sweep::Case& c) {
+  std::vector<double> v;
+  for (const auto& [name, value] : c.values) v.push_back(value);
+  return v;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<size_t> warm_start_order(const std::vector<sweep::Case>& cases,
+                                     const std::vector<size_t>& pending,
+                                     const std::vector<double>& origin,
+                                     const std::vector<size_t>& attempted) {
+  const std::vector<double> span = spans(cases);
+  // nearest[i]: the distance of pending[i] to the nearest case attempted so far (to the origin
+  // before any), updated as each case is taken: O(n²) for n cases.
+  std::vector<double> nearest(pending.size(), std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < pending.size(); ++i) {
+    const sweep::Case& c = cases.at(pending[i]);
+    if (attempted.empty()) nearest[i] = distance(c, origin, span);
+    for (size_t a : attempted)
+      nearest[i] = std::min(nearest[i], distance(c, values_of(cases.at(a)), span));
+  }
+  std::vector<bool> taken(pending.size(), false);
+  std::vector<size_t> order;
+  for (size_t n = 0; n < pending.size(); ++n) {
+    size_t best = pending.size();
+    for (size_t i = 0; i < pending.size(); ++i)
+      if (!taken[i] && (best == pending.size() || nearest[i] < nearest[best] ||
+                        (nearest[i] == nearest[best] && pending[i] < pending[best])))
+        best = i;
+    taken[best] = true;
+    order.push_back(pending[best]);
+    const std::vector<double> at = values_of(cases.at(pending[best]));
+    for (size_t i = 0; i < pending.size(); ++i)
+      if (!taken[i]) nearest[i] = std::min(nearest[i], distance(cases.at(pending[i]), at, span));
+  }
+  return order;
+}
+
+std::optional<size_t> nearest_case(const std::vector<sweep::Case>& cases, size_t index,
+                                   const std::vector<size_t>& solved) {
+  const std::vector<double> span = spans(cases), at = values_of(cases.at(index));
+  std::optional<size_t> best;
+  double d_best = std::numeric_limits<double>::infinity();
+  for (size_t s : solved) {
+    const double d = distance(cases.at(s), at, span);
+    if (!best || d < d_best || (d == d_best && s < *best)) {
+      best = s;
+      d_best = d;
+    }
+  }
+  return best;
+}
+
+std::vector<std::string> optimal_trajectory_columns(const Prepared& p) {
+  std::vector<std::string> columns = trajectory_columns(*p.compiled);
+  for (const ControlSpec& c : p.model->optimal_control->controls)
+    columns.push_back(p.model->inputs.at(c.input).name);
+  for (const std::string& n : p.compiled->constraint_names) columns.push_back("lambda_" + n);
+  return columns;
+}
+
+void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
+                       const std::vector<sweep::Case>& cases, const std::vector<size_t>& order,
+                       const std::function<sweep::CaseRead(size_t)>& read,
+                       std::map<size_t, Trajectory>& solved,
+                       const std::function<void(const OptimalCaseResult&, const Trajectory&)>& done,
+                       const std::atomic<bool>* interrupt) {
+  const Prepared& p = *study.prepared;
+  const double nan = std::nan("");
+  for (const size_t index : order) {
+    if (interrupt != nullptr && interrupt->load()) return;
+    const auto start = std::chrono::steady_clock::now();
+    OptimalCaseResult r;
+    r.index = index;
+    r.objective = r.horizon = r.violation = nan;
+    r.metrics.assign(study.metrics.size(), nan);
+    Trajectory traj;
+    std::vector<size_t> converged;
+    for (const auto& [i, t] : solved) converged.push_back(i);
+    r.started_from = nearest_case(cases, index, converged);
+    try {
+      const sweep::CaseRead in = read(index);
+      if (!in.input) throw std::runtime_error(in.rejected);
+      // The case's parameters and its initial state made consistent, as sweep::run_case does
+      // for a simulation (docs/theory.md §4.3); the problem is the model file's, started from
+      // the nearest solution (docs/sweeps.md, "Optimal control").
+      dyn.set_parameters(in.input->parameters);
+      dyn.set_baumgarte(in.input->baumgarte);
+      std::vector<double> q = in.input->q0, v = in.input->v0;
+      const InitialConsistency ic =
+          make_initial_state_consistent(dyn, 0.0, q, v, SimulationOptions{}.projection_tol);
+      if (!ic.consistent)
+        throw std::runtime_error(fmt::format(
+            "the initial state cannot be made consistent with the constraints (max |C| = "
+            "{:.3g}, max |Cdot| = {:.3g} after projection)",
+            ic.projection.residual, ic.projection.rate_residual));
+      OptimalControlSpec spec = *p.model->optimal_control;
+      if (r.started_from) {
+        write_trajectory_csv(solved.at(*r.started_from), study.guess_path);
+        spec.guess_file = study.guess_path;
+      }
+      OptimizeResult o = optimize(p.equations, p.compiled, dyn, spec, q, v, study.options);
+      r.solve_seconds = o.solve_seconds;
+      r.iterations = o.iterations;
+      if (!o.optimal && r.started_from) {
+        // A neighbour's solution that leads nowhere: the problem's own guess, as the first
+        // case had (docs/sweeps.md, "Optimal control").
+        const std::string warm_status = o.status;
+        spec.guess_file = p.model->optimal_control->guess_file;
+        OptimizeResult again = optimize(p.equations, p.compiled, dyn, spec, q, v, study.options);
+        r.solve_seconds += again.solve_seconds;
+        r.iterations += again.iterations;
+        r.retry = fmt::format("from case {}: {}", *r.started_from, warm_status);
+        r.started_from.reset();
+        o = std::move(again);
+      }
+      r.optimal = o.optimal;
+      if (!o.optimal) r.reason = o.status;
+      r.objective = o.objective;
+      r.horizon = o.horizon;
+      r.violation = o.violation;
+      traj = std::move(o.trajectory);
+      for (size_t m = 0; m < study.metrics.size(); ++m)
+        r.metrics[m] = sweep::evaluate(study.metrics[m], traj, in.input->parameters);
+      if (o.optimal) solved[index] = traj;
+    } catch (const std::exception& e) {
+      r.optimal = false;
+      r.reason = e.what();
+    }
+    r.wall_seconds = seconds_since(start);
+    done(r, traj);
+  }
+}
+
+}  // namespace lagrange::cli
