@@ -69,8 +69,9 @@ SANITIZER_ENV_SYMBOLIZED = $(SANITIZER_ENV) ASAN_OPTIONS=$(ASAN_OPTS):symbolize=
 # that lighter tests take under the sanitizers too — the Panda (the UR5 and the elbow arm cover the
 # same code), the longest chains of the scaling tests (the short ones run), the 300-link URDF (the
 # 200-link chain runs), a kill-timing loop, the kite power cycle (its transcription and Hessian are
-# checked on the smaller problems). About 400 of the 2300 test-seconds under ASan.
-ASAN_SKIP ?= [Pp]anda|PowerCycle|KillDuringALongWrite|GrowsLinearlyWithTheChain|RecursiveChain.MatchesTheClosedFormPendulum/[45]|AThreeHundredLinkUrdf|SkewSymmetry.*planar_arm_pd|Ur5ManipulatorFormIsSkewSymmetric|InertiaMatrixOfTheUr5|ExportManipulator.Ur5MatchesEval
+# checked on the smaller problems), the manual's commands (a check of the documentation; the CLI
+# paths they take run under ASan in their own tests). About 400 of the 2300 test-seconds under ASan.
+ASAN_SKIP ?= [Pp]anda|PowerCycle|Docs\.|KillDuringALongWrite|GrowsLinearlyWithTheChain|RecursiveChain.MatchesTheClosedFormPendulum/[45]|AThreeHundredLinkUrdf|SkewSymmetry.*planar_arm_pd|Ur5ManipulatorFormIsSkewSymmetric|InertiaMatrixOfTheUr5|ExportManipulator.Ur5MatchesEval
 asan-configure:
 	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
 	@CC=clang CXX=clang++ cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug \
