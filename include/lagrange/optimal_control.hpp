@@ -20,11 +20,13 @@ struct Bounds {
   double upper = std::numeric_limits<double>::infinity();
 };
 
-/// A model input the optimiser chooses, constant on each collocation interval.
+/// A model input the optimiser chooses, constant on each collocation interval, or over the whole
+/// horizon (`constant`: a design value such as a gain, a stiffness or a drum radius).
 struct ControlSpec {
   size_t input = 0;  ///< index into Model::inputs
   Bounds bounds;
   std::optional<double> guess;  ///< initial guess (else 0 clipped to the bounds)
+  bool constant = false;        ///< one value for the whole horizon
   SourceLoc loc;
 };
 

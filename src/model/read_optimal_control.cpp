@@ -144,11 +144,12 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
       fail(kv.first, fmt::format("expected an input of the model as a control, got '{}' "
                                  "(inputs: {})",
                                  clip(name), names_of(NameKind::Input)));
-    ControlSpec c{static_cast<size_t>(index), {}, std::nullopt, src_.at(kv.first)};
+    ControlSpec c{static_cast<size_t>(index), {}, std::nullopt, false, src_.at(kv.first)};
     if (!kv.second.IsNull()) {
       const std::string what = fmt::format("control '{}'", name);
-      c.bounds = read_bounds(kv.second, what, {"guess"});
+      c.bounds = read_bounds(kv.second, what, {"guess", "constant"});
       if (kv.second["guess"]) c.guess = number(kv.second["guess"], kParams, "guess of " + what);
+      if (kv.second["constant"]) c.constant = boolean(kv.second["constant"], "constant of " + what);
     }
     spec.controls.push_back(c);
   }

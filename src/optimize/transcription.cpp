@@ -98,7 +98,10 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   first_ = free_T_ ? 1 : 0;
   n_ = first_ + static_cast<size_t>(N_) * block_ + nx_;
   path_rows_ = static_cast<size_t>(N_ * d_) * (nx_ + m_);
-  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size();
+  for (size_t c = 0; c < nu_; ++c)
+    if (spec.controls[c].constant) constant_.push_back(c);
+  rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size() +
+          constant_.size() * static_cast<size_t>(N_ - 1);
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
   guess_ = make_guess();
   const std::vector<double>& x0 = guess_;
@@ -339,6 +342,8 @@ std::vector<double> Transcription::make_guess() {
     if (guessed_controls)
       for (size_t c = 0; c < nu_; ++c)
         u0[c] = clamp(ui(k) + c, (*guessed_controls)[static_cast<size_t>(k * d_ + 1)][c]);
+    for (size_t c : constant_)  // one value over the horizon: interval 0's
+      if (k > 0) u0[c] = x[ui(0) + c];
     std::copy(u0.begin(), u0.end(), x.begin() + static_cast<long>(ui(k)));
     for (int j = 0; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j);
@@ -466,6 +471,12 @@ void Transcription::constraint_values(const double* x, double* g) {
   const size_t periodic_at = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
   for (size_t r = 0; r < periodic_.size(); ++r)
     g[periodic_at + r] = state(x, N_, 0)[periodic_[r]] - state(x, 0, 0)[periodic_[r]];
+  // A constant control: U_{k+1,c} − U_{k,c} = 0 (docs/theory.md §10, "Constant controls").
+  const size_t constant_at = periodic_at + periodic_.size();
+  for (size_t r = 0; r < constant_.size(); ++r)
+    for (int k = 0; k + 1 < N_; ++k)
+      g[constant_at + r * static_cast<size_t>(N_ - 1) + static_cast<size_t>(k)] =
+          control(x, k + 1)[constant_[r]] - control(x, k)[constant_[r]];
   if (start_rows_.empty()) return;
   const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
@@ -543,6 +554,13 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
     emit(periodic_at + r, xi(N_, 0) + periodic_[r], 1.0);
     emit(periodic_at + r, xi(0, 0) + periodic_[r], -1.0);
   }
+  const size_t constant_at = periodic_at + periodic_.size();
+  for (size_t r = 0; r < constant_.size(); ++r)
+    for (int k = 0; k + 1 < N_; ++k) {
+      const size_t row = constant_at + r * static_cast<size_t>(N_ - 1) + static_cast<size_t>(k);
+      emit(row, ui(k + 1) + constant_[r], 1.0);
+      emit(row, ui(k) + constant_[r], -1.0);
+    }
   // The invariants imposed at t = 0.
   if (start_rows_.empty()) return;
   std::vector<size_t> row_of(2 * m_, rows_);
@@ -615,6 +633,11 @@ std::string Transcription::describe(size_t row, const double* x) const {
                        time(x, static_cast<int>(p) / d_, static_cast<int>(p) % d_ + 1));
   }
   row -= static_cast<size_t>(N_ * d_) * np_;
+  if (row >= start_rows_.size() + periodic_.size()) {
+    const size_t r = row - start_rows_.size() - periodic_.size(), n = static_cast<size_t>(N_ - 1);
+    return fmt::format("constant control '{}' between intervals {} and {}",
+                       eq_.model->inputs[controls_[constant_.at(r / n)]].name, r % n, r % n + 1);
+  }
   if (row >= start_rows_.size()) {
     const size_t i = periodic_.at(row - start_rows_.size());
     return fmt::format("periodicity of '{}'",

@@ -22,7 +22,8 @@ namespace lagrange::collocation {
 /// Constraints: per interval and collocation point j the DAE residual (nq + nv + m rows) and the
 /// path constraints; then the invariants C = 0, Ċ = 0 at t = 0 that the fixed initial values do
 /// not already imply; then x(T) − x(0) for the periodic components the invariants leave
-/// independent. Final values that the invariants imply (the dynamics keep them) are not imposed
+/// independent; then U_{k+1,c} − U_{k,c} for each constant control. Final values that the
+/// invariants imply (the dynamics keep them) are not imposed
 /// but checked (implied_final_gaps).
 class Transcription {
  public:
@@ -135,6 +136,7 @@ class Transcription {
   std::vector<BoundaryValue> final_;  ///< final values imposed as bounds
   std::vector<BoundaryValue> implied_;  ///< final values the invariants imply, checked only
   std::vector<size_t> periodic_;        ///< state components with x(T) = x(0) imposed
+  std::vector<size_t> constant_;        ///< controls with one value over the horizon
   PointFunctions paths_;                ///< the guessed paths and their time derivatives
   std::vector<size_t> controls_;
   std::vector<double> q0_, v0_;

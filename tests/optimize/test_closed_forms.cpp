@@ -100,5 +100,21 @@ TEST(OptimalControl, VerifyFindsTheCollocatedFinalState) {
   EXPECT_LT(v.largest_gap, 1e-8);
 }
 
+// A constant control is a design value: the damping that minimises ∫ x² of the unit oscillator
+// is c = 1 with ∫ x² = c/2 + 1/(2c) = 1 (data/optimal_damping.yaml), one value on every interval.
+TEST(OptimalControl, AConstantControlFindsTheOptimalDamping) {
+  testing::OptimalProblem p("data/optimal_damping.yaml");
+  const OptimizeResult r = p.solve();
+  ASSERT_TRUE(r.optimal) << r.status;
+  EXPECT_NEAR(r.objective, 1.0, 1e-6);
+  ASSERT_EQ(r.controls.size(), static_cast<size_t>(r.intervals));
+  for (const double c : r.controls) EXPECT_NEAR(c, 1.0, 1e-4);
+  // As a per-interval control the same problem does better than any single damping.
+  p.model->optimal_control->controls[0].constant = false;
+  const OptimizeResult free = p.solve();
+  ASSERT_TRUE(free.optimal) << free.status;
+  EXPECT_LT(free.objective, r.objective - 0.05);
+}
+
 }  // namespace
 }  // namespace lagrange
