@@ -53,7 +53,8 @@ bench: build
 # too slow) with line tables only (file:line in reports at a fraction of full -g's compile and link
 # time); the library, the CLI and the tests, then the whole test suite under the sanitizers. The
 # same build holds the libFuzzer targets (`make fuzz`), so the library is compiled once for both.
-# The build needs the sanitizer settings too: gtest_discover_tests runs each test binary to list it.
+# The build has the sanitizer settings too, for a build with LAGRANGE_TEST_SHARDS=OFF, where
+# gtest_discover_tests runs each test binary to list it.
 ASAN_BUILD ?= build-asan
 # symbolize=0: matching LeakSanitizer's CLN suppression by module name needs no symbolizer, and
 # starting llvm-symbolizer at every test's exit doubled the suite's cost. A test that fails is run
