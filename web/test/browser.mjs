@@ -73,7 +73,16 @@ async function checkReport(browser, html, csvHeader) {
   const failures = [];
   const expect = (ok, what) => ok || failures.push(what);
   const { page, seconds } = await openReport(browser, html, messages);
-  const data = await page.evaluate(() => JSON.parse(document.getElementById('lagrange-data').textContent));
+  // Only what the checks read: the whole run's data is megabytes to copy out of the page.
+  const data = await page.evaluate(() => {
+    const d = JSON.parse(document.getElementById('lagrange-data').textContent);
+    const { t, skeleton, rings } = d.scene;
+    return {
+      scene: { t: [t[0], t[t.length - 1]], skeleton: !!skeleton, rings: !!rings },
+      plots: { series: d.plots.series.map(({ name, group }) => ({ name, group })) },
+      latex: d.latex,
+    };
+  });
   const t0 = data.scene.t[0];
   const t1 = data.scene.t[data.scene.t.length - 1];
 
@@ -86,7 +95,8 @@ async function checkReport(browser, html, csvHeader) {
   // Play advances the slider and the time.
   const before = await page.evaluate(() => [Number(document.getElementById('time').value), window.lagrangeReport.time()]);
   await page.click('#play');
-  await page.waitForTimeout(700);
+  // until both have moved (at most 5 s; the expectations below say what did not)
+  await page.waitForFunction(([slider, time]) => Number(document.getElementById('time').value) > slider && window.lagrangeReport.time() > time, before, { timeout: 5000 }).catch(() => {});
   const after = await page.evaluate(() => [Number(document.getElementById('time').value), window.lagrangeReport.time(), window.lagrangeReport.playing()]);
   expect(after[2] === true, 'the play button did not start playback');
   expect(after[1] > before[1] && after[0] > before[0], `play did not advance the slider (${before} -> ${after})`);
