@@ -17,19 +17,27 @@ namespace py = pybind11;
 namespace lagrange::python {
 
 // docs/theory.md §10 through the library: the CLI's `optimize` and this share optimize() and
-// verify(), on a workspace of this call's own.
-py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::optional<int> degree,
-                          const std::map<std::string, py::object>& ipopt, bool verify_result,
-                          bool verbose, const std::string& hessian) {
+const OptimalControlSpec& optimal_control_of(const PyModel& m, const std::string& what,
+                                             const std::string& command) {
   const cli::Prepared& p = *m.prepared;
   if (!p.model->optimal_control)
     throw py::value_error(p.model->name +
                           " has no optimal_control section (docs/model-language.md, \"Optimal "
                           "control\")");
   if (p.equations.recursive)
-    throw py::value_error(
-        "optimize needs the Lagrangian form of the model: load it with "
-        "dynamics='lagrangian' (as `lagrange optimize` derives it)");
+    throw py::value_error(what +
+                          " needs the Lagrangian form of the model: load it with "
+                          "dynamics='lagrangian' (as `" +
+                          command + "` derives it)");
+  return *p.model->optimal_control;
+}
+
+// verify(), on a workspace of this call's own.
+py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::optional<int> degree,
+                          const std::map<std::string, py::object>& ipopt, bool verify_result,
+                          bool verbose, const std::string& hessian) {
+  const cli::Prepared& p = *m.prepared;
+  optimal_control_of(m, "optimize", "lagrange optimize");
   if ((intervals && *intervals < 1) || (degree && (*degree < 1 || *degree > 5)))
     throw py::value_error("expected intervals >= 1 and degree from 1 to 5");
   const OptimalControlSpec& spec = *p.model->optimal_control;

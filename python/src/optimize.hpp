@@ -8,9 +8,15 @@
 #include <optional>
 #include <string>
 
+#include "lagrange/optimal_control.hpp"
 #include "model.hpp"
 
 namespace lagrange::python {
+
+/// The model's optimal_control problem, or ValueError: the file has none, or the model was loaded
+/// in the recursive form (`what` and `command` name the caller and its command-line counterpart).
+const OptimalControlSpec& optimal_control_of(const PyModel& m, const std::string& what,
+                                             const std::string& command);
 
 /// Solves the problem of the model's `optimal_control:` section (intervals and degree override the
 /// file's, ipopt options pass through, verify re-simulates the controls): a

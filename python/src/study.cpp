@@ -16,6 +16,7 @@
 #include "lagrange/dynamics.hpp"
 #include "lagrange/error.hpp"
 #include "lagrange/sweep.hpp"
+#include "optimize.hpp"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -150,14 +151,7 @@ py::list optimize_cases(const PyModel& m, const std::vector<std::map<std::string
                         const std::vector<std::string>& metric_specs,
                         const OptimizeOptions& options) {
   const cli::Prepared& p = *m.prepared;
-  if (!p.model->optimal_control)
-    throw py::value_error(p.model->name +
-                          " has no optimal_control section (docs/model-language.md, \"Optimal "
-                          "control\")");
-  if (p.equations.recursive)
-    throw py::value_error(
-        "sweep(optimize=True) needs the Lagrangian form of the model: load it with "
-        "dynamics='lagrangian' (as `lagrange sweep --optimize` derives it)");
+  optimal_control_of(m, "sweep(optimize=True)", "lagrange sweep --optimize");
   if (!m.initial.empty())
     throw py::value_error(
         "sweep: this model was loaded with initial= values; a study reads each case's initial "

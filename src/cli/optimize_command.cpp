@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cli/commands.hpp"
+#include "cli/optimize_options.hpp"
 #include "cli/prepare.hpp"
 #include "cli/report_command.hpp"
 #include "lagrange/io.hpp"
@@ -30,19 +31,7 @@ int run_optimize(const Options& opt) {
                     opt.model));
   const OptimalControlSpec& spec = *p.model->optimal_control;
   if (!opt.report.empty()) check_report(opt.report, *p.model);
-  OptimizeOptions o;
-  o.intervals = opt.intervals;
-  o.degree = opt.degree;
-  o.verbose = opt.verbose;
-  o.hessian = opt.hessian == "exact"            ? HessianChoice::Exact
-              : opt.hessian == "limited-memory" ? HessianChoice::LimitedMemory
-                                                : HessianChoice::Auto;
-  for (const std::string& a : opt.ipopt) {
-    const size_t eq = a.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw UsageError(fmt::format("expected --ipopt KEY=VALUE, got '{}'", a));
-    o.ipopt.emplace_back(a.substr(0, eq), a.substr(eq + 1));
-  }
+  OptimizeOptions o = optimize_options(opt);
   const SimulationOptions so = simulation_options(*p.model, RunSettings{});
   p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
   OptimizeResult r;

@@ -22,6 +22,7 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/optimal_sweep.hpp"
+#include "cli/optimize_options.hpp"
 #include "cli/prepare.hpp"
 #include "cli/study_lock.hpp"
 #include "cli/study_record.hpp"
@@ -582,17 +583,8 @@ int run_optimal_sweep(const Options& opt) {
   Progress progress(opt, s.plan.cases.size(), already);
   OptimalStudy study;
   study.prepared = &s.prepared;
-  study.options.intervals = opt.intervals;
-  study.options.degree = opt.degree;
-  study.options.hessian = opt.hessian == "exact"            ? HessianChoice::Exact
-                          : opt.hessian == "limited-memory" ? HessianChoice::LimitedMemory
-                                                            : HessianChoice::Auto;
-  for (const std::string& a : opt.ipopt) {
-    const size_t eq = a.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw UsageError(fmt::format("expected --ipopt KEY=VALUE, got '{}'", a));
-    study.options.ipopt.emplace_back(a.substr(0, eq), a.substr(eq + 1));
-  }
+  study.options = optimize_options(opt);
+  study.options.verbose = false;
   study.metrics = s.plan.metrics;
   study.guess_path = (fs::path(opt.study) / ".warm_start.csv").string();
   // A resumed study starts from the solutions an earlier run kept (--keep-trajectories).

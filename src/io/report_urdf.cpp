@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "lagrange/rigid_body.hpp"
+
 namespace lagrange::io {
 
 namespace fs = std::filesystem;
@@ -37,22 +39,6 @@ std::vector<double> numbers(const XMLElement* e, const char* name, std::vector<d
   for (double v : out)
     if (!std::isfinite(v)) return fallback;
   return out;
-}
-
-// URDF's rpy: R = Rz(yaw) Ry(pitch) Rx(roll), row-major.
-std::vector<double> rpy_matrix(const std::vector<double>& rpy) {
-  const double cr = std::cos(rpy[0]), sr = std::sin(rpy[0]);
-  const double cp = std::cos(rpy[1]), sp = std::sin(rpy[1]);
-  const double cy = std::cos(rpy[2]), sy = std::sin(rpy[2]);
-  return {cy * cp,
-          cy * sp * sr - sy * cr,
-          cy * sp * cr + sy * sr,
-          sy * cp,
-          sy * sp * sr + cy * cr,
-          sy * sp * cr - cy * sr,
-          -sp,
-          cp * sr,
-          cp * cr};
 }
 
 // "#rrggbb" and the opacity of an rgba attribute's "r g b a" in [0, 1].
@@ -226,7 +212,8 @@ nlohmann::json UrdfVisuals::of(const Body& body) {
     }
     const XMLElement* origin = visual->FirstChildElement("origin");
     v["origin"] = numbers(origin, "xyz", {0, 0, 0});
-    v["rotation"] = rpy_matrix(numbers(origin, "rpy", {0, 0, 0}));
+    const std::vector<double> rpy = numbers(origin, "rpy", {0, 0, 0});
+    v["rotation"] = rotation_from_euler(rpy[0], rpy[1], rpy[2]);  // URDF's Rz(y) Ry(p) Rx(r)
     if (const XMLElement* material = visual->FirstChildElement("material")) {
       const XMLElement* color = material->FirstChildElement("color");
       if (color && color->Attribute("rgba")) {
