@@ -11,6 +11,7 @@
 
 #include "cli/initial_state.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/plot_check.hpp"
 #include "cli/prepare.hpp"
 #include "cli/report_command.hpp"
 #include "lagrange/analysis.hpp"
@@ -46,19 +47,9 @@ std::vector<std::string> checked_plot_columns(const Options& opt, const Compiled
   if (opt.plot.empty() && !opt.plot_columns.empty())
     throw UsageError("--plot-columns chooses what --plot draws; give --plot FILE.svg too");
   if (opt.plot.empty()) return {};
-  PlotFormat format;
-  try {
-    format = plot_format(opt.plot);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(fmt::format("--plot: {}", e.what()));
-  }
-  if (!plot_format_available(format))
-    throw UsageError(
-        fmt::format("--plot {}: gnuplot with the '{}' terminal is needed and was not "
-                    "found (see gnuplot -e \"set terminal\"); install it, or plot "
-                    "to {}",
-                    opt.plot, gnuplot_terminal(format),
-                    format == PlotFormat::Png ? "an .svg file" : "a .png file"));
+  checked_plot_format(opt.plot, [](PlotFormat format) {
+    return format == PlotFormat::Png ? "plot to an .svg file" : "plot to a .png file";
+  });
   std::vector<std::string> cols = opt.plot_columns;
   if (cols.empty()) cols = cm.coordinate_names;
   const std::vector<std::string> known = trajectory_columns(cm);

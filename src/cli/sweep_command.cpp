@@ -23,6 +23,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/optimal_sweep.hpp"
 #include "cli/optimize_options.hpp"
+#include "cli/plot_check.hpp"
 #include "cli/prepare.hpp"
 #include "cli/study_lock.hpp"
 #include "cli/study_record.hpp"
@@ -138,17 +139,7 @@ void check_plot(const Options& opt) {
   if (opt.vary.size() != 1 || !opt.random.empty())
     throw UsageError(
         "--plot draws the summary against one parameter: give one --vary and no --random");
-  PlotFormat format;
-  try {
-    format = plot_format(opt.plot);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(fmt::format("--plot: {}", e.what()));
-  }
-  if (!plot_format_available(format))
-    throw UsageError(fmt::format(
-        "--plot {}: gnuplot with the '{}' terminal is needed and was not found; install it, or "
-        "plot STUDY/summary.csv yourself",
-        opt.plot, gnuplot_terminal(format)));
+  checked_plot_format(opt.plot, [](PlotFormat) { return "plot STUDY/summary.csv yourself"; });
 }
 
 void set_up(const Options& opt, Study& s) {
