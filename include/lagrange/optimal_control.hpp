@@ -30,10 +30,13 @@ struct ControlSpec {
   SourceLoc loc;
 };
 
-/// A coordinate (`velocity` false) or its rate NAME_dot, by index into Model::coordinates.
+/// A coordinate (`velocity` false) or its rate NAME_dot, by index into Model::coordinates; or a
+/// free body's component by its state name (`body_state`: `<body>.x` … `<body>.R33`, `<body>.vx` …
+/// `<body>.wz`), `coordinate` then unused.
 struct StateRef {
   size_t coordinate = 0;
   bool velocity = false;
+  std::string body_state;
   SourceLoc loc;
 };
 

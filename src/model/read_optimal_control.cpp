@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -37,11 +38,30 @@ StateRef ModelReader::state_ref(const YAML::Node& node, const std::string& what)
       name.size() > rate.size() && name.compare(name.size() - rate.size(), rate.size(), rate) == 0;
   const std::string base = velocity ? name.substr(0, name.size() - rate.size()) : name;
   const int index = m_.coordinate_index(base);
-  if (index < 0)
-    fail(node, fmt::format("expected a coordinate or its rate NAME_dot for {}, got '{}' "
-                           "(coordinates: {})",
-                           what, clip(name), names_of(NameKind::Coordinate)));
-  return StateRef{static_cast<size_t>(index), velocity, src_.at(node)};
+  if (index >= 0) return StateRef{static_cast<size_t>(index), velocity, {}, src_.at(node)};
+  // A free body's state component (docs/theory.md §4.4): r, R row by row, ṙ and body-frame ω.
+  static const std::vector<std::string> positions{"x",   "y",   "z",   "R11", "R12", "R13",
+                                                  "R21", "R22", "R23", "R31", "R32", "R33"},
+      rates{"vx", "vy", "vz", "wx", "wy", "wz"};
+  std::string free_bodies;
+  for (const Body& b : m_.bodies) {
+    if (!b.free) continue;
+    free_bodies += (free_bodies.empty() ? "" : ", ") + b.name;
+    const std::string prefix = b.name + ".";
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string part = name.substr(prefix.size());
+    const bool rate = std::find(rates.begin(), rates.end(), part) != rates.end();
+    if (rate || std::find(positions.begin(), positions.end(), part) != positions.end())
+      return StateRef{0, rate, name, src_.at(node)};
+    fail(node, fmt::format("expected a state component of the free body '{}' for {} ({}.x, .y, "
+                           ".z, .R11 … .R33, .vx, .vy, .vz, .wx, .wy, .wz), got '{}'",
+                           b.name, what, b.name, clip(name)));
+  }
+  fail(node, fmt::format("expected a coordinate or its rate NAME_dot{} for {}, got '{}' "
+                         "(coordinates: {}{})",
+                         free_bodies.empty() ? "" : ", or a free body's BODY.x … BODY.wz", what,
+                         clip(name), names_of(NameKind::Coordinate),
+                         free_bodies.empty() ? "" : "; free bodies: " + free_bodies));
 }
 
 Bounds ModelReader::read_bounds(const YAML::Node& node, const std::string& what,
@@ -228,14 +248,15 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   if (const YAML::Node p = node["periodic"]; p) {
     if (p.IsScalar() && (p.Scalar() == "true" || p.Scalar() == "false")) {
       if (p.Scalar() == "true") {
+        for (size_t c = 0; c < m_.coordinates.size(); ++c)
+          for (const bool rate : {false, true}) spec.periodic.push_back({c, rate, {}, src_.at(p)});
+        // A free body's r, R, ṙ and ω; the transcription keeps the independent ones (RᵀR = 1).
         for (const Body& b : m_.bodies)
           if (b.free)
-            fail(p, fmt::format("expected periodic as a list of coordinates and rates for a "
-                                "model with the free body '{}' (periodic: true covers the "
-                                "coordinates and their rates, not a body's R and ω)",
-                                b.name));
-        for (size_t c = 0; c < m_.coordinates.size(); ++c)
-          for (const bool rate : {false, true}) spec.periodic.push_back({c, rate, src_.at(p)});
+            for (const char* part : {"x", "y", "z", "R11", "R12", "R13", "R21", "R22", "R23", "R31",
+                                     "R32", "R33", "vx", "vy", "vz", "wx", "wy", "wz"})
+              spec.periodic.push_back(
+                  {0, part[0] == 'v' || part[0] == 'w', b.name + "." + part, src_.at(p)});
       }
     } else {
       expect_seq(p, "periodic (true, or a list of coordinates and rates NAME_dot)");
@@ -248,9 +269,10 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   // A coordinate whose rate is bounded away from zero moves one way only: it cannot return to
   // its start, and Ipopt would only report the problem infeasible.
   for (const StateRef& p : spec.periodic) {
-    if (p.velocity) continue;
+    if (p.velocity || !p.body_state.empty()) continue;
     for (const StateBound& b : spec.bounds) {
-      if (b.state.coordinate != p.coordinate || !b.state.velocity) continue;
+      if (b.state.coordinate != p.coordinate || !b.state.velocity || !b.state.body_state.empty())
+        continue;
       if (b.bounds.lower > 0 || b.bounds.upper < 0)
         throw ModelError(
             p.loc,
@@ -265,6 +287,11 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   if (node["guess"] && node["guess"].IsMap()) {
     for (const auto& kv : node["guess"]) {
       const StateRef s = state_ref(kv.first, "a guessed path");
+      if (!s.body_state.empty())
+        fail(kv.first, fmt::format("expected a coordinate in guess, got the free body's '{}' (a "
+                                   "body's motion is guessed by `guess: simulation`, a file, or "
+                                   "between its boundary poses)",
+                                   clip(kv.first.Scalar())));
       if (s.velocity)
         fail(kv.first, fmt::format("expected a coordinate in guess, got the rate '{}' (a rate "
                                    "follows its coordinate's path: its time derivative)",

@@ -79,6 +79,14 @@ class Adapter : public Ipopt::TNLP {
     }
     return n == static_cast<Index>(nlp_.variables());
   }
+  // The nominal magnitudes' scaling, used with --ipopt nlp_scaling_method=user-scaling
+  // (docs/theory.md §10, "Scaling": measured, it does not beat Ipopt's gradient-based default).
+  bool get_scaling_parameters(Number& obj_scaling, bool& use_x_scaling, Index, Number* x_scaling,
+                              bool& use_g_scaling, Index, Number* g_scaling) override {
+    nlp_.scaling(x_scaling, g_scaling, obj_scaling);
+    use_x_scaling = use_g_scaling = true;
+    return true;
+  }
   bool eval_f(Index, const Number* x, bool, Number& f) override {
     return timed([&] { f = nlp_.objective(x); });
   }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -28,16 +29,25 @@ std::vector<GiNaC::ex> guessed_paths(const OptimalControlSpec& spec) {
 }
 
 /// Per coordinate, whether a projection keeps it (Dynamics::try_project's flags, which hold a
-/// coordinate and its rate together): kept when either is in `keep` (nq + nv flags).
+/// coordinate and its rate together): kept when either is in `keep` (nq + nv flags). The plain
+/// coordinates come first in q and v; each free body has 12 components in q and 6 in v, so they
+/// number nv − (nq − nv). A body's rates have no flag of their own.
 std::vector<bool> kept_coordinates(const std::vector<bool>& keep, size_t nq) {
   std::vector<bool> flags(keep.begin(), keep.begin() + static_cast<long>(nq));
-  for (size_t i = nq; i < keep.size() && i - nq < nq; ++i) flags[i - nq] = flags[i - nq] || keep[i];
+  const size_t nv = keep.size() - nq, plain = nv - (nq - nv);
+  for (size_t i = 0; i < plain; ++i) flags[i] = flags[i] || keep[nq + i];
   return flags;
 }
 
-/// Index in x = (q, v) of a state reference (plain coordinates: q index = v index).
-size_t state_index(const StateRef& s, size_t nq) {
-  return s.velocity ? nq + s.coordinate : s.coordinate;
+/// Index in x = (q, v) of a state reference: a plain coordinate's q index is its v index; a free
+/// body's component is found by its state name.
+size_t state_index(const StateRef& s, const CompiledModel& c) {
+  if (s.body_state.empty()) return s.velocity ? c.nq + s.coordinate : s.coordinate;
+  const std::vector<std::string>& names = s.velocity ? c.velocity_names : c.coordinate_names;
+  const auto it = std::find(names.begin(), names.end(), s.body_state);
+  if (it == names.end())
+    throw std::invalid_argument("the compiled model has no state '" + s.body_state + "'");
+  return (s.velocity ? c.nq : 0) + static_cast<size_t>(it - names.begin());
 }
 
 }  // namespace
@@ -93,6 +103,10 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   }
   in_.assign(cm->input_count(), 0.0);
   xp_.assign(nx_, 0.0);
+  for (size_t i = 0; i < nq_; ++i) {
+    const std::string& name = cm->coordinate_names[i];
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".R11") == 0) rotations_.push_back(i);
+  }
   choose_boundary_rows();
   block_ = static_cast<size_t>(d_) * (nx_ + m_) + nu_;
   first_ = free_T_ ? 1 : 0;
@@ -101,7 +115,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   for (size_t c = 0; c < nu_; ++c)
     if (spec.controls[c].constant) constant_.push_back(c);
   rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size() +
-          constant_.size() * static_cast<size_t>(N_ - 1);
+          constant_.size() * static_cast<size_t>(N_ - 1) + turning_.size();
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
   guess_ = make_guess();
   const std::vector<double>& x0 = guess_;
@@ -153,7 +167,7 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
   for (int k = 0; k <= N_; ++k)
     for (int j = 0; j < (k < N_ ? d_ : 1); ++j)
       for (const StateBound& b : spec_.bounds) {
-        const size_t i = xi(k, j) + state_index(b.state, nq_);
+        const size_t i = xi(k, j) + state_index(b.state, *cm_);
         xl[i] = finite(b.bounds.lower);
         xu[i] = finite(b.bounds.upper);
       }
@@ -163,8 +177,8 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
       xu[ui(k) + c] = finite(spec_.controls[c].bounds.upper);
     }
   auto fix = [&](size_t at, const BoundaryValue& b) {
-    xl[at + state_index(b.state, nq_)] = finite(b.bounds.lower);
-    xu[at + state_index(b.state, nq_)] = finite(b.bounds.upper);
+    xl[at + state_index(b.state, *cm_)] = finite(b.bounds.lower);
+    xu[at + state_index(b.state, *cm_)] = finite(b.bounds.upper);
   };
   if (spec_.initial) {
     for (const BoundaryValue& b : *spec_.initial) fix(xi(0, 0), b);
@@ -189,8 +203,8 @@ std::vector<double> Transcription::boundary_state(bool end) {
   const auto write = [&](const std::vector<BoundaryValue>& values) {
     for (const BoundaryValue& b : values)
       if (b.fixed()) {
-        x[state_index(b.state, nq_)] = b.bounds.lower;
-        keep[state_index(b.state, nq_)] = true;
+        x[state_index(b.state, *cm_)] = b.bounds.lower;
+        keep[state_index(b.state, *cm_)] = true;
       }
   };
   if (spec_.initial) write(*spec_.initial);
@@ -207,8 +221,8 @@ std::vector<double> Transcription::boundary_state(bool end) {
 // when independent of those before (Gram–Schmidt), at the boundary state.
 void Transcription::choose_boundary_rows() {
   final_ = spec_.final;
-  if (m_ == 0) {
-    for (const StateRef& s : spec_.periodic) periodic_.push_back(state_index(s, nq_));
+  if (m_ == 0 && rotations_.empty()) {  // every periodic row is independent
+    for (const StateRef& s : spec_.periodic) periodic_.push_back(state_index(s, *cm_));
     return;
   }
   std::vector<std::vector<double>> basis;
@@ -232,11 +246,11 @@ void Transcription::choose_boundary_rows() {
   };
   const auto unit = [&](const BoundaryValue& b) {
     std::vector<double> r(nx_, 0.0);
-    r[state_index(b.state, nq_)] = 1.0;
+    r[state_index(b.state, *cm_)] = 1.0;
     return r;
   };
   const auto invariant_rows = [&](bool end) {
-    std::vector<std::vector<double>> rows(2 * m_, std::vector<double>(nx_, 0.0));
+    std::vector<std::vector<double>> rows(invariants(), std::vector<double>(nx_, 0.0));
     const std::vector<double> X = boundary_state(end);
     invariant_gradients(end ? T_ : 0.0, X.data(),
                         [&](size_t i, size_t c, double v) { rows[i][c] += v; });
@@ -248,18 +262,41 @@ void Transcription::choose_boundary_rows() {
       if (b.fixed()) fixed += independent(unit(b));
     if (fixed < nx_) {
       const auto rows = invariant_rows(false);
-      for (size_t i = 0; i < 2 * m_; ++i)
+      for (size_t i = 0; i < invariants(); ++i)
         if (independent(rows[i])) start_rows_.push_back(i);
     }
   }
   // x(T) − x(0) in a direction of the invariants is kept by the dynamics: periodic rows are taken
   // after the invariants at the start state.
   basis.clear();
+  const std::vector<double> X0 = boundary_state(false);
   for (const std::vector<double>& r : invariant_rows(false)) independent(r);
+  // A body whose nine R entries are all periodic turns back to R(0): the three rows
+  // vee(skew(R(0)ᵀR(T))) = 0, whose gradients in R(T) span the tangent space at R(0) wherever
+  // the orbit closes, unlike any three fixed entries (docs/theory.md §10, "Free bodies").
+  std::vector<bool> taken(nx_, false);
+  for (size_t base : rotations_) {
+    size_t listed = 0;
+    for (const StateRef& s : spec_.periodic) {
+      const size_t i = state_index(s, *cm_);
+      listed += i >= base && i < base + 9;
+    }
+    if (listed < 9) continue;
+    std::fill(taken.begin() + static_cast<long>(base), taken.begin() + static_cast<long>(base) + 9,
+              true);
+    for (size_t w = 0; w < 3; ++w) {
+      std::vector<double> r(nx_, 0.0);
+      turning_gradient(
+          X0.data(), X0.data(), base, w, [&](size_t, double) {},
+          [&](size_t c, double v) { r[c] += v; });
+      if (independent(r)) turning_.push_back({base, w});
+    }
+  }
   for (const StateRef& s : spec_.periodic) {
     std::vector<double> r(nx_, 0.0);
-    r[state_index(s, nq_)] = 1.0;
-    if (independent(r)) periodic_.push_back(state_index(s, nq_));
+    const size_t i = state_index(s, *cm_);
+    r[i] = 1.0;
+    if (!taken[i] && independent(r)) periodic_.push_back(i);
   }
   basis.clear();
   for (const std::vector<double>& r : invariant_rows(true)) independent(r);
@@ -274,6 +311,17 @@ std::vector<double> Transcription::guessed_state(double t, const std::vector<dou
   const double s = T_ > 0 ? t / T_ : 0.0;
   std::vector<double> x(nx_);
   for (size_t i = 0; i < nx_; ++i) x[i] = (1 - s) * start[i] + s * end[i];
+  // A free body turns about one axis between its boundary orientations, R₀ exp(s log(R₀ᵀR₁)),
+  // which stays on SO(3) where the straight line would not.
+  using Rotation = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  for (size_t base : rotations_) {
+    const Rotation R0 = Eigen::Map<const Rotation>(start.data() + base),
+                   R1 = Eigen::Map<const Rotation>(end.data() + base);
+    if (!R0.isUnitary(1e-6) || !R1.isUnitary(1e-6)) continue;
+    Eigen::AngleAxisd turn(R0.transpose() * R1);
+    turn.angle() *= s;
+    Eigen::Map<Rotation>(x.data() + base) = R0 * turn.toRotationMatrix();
+  }
   if (!spec_.guess_paths.empty()) {
     const std::vector<double> zero(std::max(nx_, nu_), 0.0);  // the paths depend on t alone
     paths_.eval(load(t, zero.data(), zero.data()), nullptr, out_);
@@ -333,8 +381,9 @@ std::vector<double> Transcription::make_guess() {
   // The components a projection keeps: the fixed boundary values at the ends.
   std::vector<bool> keep_start(nx_, false), keep_end(nx_, false), keep_none(nx_, false);
   if (spec_.initial)
-    for (const BoundaryValue& b : *spec_.initial) keep_start[state_index(b.state, nq_)] = b.fixed();
-  for (const BoundaryValue& b : final_) keep_end[state_index(b.state, nq_)] = b.fixed();
+    for (const BoundaryValue& b : *spec_.initial)
+      keep_start[state_index(b.state, *cm_)] = b.fixed();
+  for (const BoundaryValue& b : final_) keep_end[state_index(b.state, *cm_)] = b.fixed();
   for (int k = 0; k < N_; ++k) {
     // From a guess file or a simulation, interval k's control is the one at its first
     // collocation point (for a file of the same mesh, exactly its control there), clipped to the
@@ -477,12 +526,54 @@ void Transcription::constraint_values(const double* x, double* g) {
     for (int k = 0; k + 1 < N_; ++k)
       g[constant_at + r * static_cast<size_t>(N_ - 1) + static_cast<size_t>(k)] =
           control(x, k + 1)[constant_[r]] - control(x, k)[constant_[r]];
+  const size_t turning_at = rows_ - turning_.size();
+  for (size_t r = 0; r < turning_.size(); ++r) {
+    const auto [base, w] = turning_[r];
+    g[turning_at + r] = turning(state(x, 0, 0), state(x, N_, 0), base, w);
+  }
   if (start_rows_.empty()) return;
   const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
   std::vector<double> C(2 * m_);
-  dyn_.constraints(0.0, state(x, 0, 0), state(x, 0, 0) + nq_, C.data(), C.data() + m_);
-  for (size_t r = 0; r < start_rows_.size(); ++r) g[at + r] = C[start_rows_[r]];
+  if (m_ > 0) dyn_.constraints(0.0, state(x, 0, 0), state(x, 0, 0) + nq_, C.data(), C.data() + m_);
+  for (size_t r = 0; r < start_rows_.size(); ++r) {
+    const size_t i = start_rows_[r];
+    g[at + r] = i < 2 * m_ ? C[i] : orthonormality(state(x, 0, 0), i - 2 * m_);
+  }
+}
+
+// docs/theory.md §10, "Free bodies": component w of vee(skew(AᵀB)), A = R(0), B = R(T):
+// ((AᵀB)_ij − (AᵀB)_ji)/2 with (AᵀB)_ij = Σ_a A_ai B_aj.
+double Transcription::turning(const double* X0, const double* XT, size_t base, size_t w) const {
+  const double *A = X0 + base, *B = XT + base;
+  const auto [i, j] = kSkewPairs[w];
+  double s = 0.0;
+  for (size_t a = 0; a < 3; ++a)
+    s += (A[3 * a + i] * B[3 * a + j] - A[3 * a + j] * B[3 * a + i]) / 2;
+  return s;
+}
+
+template <class EmitA, class EmitB>
+void Transcription::turning_gradient(const double* X0, const double* XT, size_t base, size_t w,
+                                     EmitA&& on_start, EmitB&& on_end) const {
+  const double *A = X0 + base, *B = XT + base;
+  const auto [i, j] = kSkewPairs[w];
+  for (size_t a = 0; a < 3; ++a) {
+    on_start(base + 3 * a + i, B[3 * a + j] / 2);
+    on_start(base + 3 * a + j, -B[3 * a + i] / 2);
+    on_end(base + 3 * a + j, A[3 * a + i] / 2);
+    on_end(base + 3 * a + i, -A[3 * a + j] / 2);
+  }
+}
+
+// docs/theory.md §10, "Free bodies": (RᵀR − 1)_ij = Σ_a R_ai R_aj − δ_ij, entry `which` of the
+// kOrthonormalPairs of each body in turn.
+double Transcription::orthonormality(const double* X, size_t which) const {
+  const double* R = X + rotations_[which / 6];
+  const auto [i, j] = kOrthonormalPairs[which % 6];
+  double sum = i == j ? -1.0 : 0.0;
+  for (size_t a = 0; a < 3; ++a) sum += R[3 * a + i] * R[3 * a + j];
+  return sum;
 }
 
 void Transcription::jacobian(const double* x, double* values) {
@@ -561,9 +652,17 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       emit(row, ui(k + 1) + constant_[r], 1.0);
       emit(row, ui(k) + constant_[r], -1.0);
     }
+  const size_t turning_at = rows_ - turning_.size();
+  for (size_t r = 0; r < turning_.size(); ++r) {
+    const auto [base, w] = turning_[r];
+    turning_gradient(
+        state(x, 0, 0), state(x, N_, 0), base, w,
+        [&](size_t c, double v) { emit(turning_at + r, xi(0, 0) + c, v); },
+        [&](size_t c, double v) { emit(turning_at + r, xi(N_, 0) + c, v); });
+  }
   // The invariants imposed at t = 0.
   if (start_rows_.empty()) return;
-  std::vector<size_t> row_of(2 * m_, rows_);
+  std::vector<size_t> row_of(invariants(), rows_);
   for (size_t r = 0; r < start_rows_.size(); ++r)
     row_of[start_rows_[r]] = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + r;
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
@@ -577,6 +676,16 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
 // t: no ∂/∂T term.
 template <class Emit>
 void Transcription::invariant_gradients(double t, const double* X, Emit&& emit) {
+  // ∂(RᵀR − 1)_ij/∂R_ab = δ_bi R_aj + δ_bj R_ai (docs/theory.md §10, "Free bodies").
+  for (size_t w = 0; w < 6 * rotations_.size(); ++w) {
+    const size_t base = rotations_[w / 6];
+    const auto [i, j] = kOrthonormalPairs[w % 6];
+    for (size_t a = 0; a < 3; ++a) {
+      emit(2 * m_ + w, base + 3 * a + i, X[base + 3 * a + j]);
+      emit(2 * m_ + w, base + 3 * a + j, X[base + 3 * a + i]);
+    }
+  }
+  if (m_ == 0) return;
   std::vector<double> C(m_), Cdot(m_);
   dyn_.constraints(t, X, X + nq_, C.data(), Cdot.data());
   const Tape& tape = jac_.tape();
@@ -600,18 +709,68 @@ std::vector<Transcription::ImpliedGap> Transcription::implied_final_gaps(const d
   const CompiledModel& c = *cm_;
   std::vector<double> end(state(x, N_, 0), state(x, N_, 0) + nx_);
   std::vector<bool> keep(nx_, false);
-  for (const BoundaryValue& b : final_) keep[state_index(b.state, nq_)] = b.fixed();
+  for (const BoundaryValue& b : final_) keep[state_index(b.state, *cm_)] = b.fixed();
   for (size_t u = 0; u < nu_; ++u) dyn_.hold_input(controls_[u], control(x, N_ - 1)[u]);
   dyn_.try_project(horizon(x), end.data(), end.data() + nq_, kept_coordinates(keep, nq_));
   for (const BoundaryValue& b : implied_) {
-    const std::string name = b.state.velocity ? c.velocity_names[b.state.coordinate]
-                                              : c.coordinate_names[b.state.coordinate];
-    const size_t i = state_index(b.state, nq_);
+    const size_t i = state_index(b.state, *cm_);
+    const std::string name = i < nq_ ? c.coordinate_names[i] : c.velocity_names[i - nq_];
     gaps.push_back({fmt::format("final value of '{}' (implied by the constraints)", name),
                     b.bounds.lower, std::fabs(state(x, N_, 0)[i] - b.bounds.lower),
                     std::fabs(end[i] - b.bounds.lower)});
   }
   return gaps;
+}
+
+// docs/theory.md §10, "Scaling": a variable's nominal magnitude is the largest it takes in the
+// starting point (over every collocation point for a state component, a multiplier or a
+// control) or as a finite bound, never below 1; Ipopt works in x̃ = x / nominal. A constraint is
+// scaled so that its largest gradient entry in x̃ at the starting point is at most 100 (Ipopt's
+// own rule, nlp_scaling_max_gradient, applied after the variables are scaled).
+void Transcription::scaling(double* x_scale, double* g_scale, double& f_scale) {
+  std::vector<double> xl(n_), xu(n_), gl(rows_), gu(rows_);
+  bounds(xl.data(), xu.data(), gl.data(), gu.data());
+  const auto magnitude = [&](size_t v) {
+    double a = std::fabs(guess_[v]);
+    for (double b : {xl[v], xu[v]})
+      if (std::fabs(b) < 1e19) a = std::max(a, std::fabs(b));
+    return a;
+  };
+  std::vector<double> nominal(n_, 1.0);
+  // Variables of one kind share a magnitude: a state component over all its points, a
+  // multiplier over all points, a control over all intervals.
+  const auto share = [&](size_t width, auto&& offsets) {
+    std::vector<double> big(width, 1.0);
+    offsets([&](size_t at) {
+      for (size_t i = 0; i < width; ++i) big[i] = std::max(big[i], magnitude(at + i));
+    });
+    offsets([&](size_t at) { std::copy(big.begin(), big.end(), nominal.begin() + at); });
+  };
+  share(nx_, [&](auto&& f) {
+    for (int k = 0; k <= N_; ++k)
+      for (int j = 0; j < (k < N_ ? d_ : 1); ++j) f(xi(k, j));
+  });
+  share(m_, [&](auto&& f) {
+    for (int k = 0; k < N_; ++k)
+      for (int j = 1; j <= d_; ++j) f(li(k, j));
+  });
+  share(nu_, [&](auto&& f) {
+    for (int k = 0; k < N_; ++k) f(ui(k));
+  });
+  if (free_T_) nominal[0] = std::max(1.0, magnitude(0));
+  for (size_t v = 0; v < n_; ++v) x_scale[v] = 1.0 / nominal[v];
+  std::vector<double> values(nz_.size()), biggest(rows_, 0.0);
+  jacobian(guess_.data(), values.data());
+  for (size_t e = 0; e < nz_.size(); ++e) {
+    const auto [r, c] = nz_[e];
+    biggest[r] = std::max(biggest[r], std::fabs(values[e]) * nominal[c]);
+  }
+  for (size_t r = 0; r < rows_; ++r) g_scale[r] = biggest[r] > 100 ? 100 / biggest[r] : 1.0;
+  std::vector<double> grad(n_);
+  gradient(guess_.data(), grad.data());
+  double gmax = 0.0;
+  for (size_t v = 0; v < n_; ++v) gmax = std::max(gmax, std::fabs(grad[v]) * nominal[v]);
+  f_scale = gmax > 100 ? 100 / gmax : 1.0;
 }
 
 std::string Transcription::describe(size_t row, const double* x) const {
@@ -633,6 +792,13 @@ std::string Transcription::describe(size_t row, const double* x) const {
                        time(x, static_cast<int>(p) / d_, static_cast<int>(p) % d_ + 1));
   }
   row -= static_cast<size_t>(N_ * d_) * np_;
+  if (row + path_rows_ + static_cast<size_t>(N_ * d_) * np_ >= rows_ - turning_.size()) {
+    const auto [base, w] = turning_.at(row + path_rows_ + static_cast<size_t>(N_ * d_) * np_ -
+                                       (rows_ - turning_.size()));
+    const std::string& r11 = c.coordinate_names[base];
+    return fmt::format("periodicity of '{}' (R(T) = R(0) about {})", r11.substr(0, r11.size() - 4),
+                       "xyz"[w]);
+  }
   if (row >= start_rows_.size() + periodic_.size()) {
     const size_t r = row - start_rows_.size() - periodic_.size(), n = static_cast<size_t>(N_ - 1);
     return fmt::format("constant control '{}' between intervals {} and {}",
@@ -644,6 +810,12 @@ std::string Transcription::describe(size_t row, const double* x) const {
                        i < nq_ ? c.coordinate_names[i] : c.velocity_names[i - nq_]);
   }
   const size_t i = start_rows_.at(row);
+  if (i >= 2 * m_) {
+    const std::string& r11 = c.coordinate_names[rotations_[(i - 2 * m_) / 6]];
+    const auto [a, b] = kOrthonormalPairs[(i - 2 * m_) % 6];
+    return fmt::format("orthonormality of '{}' (RᵀR = 1, entry {}{}) at t = 0",
+                       r11.substr(0, r11.size() - 4), a + 1, b + 1);
+  }
   return fmt::format("constraint '{}' {}at t = 0", c.constraint_names[i % m_],
                      i < m_ ? "" : "rate ");
 }

@@ -3,6 +3,7 @@
 // of the implicit DAE, variables and constraints laid out interval by interval, with bounds, a
 // starting point, values and the exact sparse first derivatives.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -16,6 +17,12 @@
 #include "optimize/second_derivatives.hpp"
 
 namespace lagrange::collocation {
+
+/// The six entries (i ≤ j) of RᵀR − 1 that a free body's orthonormality invariant holds.
+inline constexpr std::array<std::pair<size_t, size_t>, 6> kOrthonormalPairs{
+    {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}}};
+/// (i, j) of the entries whose (M_ij − M_ji)/2 are vee(skew M)'s x, y and z.
+inline constexpr std::array<std::pair<size_t, size_t>, 3> kSkewPairs{{{2, 1}, {0, 2}, {1, 0}}};
 
 /// Variables: [T when free], then per interval k < N the state X_{k,0…d−1} (x = (q, v)), the
 /// multipliers Λ_{k,1…d} and the controls U_k, then X_{N,0}; X_{k,d} is X_{k+1,0}.
@@ -54,6 +61,11 @@ class Transcription {
   const std::vector<std::pair<size_t, size_t>>& hessian_pattern() const { return hnz_; }
   /// σ∇²J + Σ y_r ∇²g_r at x, in hessian_pattern() order (y: one multiplier per constraint).
   void hessian(const double* x, double sigma, const double* y, double* values);
+  /// Ipopt's user scaling (nlp_scaling_method=user-scaling) from the problem's nominal
+  /// magnitudes (docs/theory.md §10, "Scaling"):
+  /// each variable by 1/its largest magnitude in the starting point and bounds (at least 1), each
+  /// constraint and the objective down to a largest scaled gradient of 100 there.
+  void scaling(double* x_scale, double* g_scale, double& f_scale);
   /// What constraint `row` is and where, in words ("equation of motion of 'x_dot' at t = 0.25").
   std::string describe(size_t row, const double* x) const;
   /// A final value left out because the invariants imply it (docs/theory.md §10, "Constrained
@@ -76,7 +88,7 @@ class Transcription {
   bool maximize() const { return sign_ < 0; }
   /// How many invariants (C_i, Ċ_i) are imposed at t = 0 and how many x(T) = x(0) rows.
   size_t start_invariant_rows() const { return start_rows_.size(); }
-  size_t periodic_rows() const { return periodic_.size(); }
+  size_t periodic_rows() const { return periodic_.size() + turning_.size(); }
   const std::vector<size_t>& control_inputs() const { return controls_; }
 
  private:
@@ -103,10 +115,22 @@ class Transcription {
   /// The boundary state at t = 0 (`end` false) or T: the model's start with the fixed boundary
   /// values written in, projected onto the invariants keeping them.
   std::vector<double> boundary_state(bool end);
-  /// Rows of ∂(C, Ċ)/∂(q, v) at (t, X) as emit(invariant, column, value): invariant i < m is
-  /// C_i, m + i is Ċ_i; the last tape evaluation is dyn_'s.
+  /// Rows of the invariants' gradients ∂(C, Ċ, RᵀR)/∂(q, v) at (t, X) as emit(invariant, column,
+  /// value), numbered as invariants() counts them; with constraints the last tape evaluation is
+  /// dyn_'s.
   template <class Emit>
   void invariant_gradients(double t, const double* X, Emit&& emit);
+  /// The invariants: C (m), Ċ (m), then RᵀR = 1 of each free body (6 entries each).
+  size_t invariants() const { return 2 * m_ + 6 * rotations_.size(); }
+  /// Entry `which` (from 0, body by body) of the free bodies' RᵀR − 1 at the state X.
+  double orthonormality(const double* X, size_t which) const;
+  /// Component w of vee(skew(R(0)ᵀR(T))) for the body whose R11 is q[base], from the states at
+  /// t = 0 and T; zero when the body has turned back.
+  double turning(const double* X0, const double* XT, size_t base, size_t w) const;
+  /// Its gradient: on_start(column, value) for R(0)'s entries, on_end for R(T)'s.
+  template <class EmitA, class EmitB>
+  void turning_gradient(const double* X0, const double* XT, size_t base, size_t w, EmitA&& on_start,
+                        EmitB&& on_end) const;
   /// Compiles the second derivatives of the DAE, the point functions and the invariants, and
   /// finds the Hessian's pattern (docs/theory.md §10, "Hessian").
   void prepare_hessian(HessianChoice choice);
@@ -132,12 +156,17 @@ class Transcription {
   bool free_T_;
   double T_;
   double sign_;
-  std::vector<size_t> start_rows_;    ///< invariants imposed at t = 0 (i < m: C_i, else Ċ_{i−m})
-  std::vector<BoundaryValue> final_;  ///< final values imposed as bounds
+  /// Invariants imposed at t = 0 (i < m: C_i, i < 2m: Ċ_{i−m}, else the free bodies' RᵀR = 1).
+  std::vector<size_t> start_rows_;
+  std::vector<size_t> rotations_;       ///< per free body, the index of R11 in q (R row-major)
+  std::vector<BoundaryValue> final_;    ///< final values imposed as bounds
   std::vector<BoundaryValue> implied_;  ///< final values the invariants imply, checked only
   std::vector<size_t> periodic_;        ///< state components with x(T) = x(0) imposed
-  std::vector<size_t> constant_;        ///< controls with one value over the horizon
-  PointFunctions paths_;                ///< the guessed paths and their time derivatives
+  /// Periodic orientations: (R11's index in q, w) for each row vee(skew(R(0)ᵀR(T)))_w = 0, the
+  /// last rows of the NLP.
+  std::vector<std::pair<size_t, size_t>> turning_;
+  std::vector<size_t> constant_;  ///< controls with one value over the horizon
+  PointFunctions paths_;          ///< the guessed paths and their time derivatives
   std::vector<size_t> controls_;
   std::vector<double> q0_, v0_;
   size_t n_ = 0, rows_ = 0, block_ = 0, first_ = 0, path_rows_ = 0;

@@ -127,7 +127,7 @@ void Transcription::prepare_hessian(HessianChoice choice) {
     h_point_ = SecondDerivatives(s, in, columns);
   }
   // Σ ν_i C_i + Σ ν_{m+i} Ċ_i.
-  if (!start_rows_.empty()) {
+  if (m_ > 0 && !start_rows_.empty()) {
     const std::vector<GiNaC::symbol> nu = symbols("hess_nu", 2 * m_);
     GiNaC::ex s = 0;
     for (size_t k = 0; k < m_; ++k)
@@ -260,12 +260,35 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
   hin_.push_back(0.0);            // M
   hin_.resize(hin_.size() + np_, 0.0);
   scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(N_ - 1, d_, col, t); });
+  // A periodic orientation's y·(AᵀB − BᵀA)_ij/2 (A = R(0), B = R(T)): ∂²/∂A_ai∂B_aj = y/2 and
+  // ∂²/∂A_aj∂B_ai = −y/2 (docs/theory.md §10, "Free bodies").
+  const size_t turning_at = rows_ - turning_.size();
+  for (size_t r = 0; r < turning_.size(); ++r) {
+    const auto [base, w] = turning_[r];
+    const auto [i, j] = kSkewPairs[w];
+    const size_t A = xi(0, 0) + base, B = xi(N_, 0) + base;
+    for (size_t a = 0; a < 3; ++a) {
+      emit(B + 3 * a + j, A + 3 * a + i, y[turning_at + r] / 2);
+      emit(B + 3 * a + i, A + 3 * a + j, -y[turning_at + r] / 2);
+    }
+  }
   // The invariants imposed at t = 0, on X_{0,0}.
   if (start_rows_.empty()) return;
-  hin_ = load(0.0, state(x, 0, 0), control(x, 0));
   const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
+  // A free body's ν (RᵀR − 1)_ij: ∂²/∂R_ai∂R_aj = ν for i ≠ j, 2ν on the diagonal (§10, "Free
+  // bodies").
+  for (size_t r = 0; r < start_rows_.size(); ++r) {
+    if (start_rows_[r] < 2 * m_) continue;
+    const size_t w = start_rows_[r] - 2 * m_, base = xi(0, 0) + rotations_[w / 6];
+    const auto [i, j] = kOrthonormalPairs[w % 6];
+    for (size_t a = 0; a < 3; ++a)
+      emit(base + 3 * a + j, base + 3 * a + i, (i == j ? 2.0 : 1.0) * y[at + r]);
+  }
+  if (m_ == 0) return;
+  hin_ = load(0.0, state(x, 0, 0), control(x, 0));
   std::vector<double> nu(2 * m_, 0.0);
-  for (size_t r = 0; r < start_rows_.size(); ++r) nu[start_rows_[r]] = y[at + r];
+  for (size_t r = 0; r < start_rows_.size(); ++r)
+    if (start_rows_[r] < 2 * m_) nu[start_rows_[r]] = y[at + r];
   hin_.insert(hin_.end(), nu.begin(), nu.end());
   scatter_all(h_invariants_, [&](size_t col, std::vector<Term>& t) { dae_terms(0, 0, col, t); });
 }

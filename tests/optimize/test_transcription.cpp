@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -134,13 +135,57 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values("double_integrator_min_energy.yaml", "double_integrator_min_time.yaml",
                       "cart_pole_swing_up.yaml", "pendulum_swing_up_polar.yaml",
                       "pendulum_swing_up_cartesian.yaml", "van_der_pol_limit_cycle.yaml",
-                      "data/everything.yaml", "data/everything_fixed_horizon.yaml"),
+                      "data/everything.yaml", "data/everything_fixed_horizon.yaml",
+                      "data/attitude_slew.yaml", "data/spin_orbit.yaml"),
     [](const auto& info) {
       std::string s = info.param.substr(0, info.param.size() - 5);
       for (char& c : s)
         if (c == '.' || c == '/') c = '_';
       return s;
     });
+
+}  // namespace
+}  // namespace lagrange
+
+namespace lagrange {
+namespace {
+
+// docs/theory.md §10, "Scaling": a variable's nominal magnitude is its largest value in the
+// starting point or bounds (the kite's reeled-out length: its 400 m bound), every scaled
+// constraint gradient is at most 100 at the starting point, and the scaled problem has the same
+// optimum as Ipopt's own scaling.
+TEST(NlpScaling, NominalMagnitudesScaleVariablesAndRowsWithoutMovingTheOptimum) {
+  testing::OptimalProblem kite("power_cycle_pointmass.yaml");
+  collocation::Transcription nlp(kite.eq, kite.cm, *kite.dyn, kite.spec(), 8, 3, kite.cm->q0,
+                                 kite.cm->v0, HessianChoice::LimitedMemory);
+  std::vector<double> xs(nlp.variables()), gs(nlp.constraints());
+  double fs = 0.0;
+  nlp.scaling(xs.data(), gs.data(), fs);
+  const auto& names = kite.cm->coordinate_names;
+  const size_t l =
+      static_cast<size_t>(std::find(names.begin(), names.end(), "drum.reeled_out") - names.begin());
+  const double* first = nlp.state(xs.data(), 0, 0);
+  EXPECT_DOUBLE_EQ(first[l], 1.0 / 400);
+  EXPECT_DOUBLE_EQ(nlp.state(xs.data(), 5, 2)[l], 1.0 / 400);
+  std::vector<double> values(nlp.jacobian_pattern().size());
+  std::vector<double> x = nlp.guess();
+  nlp.jacobian(x.data(), values.data());
+  for (size_t e = 0; e < values.size(); ++e) {
+    const auto [r, c] = nlp.jacobian_pattern()[e];
+    EXPECT_LE(std::fabs(values[e]) * gs[r] / xs[c], 100 * (1 + 1e-12));
+  }
+  EXPECT_GT(fs, 0.0);
+  EXPECT_LE(fs, 1.0);
+
+  testing::OptimalProblem cart("cart_pole_swing_up.yaml");
+  const OptimizeResult own = cart.solve();
+  OptimizeOptions o;
+  o.ipopt = {{"nlp_scaling_method", "user-scaling"}};
+  const OptimizeResult nominal =
+      optimize(cart.eq, cart.cm, *cart.dyn, cart.spec(), cart.cm->q0, cart.cm->v0, o);
+  ASSERT_TRUE(own.optimal && nominal.optimal) << nominal.status;
+  EXPECT_NEAR(nominal.objective, own.objective, 1e-7 * own.objective);
+}
 
 }  // namespace
 }  // namespace lagrange
