@@ -552,15 +552,16 @@ struct PandaEval {
   std::vector<double> gravity;
 };
 
+const char* const kTau[] = {"tau1", "tau2", "tau3", "tau4", "tau5", "tau6", "tau7"};
+const char* const kJoint[] = {"panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
+                              "panda_joint5", "panda_joint6", "panda_joint7"};
+
 PandaEval panda_eval(const std::vector<double>& q) {
-  static const char* const joints[] = {"panda_joint1", "panda_joint2", "panda_joint3",
-                                       "panda_joint4", "panda_joint5", "panda_joint6",
-                                       "panda_joint7"};
   std::string state;
   for (size_t i = 0; i < q.size(); ++i) {
     char value[64];
     std::snprintf(value, sizeof value, "%.17g", q[i]);
-    state += (i ? "," : "") + std::string(joints[i]) + "=" + value;
+    state += (i ? "," : "") + std::string(kJoint[i]) + "=" + value;
   }
   const hardening::ScratchDir dir("panda_eval");
   const hardening::RunResult r =
@@ -573,9 +574,18 @@ PandaEval panda_eval(const std::vector<double>& q) {
           j.at("bias").get<std::vector<double>>()};
 }
 
-const char* const kTau[] = {"tau1", "tau2", "tau3", "tau4", "tau5", "tau6", "tau7"};
-const char* const kJoint[] = {"panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
-                              "panda_joint5", "panda_joint6", "panda_joint7"};
+/// The largest |q − q_ref| and |q̇| over the Panda's joints in instance c.
+struct JointGap {
+  double position = 0.0, speed = 0.0;
+};
+JointGap joint_gap(FmuImporter& f, fmi2Component c, const std::vector<double>& q_ref) {
+  JointGap g;
+  for (size_t i = 0; i < 7; ++i) {
+    g.position = std::max(g.position, std::abs(f.get(c, kJoint[i]) - q_ref[i]));
+    g.speed = std::max(g.speed, std::abs(f.get(c, std::string(kJoint[i]) + "_dot")));
+  }
+  return g;
+}
 
 // Holding torques equal to the gravity torques that `lagrange eval` gives at the ready pose keep
 // the arm there: after 1 s every joint within 1e-6 rad of where it started and at rest to 1e-6
@@ -595,12 +605,8 @@ TEST(ExportFmu, PandaHeldByGravityTorquesSetAsInputs) {
     ASSERT_EQ(f.do_step(held, 0.01 * k, 0.01, fmi2True), fmi2OK);
     ASSERT_EQ(f.do_step(falling, 0.01 * k, 0.01, fmi2True), fmi2OK);
   }
-  double drift = 0.0, speed = 0.0, fall = 0.0;
-  for (size_t i = 0; i < 7; ++i) {
-    drift = std::max(drift, std::abs(f.get(held, kJoint[i]) - q0[i]));
-    speed = std::max(speed, std::abs(f.get(held, std::string(kJoint[i]) + "_dot")));
-    fall = std::max(fall, std::abs(f.get(falling, kJoint[i]) - q0[i]));
-  }
+  const auto [drift, speed] = joint_gap(f, held, q0);
+  const double fall = joint_gap(f, falling, q0).position;
   EXPECT_LT(drift, 1e-6);
   EXPECT_LT(speed, 1e-6);
   EXPECT_GT(fall, 0.5);
@@ -646,11 +652,7 @@ TEST(ExportFmu, PandaPdControllerReachesTargetThroughTorqueInputs) {
     }
     ASSERT_EQ(f.do_step(c, h * k, h, fmi2True), fmi2OK) << "step " << k;
   }
-  double error = 0.0, speed = 0.0;
-  for (size_t i = 0; i < 7; ++i) {
-    error = std::max(error, std::abs(f.get(c, kJoint[i]) - target[i]));
-    speed = std::max(speed, std::abs(f.get(c, std::string(kJoint[i]) + "_dot")));
-  }
+  const auto [error, speed] = joint_gap(f, c, target);
   EXPECT_NEAR(first_error, 0.5, 1e-12);
   EXPECT_LT(error, 1e-6);
   EXPECT_LT(speed, 1e-5);

@@ -94,14 +94,17 @@ TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
 // Periodicity of a constrained model: x(T) = x(0) only on the components the invariants C = 0,
 // Ċ = 0 leave independent, so the periodic rows and the invariants imposed at t = 0 never exceed
 // the state's dimension (docs/theory.md §10, "Periodic problems"): the kite (8 states, one
-// tether: 6 periodic rows, 2 invariants) and the Cartesian pendulum's orbit (periodic in x only).
+// tether: 6 periodic rows, 2 invariants), the Cartesian pendulum's orbit (periodic in x only), and
+// the rigid AP2 (20 states: l, r, R, l̇, ṙ, ω; C, Ċ and RᵀR = 1 at t = 0 are 8 invariants, R
+// turns back in 3 rows, and 9 of the other 11 components are independent of C and Ċ).
 TEST(PeriodicProblems, RowsAndInvariantsNeverExceedTheStateDimension) {
   struct Case {
     const char* file;
     size_t periodic, invariants;
   };
   for (const Case& c : {Case{"power_cycle_pointmass.yaml", 6, 2},
-                        Case{"data/pendulum_period_cartesian.yaml", 1, 2}}) {
+                        Case{"data/pendulum_period_cartesian.yaml", 1, 2},
+                        Case{"data/power_cycle_ap2.yaml", 12, 8}}) {
     testing::OptimalProblem p(c.file);
     const collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 4, 3, p.cm->q0, p.cm->v0,
                                          HessianChoice::LimitedMemory);
