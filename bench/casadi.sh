@@ -42,4 +42,5 @@ if [[ ! -x $exe || $here/optimal_control_casadi.cpp -nt $exe ]]; then
   g++ -std=c++17 -O3 -DNDEBUG -I "$src" -I "$tree" "$here/optimal_control_casadi.cpp" \
     -L "$tree/lib" -Wl,-rpath,"$tree/lib" -lcasadi -o "$exe"
 fi
-"$exe" "$@"
+# The Ipopt plugin is loaded at run time from CASADIPATH.
+CASADIPATH=$tree/lib "$exe" "$@"

@@ -38,7 +38,7 @@ run_lagrange() {
 run_casadi() {
   local t0 out
   t0=$(now)
-  out=$("$peer" "$N")
+  out=$(CASADIPATH=$casadi/build/lib "$peer" "$N")
   # "casadi: J = …, status …, 13 iterations, set-up … s, solve … s, functions … s, …"
   awk -v wall="$(echo "$(now) - $t0" | bc -l)" '
     {for (i = 1; i <= NF; ++i) {
