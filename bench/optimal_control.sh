@@ -41,7 +41,7 @@ run_casadi() {
   out=$(CASADIPATH=$casadi/build/lib "$peer" "$N")
   # "casadi: J = …, status …, 13 iterations, set-up … s, solve … s, functions … s, …"
   awk -v wall="$(echo "$(now) - $t0" | bc -l)" '
-    {for (i = 1; i <= NF; ++i) {
+    $1 == "casadi:" {for (i = 1; i <= NF; ++i) {
        if ($i == "J") J = $(i + 2); if ($i == "iterations,") it = $(i - 1);
        if ($i == "set-up") setup = $(i + 1); if ($i == "solve") solve = $(i + 1);
        if ($i == "functions") fn = $(i + 1)}}

@@ -6,10 +6,10 @@
 // every collocation point, ∫u² by the Radau quadrature, the same bounds, fixed ends, initial guess
 // and Ipopt options (src/optimize/ipopt_adapter.cpp). Built by bench/casadi.sh.
 //   optimal_control_casadi [N] [d]
-// Prints one line: objective, status, Ipopt iterations, set-up (graph and nlpsol construction),
-// solve, and the solve's time in CasADi's NLP functions (its solver stats t_wall_nlp_*).
+// Prints a line with the objective, status, Ipopt iterations, set-up (graph and nlpsol
+// construction), solve, and the solve's time in CasADi's NLP functions (its solver stats
+// t_wall_nlp_*), then a line with each function's calls and time.
 #include <casadi/casadi.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -76,8 +76,8 @@ int main(int argc, char** argv) {
   std::vector<SX> U(static_cast<size_t>(N));
   for (int k = 0; k < N; ++k) {
     for (int j = 0; j < d; ++j)
-      X[k].push_back(add_state(h * (k + (j == 0 ? 0.0 : tau[j - 1])), k == 0 && j == 0 ? start
-                                                                                       : nullptr));
+      X[k].push_back(
+          add_state(h * (k + (j == 0 ? 0.0 : tau[j - 1])), k == 0 && j == 0 ? start : nullptr));
     U[k] = SX::sym("U");
     w.push_back(U[k]);
     lbx.push_back(-kForce);
@@ -125,7 +125,14 @@ int main(int argc, char** argv) {
       "casadi: J = %.9f, status %s, %d iterations, set-up %.4f s, solve %.4f s, functions %.4f "
       "s, rest (Ipopt) %.4f s, n = %d, m = %d\n",
       static_cast<double>(result.at("f")), stats.at("return_status").to_string().c_str(),
-      static_cast<int>(stats.at("iter_count").to_int()), setup, solve, functions,
-      solve - functions, static_cast<int>(lbx.size()), static_cast<int>(4 * N * d));
+      static_cast<int>(stats.at("iter_count").to_int()), setup, solve, functions, solve - functions,
+      static_cast<int>(lbx.size()), static_cast<int>(4 * N * d));
+  std::printf("casadi functions (calls, wall s):");
+  for (const auto& [key, value] : stats)
+    if (key.rfind("t_wall_nlp_", 0) == 0)
+      std::printf(" %s %d %.4f", key.substr(7).c_str(),
+                  static_cast<int>(stats.at("n_call_" + key.substr(7)).to_int()),
+                  value.to_double());
+  std::printf("\n");
   return stats.at("success").to_bool() ? 0 : 1;
 }
