@@ -9,6 +9,7 @@
 // Prints a line with the objective, status, Ipopt iterations, set-up (graph and nlpsol
 // construction), solve, and the solve's time in CasADi's NLP functions (its solver stats
 // t_wall_nlp_*), then a line with each function's calls and time.
+#include <algorithm>
 #include <casadi/casadi.hpp>
 #include <chrono>
 #include <cmath>
