@@ -2,13 +2,14 @@
 # Study throughput (issue 24, docs/sweeps.md "Speed"): 1000 cases of the double pendulum and 100
 # of the figure-eight kite, 10 s each, as a user runs them: `lagrange sweep` with 1 and 2
 # workers, under `mpirun -n 2`, and through Dask with two local worker processes. Every figure
-# is farm-bench's median of RUNS whole-process runs (start-up, derivation and reading included),
+# is the median of RUNS whole-process runs under /usr/bin/time (start-up, derivation and reading
+# included, after one warm-up run),
 # the machine load (uptime) printed beside it, and the parallel efficiency of 2 workers (wall
 # and cpu of -j 1 against -j 2); Dask's sweep call is also timed alone.
 #
 #   bench/sweep_throughput.sh [BUILD_DIR=build] [RUNS=3]
 #
-# Needs the `lagrange` and `_lagrange` targets built, farm-bench, and for the last two rows
+# Needs the `lagrange` and `_lagrange` targets built, GNU time, and for the last two rows
 # mpirun (openmpi-bin) and python3-distributed.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,8 +19,22 @@ lagrange=$build/lagrange
 work=$(mktemp -d /tmp/sweep-bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
-# The median wall and cpu (user + system) seconds of farm-bench's report on stdin.
-medians() { awk '/ wall s / {w = $4} / cpu s / {c = $4} END {print w, c}'; }
+# The median wall and cpu (user + system) seconds of RUNS runs of COMMAND… under /usr/bin/time,
+# after one warm-up run; each run is stopped after 900 s.
+medians() {
+  timeout 900 "$@" > /dev/null 2>&1 || true
+  for _ in $(seq "$runs"); do
+    timeout 900 /usr/bin/time -f '%e %U %S' -o "$work/time" "$@" > /dev/null 2>&1
+    cat "$work/time"
+  done | awk '
+    function median(a, n,   i, j, t) {
+      for (i = 2; i <= n; i++) for (j = i; j > 1 && a[j - 1] > a[j]; j--) {
+        t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+      return a[int((n + 1) / 2)]
+    }
+    {n++; w[n] = $1; c[n] = $2 + $3}
+    END {print median(w, n), median(c, n)}'
+}
 
 # bench LABEL CASES COMMAND…: one row, the study directory removed before each run. On a
 # shared machine the wall time measures the share of the cores the study got as much as the
@@ -29,8 +44,7 @@ bench() {
   shift 2
   local load wall cpu
   load=$(uptime | sed 's/.*load average: //')
-  read -r wall cpu < <(farm-bench -n "$runs" --warmup 1 --timeout 900 -- \
-    sh -c "rm -rf '$work/study' && exec \"\$@\" > /dev/null 2>&1" sh "$@" | medians)
+  read -r wall cpu < <(medians sh -c "rm -rf '$work/study' && exec \"\$@\"" sh "$@")
   last_wall=$wall last_cpu=$cpu
   awk -v l="$label" -v w="$wall" -v c="$cpu" -v n="$cases" -v load="$load" \
     'BEGIN {printf "  %-28s wall %7.3f s %7.1f cases/s  cpu %7.3f s %6.2f ms/case  (load %s)\n",
