@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::hardening {
 namespace {
@@ -177,53 +177,64 @@ TEST(UrdfFriction, NonZeroFrictionIsIgnoredWithAWarningAtItsLine) {
       << r.err;
 }
 
-/// Compiles `dir`/NAME.c with the exported lagrange_manipulator.c by the system cc (warnings are
-/// errors), runs it and returns what it printed.
-std::string build_and_run(const fs::path& dir, const std::string& name) {
-  const fs::path exe = dir / name, out = dir / (name + ".out");
-  const std::string build = "cc -std=c99 -O1 -Wall -Werror -pedantic -o " + exe.string() + " " +
-                            (dir / (name + ".c")).string() + " " +
-                            (dir / "lagrange_manipulator.c").string() + " -lm";
-  EXPECT_EQ(std::system(build.c_str()), 0) << build;
-  EXPECT_EQ(std::system((exe.string() + " > " + out.string()).c_str()), 0) << name;
-  return slurp(out);
+/// Runs `command` through the shell and returns its exit status.
+int shell(const std::string& command) {
+  return std::system(command.c_str());
 }
 
-/// Output of a C driver around the exported manipulator: D (n²), C q̇ (n), g (n), q̈ for `tau`
-/// (n), then τ of inverse dynamics of that q̈ (n), at (q, v) with the default parameters.
-std::vector<double> run_exported(const fs::path& dir, const std::vector<double>& q,
-                                 const std::vector<double>& v, const std::vector<double>& tau) {
-  auto arr = [](const char* name, const std::vector<double>& x) {
-    std::string s = fmt::format("  double {}[] = {{", name);
+/// One sample state of an n-joint arm: positions, rates and joint forces.
+struct ArmState {
+  std::vector<double> q, v, tau;
+};
+
+/// Output of a C driver around the exported manipulator (linked with its object `manipulator`),
+/// for each state in turn: D (n²), C q̇ (n), g (n), q̈ for `tau` (n), then τ of inverse dynamics
+/// of that q̈ (n), with the default parameters. One driver for every state: one compile.
+std::vector<double> run_exported(const fs::path& dir, const fs::path& manipulator,
+                                 const std::vector<ArmState>& states) {
+  auto arr = [](const std::string& name, const std::vector<double>& x) {
+    std::string s = fmt::format("  static const double {}[] = {{", name);
     for (size_t i = 0; i < x.size(); ++i) s += fmt::format("{}{:.17g}", i ? ", " : "", x[i]);
     return s + "};\n";
   };
-  const size_t n = q.size();
-  std::string main = "#include <stdio.h>\n#include \"lagrange_manipulator.h\"\nint main(void) {\n" +
-                     arr("q", q) + arr("v", v) + arr("tau", tau) +
-                     fmt::format(
-                         "  double D[{0}], c[{1}], g[{1}], a[{1}], back[{1}];\n  int i;\n"
-                         "  const double* p = lagrange_parameter_defaults;\n"
-                         "  lagrange_D(q, p, D);\n  lagrange_C_qdot(q, v, p, c);\n"
-                         "  lagrange_g(q, p, g);\n"
-                         "  if (lagrange_forward_dynamics(q, v, tau, p, a)) return 3;\n"
-                         "  lagrange_inverse_dynamics(q, v, a, p, back);\n"
-                         "  for (i = 0; i < {0}; ++i) printf(\"%.17g\\n\", D[i]);\n"
-                         "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", c[i]);\n"
-                         "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", g[i]);\n"
-                         "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", a[i]);\n"
-                         "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", back[i]);\n"
-                         "  return 0;\n}}\n",
-                         n * n, n);
-  spit(dir / "driver.c", main);
-  std::istringstream text(build_and_run(dir, "driver"));
-  std::vector<double> out;
-  for (double x; text >> x;) out.push_back(x);
-  return out;
+  const size_t n = states.at(0).q.size();
+  std::string main = fmt::format(
+      "#include <stdio.h>\n#include \"lagrange_manipulator.h\"\n"
+      "static int print_state(const double* q, const double* v, const double* tau) {{\n"
+      "  double D[{0}], c[{1}], g[{1}], a[{1}], back[{1}];\n  int i;\n"
+      "  const double* p = lagrange_parameter_defaults;\n"
+      "  lagrange_D(q, p, D);\n  lagrange_C_qdot(q, v, p, c);\n"
+      "  lagrange_g(q, p, g);\n"
+      "  if (lagrange_forward_dynamics(q, v, tau, p, a)) return 3;\n"
+      "  lagrange_inverse_dynamics(q, v, a, p, back);\n"
+      "  for (i = 0; i < {0}; ++i) printf(\"%.17g\\n\", D[i]);\n"
+      "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", c[i]);\n"
+      "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", g[i]);\n"
+      "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", a[i]);\n"
+      "  for (i = 0; i < {1}; ++i) printf(\"%.17g\\n\", back[i]);\n"
+      "  return 0;\n}}\nint main(void) {{\n  int status = 0;\n",
+      n * n, n);
+  for (size_t s = 0; s < states.size(); ++s) {
+    main += arr(fmt::format("q{}", s), states[s].q) + arr(fmt::format("v{}", s), states[s].v) +
+            arr(fmt::format("tau{}", s), states[s].tau);
+    main += fmt::format("  status |= print_state(q{0}, v{0}, tau{0});\n", s);
+  }
+  spit(dir / "driver.c", main + "  return status;\n}\n");
+  // warnings are errors, as for the object the driver is linked with
+  const fs::path exe = dir / "driver", out = dir / "driver.out";
+  const std::string build = "cc -std=c99 -O1 -Wall -Werror -pedantic -o " + exe.string() + " " +
+                            (dir / "driver.c").string() + " " + manipulator.string() + " -lm";
+  EXPECT_EQ(shell(build), 0) << build;
+  EXPECT_EQ(shell(exe.string() + " > " + out.string()), 0);
+  std::istringstream text(slurp(out));
+  std::vector<double> values;
+  for (double x; text >> x;) values.push_back(x);
+  return values;
 }
 
 /// Exports `model` as a manipulator, builds and runs the example main.c, and compares D, C q̇,
-/// g, forward and inverse dynamics with `eval` at random states.
+/// g, forward and inverse dynamics with `eval` at random states. The exported source is compiled
+/// once (warnings are errors, -pedantic) and linked with the example and the driver.
 void expect_export_matches_eval(const std::string& model, const std::vector<std::string>& joints,
                                 const std::string& label) {
   ScratchDir dir("robots-export-" + label);
@@ -231,44 +242,54 @@ void expect_export_matches_eval(const std::string& model, const std::vector<std:
   const RunResult r =
       run_lagrange(dir.path(), {"export", model, "--c", out.string(), "--form", "manipulator"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  const fs::path manipulator = out / "lagrange_manipulator.o";
+  ASSERT_EQ(shell("cc -std=c99 -O2 -Wall -Werror -pedantic -c -o " + manipulator.string() + " " +
+                  (out / "lagrange_manipulator.c").string()),
+            0);
   const std::string example = (out / "example").string();
-  ASSERT_EQ(
-      std::system(("cc -std=c99 -O2 -Wall -Werror -o " + example + " " + (out / "main.c").string() +
-                   " " + (out / "lagrange_manipulator.c").string() + " -lm")
-                      .c_str()),
-      0);
-  ASSERT_EQ(std::system((example + " > " + (out / "example.txt").string()).c_str()), 0);
+  ASSERT_EQ(shell("cc -std=c99 -O2 -Wall -Werror -o " + example + " " + (out / "main.c").string() +
+                  " " + manipulator.string() + " -lm"),
+            0);
+  ASSERT_EQ(shell(example + " > " + (out / "example.txt").string()), 0);
   EXPECT_NE(slurp(out / "example.txt").find("gravity compensation"), std::string::npos);
   const size_t n = joints.size();
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-2, 2);
-  for (int s = 0; s < 3; ++s) {
-    std::vector<double> q(n), v(n), tau(n);
+  std::vector<ArmState> states(
+      3, ArmState{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)});
+  std::vector<nlohmann::json> moving, at_rest;
+  for (ArmState& st : states) {
     std::string state, rest, given;
     for (size_t i = 0; i < n; ++i) {
-      q[i] = u(rng);
-      v[i] = u(rng);
-      tau[i] = 5 * u(rng);
+      st.q[i] = u(rng);
+      st.v[i] = u(rng);
+      st.tau[i] = 5 * u(rng);
       const std::string comma = i ? "," : "";
-      state += fmt::format("{}{}={:.17g},{}_dot={:.17g}", comma, joints[i], q[i], joints[i], v[i]);
-      rest += fmt::format("{}{}={:.17g}", comma, joints[i], q[i]);
-      given += fmt::format("{}{}={:.17g}", comma, joints[i], tau[i]);
+      state +=
+          fmt::format("{}{}={:.17g},{}_dot={:.17g}", comma, joints[i], st.q[i], joints[i], st.v[i]);
+      rest += fmt::format("{}{}={:.17g}", comma, joints[i], st.q[i]);
+      given += fmt::format("{}{}={:.17g}", comma, joints[i], st.tau[i]);
     }
-    const nlohmann::json moving = eval_json(dir, {model, "--state", state, "--tau", given});
-    const nlohmann::json at_rest = eval_json(dir, {model, "--state", rest});
-    const std::vector<double> c = run_exported(out, q, v, tau);
-    ASSERT_EQ(c.size(), n * n + 4 * n);
+    moving.push_back(eval_json(dir, {model, "--state", state, "--tau", given}));
+    at_rest.push_back(eval_json(dir, {model, "--state", rest}));
+  }
+  const std::vector<double> all = run_exported(out, manipulator, states);
+  const size_t block = n * n + 4 * n;
+  ASSERT_EQ(all.size(), states.size() * block);
+  for (size_t s = 0; s < states.size(); ++s) {
+    const double* c = all.data() + s * block;
     const double tol = 1e-12;
     for (size_t i = 0; i < n; ++i) {
-      const double g = at_rest["bias"][i].get<double>();
-      const double bias = moving["bias"][i].get<double>();
+      const double g = at_rest[s]["bias"][i].get<double>();
+      const double bias = moving[s]["bias"][i].get<double>();
       for (size_t k = 0; k < n; ++k)
-        EXPECT_NEAR(c[i * n + k], moving["M"][i][k].get<double>(), tol) << label << " D" << i << k;
+        EXPECT_NEAR(c[i * n + k], moving[s]["M"][i][k].get<double>(), tol)
+            << label << " D" << i << k;
       EXPECT_NEAR(c[n * n + i], bias - g, tol * (1 + std::abs(bias))) << label << " C q_dot " << i;
       EXPECT_NEAR(c[n * n + n + i], g, tol * (1 + std::abs(g))) << label << " g " << i;
-      const double a = moving["qddot"][i].get<double>();
+      const double a = moving[s]["qddot"][i].get<double>();
       EXPECT_NEAR(c[n * n + 2 * n + i], a, 1e-10 * (1 + std::abs(a))) << label << " qddot " << i;
-      EXPECT_NEAR(c[n * n + 3 * n + i], tau[i], 1e-10) << label << " tau " << i;
+      EXPECT_NEAR(c[n * n + 3 * n + i], states[s].tau[i], 1e-10) << label << " tau " << i;
     }
   }
 }
