@@ -134,7 +134,7 @@ optimal_control:
   } catch (const ModelError& e) {
     message = e.what();
   }
-  EXPECT_NE(message.find("di.yaml:10:41: error: expected either constant: true or polynomial: "
+  EXPECT_NE(message.find("di.yaml:10:37: error: expected either constant: true or polynomial: "
                          "true for control 'u', not both"),
             std::string::npos)
       << message;
