@@ -20,14 +20,18 @@ struct Bounds {
   double upper = std::numeric_limits<double>::infinity();
 };
 
-/// A model input the optimiser chooses, constant on each collocation interval, or over the whole
-/// horizon (`constant`: a design value such as a gain, a stiffness or a drum radius).
+/// A model input the optimiser chooses, constant on each collocation interval, a polynomial on
+/// each (`polynomial`), or constant over the whole horizon (`constant`: a design value such as a
+/// gain, a stiffness or a drum radius).
 struct ControlSpec {
   size_t input = 0;  ///< index into Model::inputs
   Bounds bounds;
   std::optional<double> guess;  ///< initial guess (else 0 clipped to the bounds)
   bool constant = false;        ///< one value for the whole horizon
   SourceLoc loc;
+  /// A value at each collocation point, the degree d − 1 polynomial through them on each interval
+  /// (docs/theory.md §10, "Polynomial controls").
+  bool polynomial = false;
 };
 
 /// A coordinate (`velocity` false) or its rate NAME_dot, by index into Model::coordinates; or a

@@ -51,7 +51,13 @@ struct OptimizeResult {
   /// The trajectory at t = 0 and every collocation point: t, coordinates, velocities, controls,
   /// multipliers (columns named as `simulate` names them).
   Trajectory trajectory;
-  std::vector<double> controls;  ///< N × nu, row-major: the control on each interval
+  /// N × nu, row-major: the control on each interval (a polynomial control: its mean there).
+  std::vector<double> controls;
+  /// Per control, whether it is a polynomial on each interval (docs/theory.md §10, "Polynomial
+  /// controls").
+  std::vector<bool> polynomial;
+  /// N × d × nu, row-major: each control at each collocation point (as the trajectory's rows).
+  std::vector<double> control_points;
   int intervals = 0, degree = 0;
   /// Ipopt had the exact Hessian of the Lagrangian (a fixed horizon and no option choosing
   /// hessian_approximation), else its limited-memory approximation.
@@ -71,7 +77,12 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
                         const OptimalControlSpec& spec, const std::vector<double>& q0,
                         const std::vector<double>& v0, const OptimizeOptions& options = {});
 
-/// Re-simulate the result's piecewise-constant controls from its initial state with `options`
+/// The result's controls at time t in [0, T] into u (nu values): a piecewise-constant control's
+/// value on t's interval, a polynomial control's polynomial there (docs/theory.md §10).
+void controls_at(const OptimizeResult& result, double t, double* u);
+
+/// Re-simulate the result's controls (held per interval, or following their polynomials) from its
+/// initial state with `options`
 /// (the caller's integrator and tolerances): the largest difference of a state component at
 /// the final time (`final_gap`) and at the collocation samples (`largest_gap`).
 struct VerifyResult {

@@ -81,6 +81,11 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   py::array_t<double> controls(
       {static_cast<py::ssize_t>(r.intervals), static_cast<py::ssize_t>(nu)});
   std::copy(r.controls.begin(), r.controls.end(), controls.mutable_data());
+  py::array_t<double> control_points({static_cast<py::ssize_t>(r.intervals),
+                                      static_cast<py::ssize_t>(r.degree),
+                                      static_cast<py::ssize_t>(nu)});
+  std::copy(r.control_points.begin(), r.control_points.end(), control_points.mutable_data());
+  const std::vector<bool> polynomial = r.polynomial;
   auto run = std::make_unique<Run>();
   run->prepared = m.prepared;
   run->integrator = "Radau IIA collocation";
@@ -106,6 +111,8 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["worst_constraint"] = r.worst_constraint;
   fields["control_names"] = r.control_names;
   fields["controls"] = controls;
+  fields["control_points"] = control_points;
+  fields["polynomial"] = polynomial;
   fields["run"] = py::cast(std::move(run));
   fields["setup_seconds"] = p.derive_seconds + p.compile_seconds + r.setup_seconds;
   fields["solve_seconds"] = r.solve_seconds;

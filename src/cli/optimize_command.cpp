@@ -4,6 +4,7 @@
 // Exit codes: 0 optimal, 1 a mistake in the model file, 2 usage, 3 Ipopt failed or infeasible.
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <stdexcept>
 
@@ -53,6 +54,12 @@ int run_optimize(const Options& opt) {
     fmt::print("  horizon            {:.10g}{}\n", r.horizon, spec.free_horizon ? " (free)" : "");
     fmt::print("  intervals, degree  {}, {} (Radau IIA), {} Hessian\n", r.intervals, r.degree,
                r.exact_hessian ? "exact" : "limited-memory");
+    std::vector<std::string> polynomial;
+    for (size_t c = 0; c < r.polynomial.size(); ++c)
+      if (r.polynomial[c]) polynomial.push_back(r.control_names[c]);
+    if (!polynomial.empty())
+      fmt::print("  polynomial         {} (degree {} on each interval)\n",
+                 fmt::join(polynomial, ", "), r.degree - 1);
     fmt::print("  worst violation    {:.3g}{}\n", r.violation,
                r.worst_constraint.empty() ? "" : " (" + r.worst_constraint + ")");
     fmt::print(

@@ -167,9 +167,16 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
     ControlSpec c{static_cast<size_t>(index), {}, std::nullopt, false, src_.at(kv.first)};
     if (!kv.second.IsNull()) {
       const std::string what = fmt::format("control '{}'", name);
-      c.bounds = read_bounds(kv.second, what, {"guess", "constant"});
+      c.bounds = read_bounds(kv.second, what, {"guess", "constant", "polynomial"});
       if (kv.second["guess"]) c.guess = number(kv.second["guess"], kParams, "guess of " + what);
       if (kv.second["constant"]) c.constant = boolean(kv.second["constant"], "constant of " + what);
+      if (kv.second["polynomial"])
+        c.polynomial = boolean(kv.second["polynomial"], "polynomial of " + what);
+      if (c.constant && c.polynomial)
+        fail(kv.second["polynomial"],
+             fmt::format("expected either constant: true or polynomial: true for {}, not both (one "
+                         "value over the horizon, or a polynomial on each interval)",
+                         what));
     }
     spec.controls.push_back(c);
   }

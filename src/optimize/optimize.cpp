@@ -58,9 +58,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 /// At t = 0 and every collocation point, simulate's row (trajectory_columns: t, q, v, energies,
 /// outputs, the forward dynamics' λ, residuals, reactions, loads) with the controls held, then
-/// the controls and the collocated multipliers `lambda_<constraint>` (at t = 0, where none is
-/// collocated, the forward dynamics' λ). A state where the forward dynamics fail keeps t, q, v
-/// and NaN in the columns they give.
+/// the controls (a polynomial control at t = 0: its first polynomial there) and the collocated
+/// multipliers `lambda_<constraint>` (at t = 0, where none is collocated, the forward dynamics' λ).
+/// A state where the forward dynamics fail keeps t, q, v and NaN in the columns they give.
 Trajectory collocated(collocation::Transcription& nlp, Dynamics& dyn, const double* x,
                       const std::vector<std::string>& controls) {
   const CompiledModel& cm = dyn.model();
@@ -96,10 +96,10 @@ Trajectory collocated(collocation::Transcription& nlp, Dynamics& dyn, const doub
     row.insert(row.end(), lambda, lambda + cm.m);
     traj.data.insert(traj.data.end(), row.begin(), row.end());
   };
-  add(0.0, nlp.state(x, 0, 0), nlp.control(x, 0), nullptr);
+  add(0.0, nlp.state(x, 0, 0), nlp.control(x, 0, 0), nullptr);
   for (int k = 0; k < nlp.intervals(); ++k)
     for (int j = 1; j <= nlp.scheme().degree; ++j)
-      add(nlp.time(x, k, j), nlp.state(x, k, j), nlp.control(x, k), nlp.multipliers(x, k, j));
+      add(nlp.time(x, k, j), nlp.state(x, k, j), nlp.control(x, k, j), nlp.multipliers(x, k, j));
   return traj;
 }
 
@@ -160,9 +160,20 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
           implied.what, implied.projected);
     }
   }
+  // docs/theory.md §10, "Polynomial controls": a polynomial control's mean over an interval is
+  // Σ_j b_j U_{k,j} (the quadrature is exact for its degree d − 1).
+  const size_t nu = spec.controls.size();
+  for (size_t c = 0; c < nu; ++c) r.polynomial.push_back(nlp.polynomial(c));
+  r.controls.assign(static_cast<size_t>(r.intervals) * nu, 0.0);
   for (int k = 0; k < r.intervals; ++k)
-    r.controls.insert(r.controls.end(), nlp.control(x, k),
-                      nlp.control(x, k) + spec.controls.size());
+    for (int j = 1; j <= r.degree; ++j) {
+      const double* u = nlp.control(x, k, j);
+      r.control_points.insert(r.control_points.end(), u, u + nu);
+      for (size_t c = 0; c < nu; ++c)
+        r.controls[static_cast<size_t>(k) * nu + c] +=
+            r.polynomial[c] ? nlp.scheme().b[static_cast<size_t>(j - 1)] * u[c]
+                            : (j == 1 ? u[c] : 0.0);
+    }
   r.trajectory = collocated(nlp, dyn, x, r.control_names);
   if (out.interrupted) {
     r.optimal = false;
@@ -177,18 +188,47 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   return r;
 }
 
+namespace {
+
+/// controls_at with the scheme of the result's degree made once.
+void controls_at(const OptimizeResult& result, const collocation::Radau& scheme, double t,
+                 double* u) {
+  const int N = result.intervals, d = result.degree;
+  const size_t nu = result.control_names.size();
+  const double s = t / result.horizon * N;
+  const int k = std::clamp(static_cast<int>(std::floor(s)), 0, N - 1);
+  std::vector<double> basis;
+  for (size_t c = 0; c < nu; ++c) {
+    if (!result.polynomial[c]) {
+      u[c] = result.controls[static_cast<size_t>(k) * nu + c];
+      continue;
+    }
+    if (basis.empty()) basis = collocation::point_basis(scheme, s - k);
+    u[c] = 0.0;
+    for (int j = 0; j < d; ++j)
+      u[c] += basis[static_cast<size_t>(j)] *
+              result.control_points[(static_cast<size_t>(k * d + j)) * nu + c];
+  }
+}
+
+}  // namespace
+
+void controls_at(const OptimizeResult& result, double t, double* u) {
+  controls_at(result, collocation::radau(result.degree), t, u);
+}
+
 VerifyResult verify(Dynamics& dyn, const OptimalControlSpec& spec, const OptimizeResult& result,
                     SimulationOptions options) {
   const CompiledModel& cm = dyn.model();
   const Trajectory& traj = result.trajectory;
-  const size_t cols = traj.columns.size(), nu = spec.controls.size();
+  const size_t cols = traj.columns.size();
   const int N = result.intervals;
   const double T = result.horizon;
   std::vector<size_t> inputs;
   for (const ControlSpec& c : spec.controls) inputs.push_back(c.input);
+  const collocation::Radau scheme = collocation::radau(result.degree);
   dyn.set_input_law(inputs, [&](double t, const double*, const double*, double* u) {
-    const int k = std::clamp(static_cast<int>(std::floor(t / T * N)), 0, N - 1);
-    for (size_t c = 0; c < nu; ++c) u[c] = result.controls[static_cast<size_t>(k) * nu + c];
+    controls_at(result, scheme, t, u);
   });
   std::vector<double> q0(traj.data.begin() + 1, traj.data.begin() + 1 + static_cast<long>(cm.nq));
   std::vector<double> v0(traj.data.begin() + 1 + static_cast<long>(cm.nq),

@@ -93,4 +93,14 @@ Radau radau(int d) {
   return r;
 }
 
+// docs/theory.md §10, "Polynomial controls": ℓ̃_j(τ) = Π_{l≠j} (τ − τ_l)/(τ_j − τ_l) over l = 1..d.
+std::vector<double> point_basis(const Radau& r, double tau) {
+  const size_t d = static_cast<size_t>(r.degree);
+  std::vector<double> w(d, 1.0);
+  for (size_t j = 1; j <= d; ++j)
+    for (size_t l = 1; l <= d; ++l)
+      if (l != j) w[j - 1] *= (tau - r.tau[l]) / (r.tau[j] - r.tau[l]);
+  return w;
+}
+
 }  // namespace lagrange::collocation

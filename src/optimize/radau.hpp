@@ -24,4 +24,9 @@ struct Radau {
 /// The scheme of degree 1 to 5 (std::invalid_argument otherwise).
 Radau radau(int degree);
 
+/// ℓ̃_j(τ), j = 1..d: the Lagrange basis of the collocation points τ₁…τ_d at τ, so that the degree
+/// d − 1 polynomial through values U_j there is Σ_j ℓ̃_j(τ) U_j (docs/theory.md §10, "Polynomial
+/// controls").
+std::vector<double> point_basis(const Radau& r, double tau);
+
 }  // namespace lagrange::collocation

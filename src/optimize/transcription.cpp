@@ -87,7 +87,13 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   if (intervals < 1) throw std::invalid_argument("expected at least 1 collocation interval");
   if (spec.multipliers.size() != m_)
     throw std::invalid_argument("the problem's multipliers do not match the model's constraints");
-  for (const ControlSpec& c : spec.controls) controls_.push_back(c.input);
+  for (const ControlSpec& c : spec.controls) {
+    if (c.constant && c.polynomial)
+      throw std::invalid_argument(fmt::format("control '{}' cannot be both constant and polynomial",
+                                              eq.model->inputs[c.input].name));
+    controls_.push_back(c.input);
+    polynomial_.push_back(c.polynomial);
+  }
   if (free_T_) {
     // dt/dT enters every point: the dynamics must not depend on t itself (∂/∂t is not on the tape).
     const GiNaC::symbol& t = eq.model->t;
@@ -108,7 +114,13 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
     if (name.size() > 4 && name.compare(name.size() - 4, 4, ".R11") == 0) rotations_.push_back(i);
   }
   choose_boundary_rows();
-  block_ = static_cast<size_t>(d_) * (nx_ + m_) + nu_;
+  size_t control_width = 0;  // the controls' variables per interval
+  for (size_t c = 0; c < nu_; ++c) {
+    u_offset_.push_back(control_width);
+    control_width += static_cast<size_t>(control_points(c));
+  }
+  start_basis_ = point_basis(rad_, 0.0);
+  block_ = static_cast<size_t>(d_) * (nx_ + m_) + control_width;
   first_ = free_T_ ? 1 : 0;
   n_ = first_ + static_cast<size_t>(N_) * block_ + nx_;
   path_rows_ = static_cast<size_t>(N_ * d_) * (nx_ + m_);
@@ -136,19 +148,36 @@ size_t Transcription::li(int k, int j) const {
   return first_ + static_cast<size_t>(k) * block_ + static_cast<size_t>(d_) * nx_ +
          static_cast<size_t>(j - 1) * m_;
 }
-size_t Transcription::ui(int k) const {
-  return first_ + static_cast<size_t>(k) * block_ + static_cast<size_t>(d_) * (nx_ + m_);
+size_t Transcription::ui(int k, int j, size_t c) const {
+  return first_ + static_cast<size_t>(k) * block_ + static_cast<size_t>(d_) * (nx_ + m_) +
+         u_offset_[c] + (polynomial_[c] ? static_cast<size_t>(j - 1) : 0);
+}
+
+// docs/theory.md §10, "Polynomial controls": U_{k,j} at a collocation point, Σ_l ℓ̃_l(0) U_{k,l}
+// at the interval's start.
+const double* Transcription::control(const double* x, int k, int j) const {
+  u_.resize(nu_);
+  for (size_t c = 0; c < nu_; ++c) {
+    if (!polynomial_[c] || j > 0) {
+      u_[c] = x[ui(k, j, c)];
+      continue;
+    }
+    u_[c] = 0.0;
+    for (int l = 1; l <= d_; ++l)
+      u_[c] += start_basis_[static_cast<size_t>(l - 1)] * x[ui(k, l, c)];
+  }
+  return u_.data();
 }
 
 size_t Transcription::point_variable(size_t column, int k, int j) const {
   const size_t cu = 1 + nx_, cl = cu + nu_;
   if (column < cu) return xi(k, j) + column - 1;
-  if (column < cl) return ui(k) + column - cu;
+  if (column < cl) return ui(k, j, column - cu);
   return li(k, j) + column - cl;
 }
 
 void Transcription::eval_point(const double* x, int k, int j) {
-  fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k)), multipliers(x, k, j), out_);
+  fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k, j)), multipliers(x, k, j), out_);
 }
 
 double Transcription::time(const double* x, int k, int j) const {
@@ -172,10 +201,11 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
         xu[i] = finite(b.bounds.upper);
       }
   for (int k = 0; k < N_; ++k)
-    for (size_t c = 0; c < nu_; ++c) {
-      xl[ui(k) + c] = finite(spec_.controls[c].bounds.lower);
-      xu[ui(k) + c] = finite(spec_.controls[c].bounds.upper);
-    }
+    for (size_t c = 0; c < nu_; ++c)
+      for (int j = 1; j <= control_points(c); ++j) {
+        xl[ui(k, j, c)] = finite(spec_.controls[c].bounds.lower);
+        xu[ui(k, j, c)] = finite(spec_.controls[c].bounds.upper);
+      }
   auto fix = [&](size_t at, const BoundaryValue& b) {
     xl[at + state_index(b.state, *cm_)] = finite(b.bounds.lower);
     xu[at + state_index(b.state, *cm_)] = finite(b.bounds.upper);
@@ -347,7 +377,8 @@ std::vector<double> Transcription::make_guess() {
   const std::vector<double> start = boundary_state(false), end = boundary_state(true);
   auto clamp = [&](size_t i, double v) { return std::min(std::max(v, xl[i]), xu[i]); };
   std::vector<double> u0(nu_), times;
-  for (size_t c = 0; c < nu_; ++c) u0[c] = clamp(ui(0) + c, spec_.controls[c].guess.value_or(0.0));
+  for (size_t c = 0; c < nu_; ++c)
+    u0[c] = clamp(ui(0, 1, c), spec_.controls[c].guess.value_or(0.0));
   for (int k = 0; k < N_; ++k)
     for (int j = 0; j < d_; ++j) times.push_back(T_ * (k + rad_.tau[static_cast<size_t>(j)]) / N_);
   times.push_back(T_);
@@ -386,14 +417,16 @@ std::vector<double> Transcription::make_guess() {
   for (const BoundaryValue& b : final_) keep_end[state_index(b.state, *cm_)] = b.fixed();
   for (int k = 0; k < N_; ++k) {
     // From a guess file or a simulation, interval k's control is the one at its first
-    // collocation point (for a file of the same mesh, exactly its control there), clipped to the
-    // bounds.
-    if (guessed_controls)
-      for (size_t c = 0; c < nu_; ++c)
-        u0[c] = clamp(ui(k) + c, (*guessed_controls)[static_cast<size_t>(k * d_ + 1)][c]);
+    // collocation point, a polynomial control's at each point (for a file of the same mesh,
+    // exactly its controls there), clipped to the bounds.
+    for (size_t c = 0; c < nu_; ++c)
+      for (int j = 1; j <= control_points(c); ++j) {
+        const size_t i = ui(k, j, c);
+        x[i] = guessed_controls ? clamp(i, (*guessed_controls)[static_cast<size_t>(k * d_ + j)][c])
+                                : u0[c];
+      }
     for (size_t c : constant_)  // one value over the horizon: interval 0's
-      if (k > 0) u0[c] = x[ui(0) + c];
-    std::copy(u0.begin(), u0.end(), x.begin() + static_cast<long>(ui(k)));
+      if (k > 0) x[ui(k, 1, c)] = x[ui(0, 1, c)];
     for (int j = 0; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j);
       const bool first = k == 0 && j == 0, last = k == N_ - 1 && j == d_;
@@ -412,7 +445,8 @@ std::vector<double> Transcription::make_guess() {
   std::vector<double> qdot(nq_), a(nv_), lambda(m_);
   for (int k = 0; k < N_ && m_ > 0; ++k)
     for (int j = 1; j <= d_; ++j) {
-      for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], x[ui(k) + c]);
+      const double* u = control(x.data(), k, j);
+      for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
       const double* s = x.data() + xi(k, j);
       try {
         dyn_.forward(time(x.data(), k, j), s, s + nq_, qdot.data(), a.data(), lambda.data());
@@ -453,7 +487,7 @@ void Transcription::residual(const double* x, int k, int j, double* r) {
     const double* X = state(x, k, l);
     for (size_t i = 0; i < nx_; ++i) xp_[i] += f * X[i];
   }
-  const double* u = control(x, k);
+  const double* u = control(x, k, j);
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
   const double* X = state(x, k, j);
   dyn_.dae_residual(time(x, k, j), X, X + nq_, xp_.data(), xp_.data() + nq_, multipliers(x, k, j),
@@ -525,7 +559,7 @@ void Transcription::constraint_values(const double* x, double* g) {
   for (size_t r = 0; r < constant_.size(); ++r)
     for (int k = 0; k + 1 < N_; ++k)
       g[constant_at + r * static_cast<size_t>(N_ - 1) + static_cast<size_t>(k)] =
-          control(x, k + 1)[constant_[r]] - control(x, k)[constant_[r]];
+          x[ui(k + 1, 1, constant_[r])] - x[ui(k, 1, constant_[r])];
   const size_t turning_at = rows_ - turning_.size();
   for (size_t r = 0; r < turning_.size(); ++r) {
     const auto [base, w] = turning_[r];
@@ -533,7 +567,8 @@ void Transcription::constraint_values(const double* x, double* g) {
   }
   if (start_rows_.empty()) return;
   const size_t at = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
-  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
+  const double* u = control(x, 0, 0);
+  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
   std::vector<double> C(2 * m_);
   if (m_ > 0) dyn_.constraints(0.0, state(x, 0, 0), state(x, 0, 0) + nq_, C.data(), C.data() + m_);
   for (size_t r = 0; r < start_rows_.size(); ++r) {
@@ -622,8 +657,8 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       for (int o = 0; o < J.Phi_x.outerSize(); ++o)
         for (Eigen::SparseMatrix<double>::InnerIterator it(J.Phi_x, o); it; ++it) {
           const size_t c = static_cast<size_t>(it.col());
-          emit(row + nq_ + static_cast<size_t>(it.row()), c < nx_ ? xi(k, j) + c : ui(k) + c - nx_,
-               it.value());
+          emit(row + nq_ + static_cast<size_t>(it.row()),
+               c < nx_ ? xi(k, j) + c : ui(k, j, c - nx_), it.value());
         }
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).
@@ -649,8 +684,8 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   for (size_t r = 0; r < constant_.size(); ++r)
     for (int k = 0; k + 1 < N_; ++k) {
       const size_t row = constant_at + r * static_cast<size_t>(N_ - 1) + static_cast<size_t>(k);
-      emit(row, ui(k + 1) + constant_[r], 1.0);
-      emit(row, ui(k) + constant_[r], -1.0);
+      emit(row, ui(k + 1, 1, constant_[r]), 1.0);
+      emit(row, ui(k, 1, constant_[r]), -1.0);
     }
   const size_t turning_at = rows_ - turning_.size();
   for (size_t r = 0; r < turning_.size(); ++r) {
@@ -665,7 +700,8 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   std::vector<size_t> row_of(invariants(), rows_);
   for (size_t r = 0; r < start_rows_.size(); ++r)
     row_of[start_rows_[r]] = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + r;
-  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], control(x, 0)[c]);
+  const double* u = control(x, 0, 0);
+  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
   invariant_gradients(0.0, state(x, 0, 0), [&](size_t i, size_t col, double v) {
     if (row_of[i] < rows_) emit(row_of[i], xi(0, 0) + col, v);
   });
@@ -710,7 +746,8 @@ std::vector<Transcription::ImpliedGap> Transcription::implied_final_gaps(const d
   std::vector<double> end(state(x, N_, 0), state(x, N_, 0) + nx_);
   std::vector<bool> keep(nx_, false);
   for (const BoundaryValue& b : final_) keep[state_index(b.state, *cm_)] = b.fixed();
-  for (size_t u = 0; u < nu_; ++u) dyn_.hold_input(controls_[u], control(x, N_ - 1)[u]);
+  const double* u = control(x, N_ - 1, d_);
+  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
   dyn_.try_project(horizon(x), end.data(), end.data() + nq_, kept_coordinates(keep, nq_));
   for (const BoundaryValue& b : implied_) {
     const size_t i = state_index(b.state, *cm_);
@@ -754,9 +791,11 @@ void Transcription::scaling(double* x_scale, double* g_scale, double& f_scale) {
     for (int k = 0; k < N_; ++k)
       for (int j = 1; j <= d_; ++j) f(li(k, j));
   });
-  share(nu_, [&](auto&& f) {
-    for (int k = 0; k < N_; ++k) f(ui(k));
-  });
+  for (size_t c = 0; c < nu_; ++c)  // a control over all intervals and points
+    share(1, [&](auto&& f) {
+      for (int k = 0; k < N_; ++k)
+        for (int j = 1; j <= control_points(c); ++j) f(ui(k, j, c));
+    });
   if (free_T_) nominal[0] = std::max(1.0, magnitude(0));
   for (size_t v = 0; v < n_; ++v) x_scale[v] = 1.0 / nominal[v];
   std::vector<double> values(nz_.size()), biggest(rows_, 0.0);

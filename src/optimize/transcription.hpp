@@ -25,7 +25,8 @@ inline constexpr std::array<std::pair<size_t, size_t>, 6> kOrthonormalPairs{
 inline constexpr std::array<std::pair<size_t, size_t>, 3> kSkewPairs{{{2, 1}, {0, 2}, {1, 0}}};
 
 /// Variables: [T when free], then per interval k < N the state X_{k,0…d−1} (x = (q, v)), the
-/// multipliers Λ_{k,1…d} and the controls U_k, then X_{N,0}; X_{k,d} is X_{k+1,0}.
+/// multipliers Λ_{k,1…d} and the controls U_k (a polynomial control: U_{k,1…d}), then X_{N,0};
+/// X_{k,d} is X_{k+1,0}.
 /// Constraints: per interval and collocation point j the DAE residual (nq + nv + m rows) and the
 /// path constraints; then the invariants C = 0, Ċ = 0 at t = 0 that the fixed initial values do
 /// not already imply; then x(T) − x(0) for the periodic components the invariants leave
@@ -84,7 +85,12 @@ class Transcription {
   double time(const double* x, int k, int j) const;
   const double* state(const double* x, int k, int j) const { return x + xi(k, j); }
   const double* multipliers(const double* x, int k, int j) const { return x + li(k, j); }
-  const double* control(const double* x, int k) const { return x + ui(k); }
+  /// The controls at τ_j of interval k, j = 0…d (a polynomial control at j = 0: its polynomial
+  /// extrapolated to the interval's start), in a buffer the next call overwrites.
+  const double* control(const double* x, int k, int j) const;
+  /// Whether control c has a value at each collocation point (docs/theory.md §10, "Polynomial
+  /// controls") rather than one per interval.
+  bool polynomial(size_t c) const { return polynomial_[c]; }
   bool maximize() const { return sign_ < 0; }
   /// How many invariants (C_i, Ċ_i) are imposed at t = 0 and how many x(T) = x(0) rows.
   size_t start_invariant_rows() const { return start_rows_.size(); }
@@ -92,10 +98,13 @@ class Transcription {
   const std::vector<size_t>& control_inputs() const { return controls_; }
 
  private:
-  // Offsets of X_{k,j}, Λ_{k,j} (j ≥ 1), U_k.
+  // Offsets of X_{k,j}, Λ_{k,j} (j ≥ 1), and of control c at point j ≥ 1 of interval k (U_{k,j}
+  // of a polynomial control, else U_k whatever j).
   size_t xi(int k, int j) const;
   size_t li(int k, int j) const;
-  size_t ui(int k) const;
+  size_t ui(int k, int j, size_t c) const;
+  /// How many values control c has per interval: d for a polynomial control, else 1.
+  int control_points(size_t c) const { return polynomial_[c] ? d_ : 1; }
   /// The NLP variable of the point functions' column `column` ≥ 1 (q, v, the controls, λ) at
   /// collocation point (k, j ≥ 1); the terminal point is (N − 1, d).
   size_t point_variable(size_t column, int k, int j) const;
@@ -168,6 +177,10 @@ class Transcription {
   std::vector<size_t> constant_;  ///< controls with one value over the horizon
   PointFunctions paths_;          ///< the guessed paths and their time derivatives
   std::vector<size_t> controls_;
+  std::vector<bool> polynomial_;     ///< per control: a value at each collocation point
+  std::vector<size_t> u_offset_;     ///< per control: its first variable after an interval's Λ
+  std::vector<double> start_basis_;  ///< ℓ̃_j(0): a polynomial control at the interval's start
+  mutable std::vector<double> u_;    ///< control()'s buffer
   std::vector<double> q0_, v0_;
   size_t n_ = 0, rows_ = 0, block_ = 0, first_ = 0, path_rows_ = 0;
   std::vector<std::pair<size_t, size_t>> nz_;

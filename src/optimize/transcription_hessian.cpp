@@ -171,7 +171,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
     if (col < nx_) {
       t.push_back({xi(k, j) + col, 1.0});
     } else if (col < nx_ + nu_) {
-      t.push_back({ui(k) + col - nx_, 1.0});
+      t.push_back({ui(k, j, col - nx_), 1.0});
     } else if (col < nx_ + nu_ + nv_) {
       for (int l = 0; l <= d_; ++l)
         t.push_back({xi(k, l) + nq_ + col - nx_ - nu_, rad_.derivative(j, l) / h});
@@ -204,7 +204,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       const double* X = state(x, k, j);
       residual(x, k, j, r.data());  // x' into xp_, the controls held
       // The DAE residual: inputs, a = v', λ, α, μ.
-      hin_ = load(time(x, k, j), X, control(x, k));
+      hin_ = load(time(x, k, j), X, control(x, k, j));
       hin_.insert(hin_.end(), xp_.begin() + static_cast<long>(nq_), xp_.end());
       hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
       hin_.push_back(dyn_.baumgarte());
@@ -230,7 +230,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       }
       // The integrand (Radau weight) and the path constraints.
       const double wL = sigma * sign_ * h * rad_.b[static_cast<size_t>(j - 1)];
-      hin_ = load(time(x, k, j), X, control(x, k));
+      hin_ = load(time(x, k, j), X, control(x, k, j));
       hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
       hin_.push_back(wL);                                                       // L
       hin_.push_back(0.0);                                                      // Φ
@@ -252,8 +252,8 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
         }
       }
     }
-  // The terminal term at (T, X_{N,0}, U_{N−1}, Λ_{N−1,d}).
-  hin_ = load(T, state(x, N_, 0), control(x, N_ - 1));
+  // The terminal term at (T, X_{N,0}, U_{N−1} (a polynomial control: U_{N−1,d}), Λ_{N−1,d}).
+  hin_ = load(T, state(x, N_, 0), control(x, N_ - 1, d_));
   hin_.insert(hin_.end(), multipliers(x, N_ - 1, d_), multipliers(x, N_ - 1, d_) + m_);
   hin_.push_back(0.0);            // L
   hin_.push_back(sigma * sign_);  // Φ
@@ -285,7 +285,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       emit(base + 3 * a + j, base + 3 * a + i, (i == j ? 2.0 : 1.0) * y[at + r]);
   }
   if (m_ == 0) return;
-  hin_ = load(0.0, state(x, 0, 0), control(x, 0));
+  hin_ = load(0.0, state(x, 0, 0), control(x, 0, 0));
   std::vector<double> nu(2 * m_, 0.0);
   for (size_t r = 0; r < start_rows_.size(); ++r)
     if (start_rows_[r] < 2 * m_) nu[start_rows_[r]] = y[at + r];

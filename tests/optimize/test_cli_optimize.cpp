@@ -1,5 +1,5 @@
-// `lagrange optimize`: the summary, the CSV, --verify, and exit code 3 naming the most violated
-// constraint of an infeasible problem.
+// `lagrange optimize`: the summary, the CSV, --verify (also along polynomial controls), and exit
+// code 3 naming the most violated constraint of an infeasible problem.
 
 #include <gtest/gtest.h>
 
@@ -118,6 +118,24 @@ TEST(OptimizeCommand, HessianChoiceReachesTheSameOptimum) {
   };
   EXPECT_NEAR(objective(exact.output), objective(lbfgs.output), 1e-6 * objective(exact.output));
   EXPECT_EQ(testing::run_shell("optimize " + model + " --hessian newton").code, 2);
+}
+
+// A polynomial control (docs/theory.md §10, "Polynomial controls"): the summary names it, the
+// minimum-energy optimum J = 12 is exact at N = 2, and --verify, simulating the input along the
+// polynomials, finds the collocated states to the integrator's tolerance.
+TEST(OptimizeCommand, PolynomialControlIsSummarisedAndVerified) {
+  const auto r =
+      testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) +
+                         "/tests/optimize/data/double_integrator_polynomial.yaml --verify");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const size_t objective = r.output.find("objective ");
+  ASSERT_NE(objective, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(objective + 10)), 12.0, 1e-7) << r.output;
+  EXPECT_NE(r.output.find("polynomial         u (degree 2 on each interval)"), std::string::npos)
+      << r.output;
+  const size_t at = r.output.find("final-state gap ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_LT(std::stod(r.output.substr(at + 16)), 1e-8) << r.output;
 }
 
 TEST(OptimizeCommand, ModelWithoutAProblemIsAUsageError) {

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
+#include "optimize/nlp_derivative_check.hpp"
 #include "optimize/optimal_problem.hpp"
 #include "optimize/radau.hpp"
 #include "optimize/transcription.hpp"
@@ -48,86 +48,18 @@ class NlpDerivatives : public ::testing::TestWithParam<std::string> {};
 TEST_P(NlpDerivatives, MatchCentralDifferences) {
   testing::OptimalProblem p(GetParam());
   collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
-  std::vector<double> x = nlp.guess();
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> perturb(-0.3, 0.3);
-  for (double& xi : x) xi += perturb(rng);
-  if (p.spec().free_horizon) x[0] = 1.3;
-  const size_t n = nlp.variables(), m = nlp.constraints();
-  std::vector<double> J(nlp.jacobian_pattern().size()), grad(n);
-  nlp.jacobian(x.data(), J.data());
-  nlp.gradient(x.data(), grad.data());
-  std::vector<std::vector<double>> dense(m, std::vector<double>(n, 0.0));
-  for (size_t e = 0; e < J.size(); ++e)
-    dense[nlp.jacobian_pattern()[e].first][nlp.jacobian_pattern()[e].second] = J[e];
-  std::vector<double> gp(m), gm(m);
-  for (size_t c = 0; c < n; ++c) {
-    const double step = 1e-6 * std::max(1.0, std::fabs(x[c])), keep = x[c];
-    x[c] = keep + step;
-    nlp.constraint_values(x.data(), gp.data());
-    const double fp = nlp.objective(x.data());
-    x[c] = keep - step;
-    nlp.constraint_values(x.data(), gm.data());
-    const double fm = nlp.objective(x.data());
-    x[c] = keep;
-    for (size_t r = 0; r < m; ++r) {
-      const double fd = (gp[r] - gm[r]) / (2 * step);
-      ASSERT_NEAR(dense[r][c], fd, 1e-5 * std::max(1.0, std::fabs(fd)))
-          << nlp.describe(r, x.data()) << ", variable " << c;
-    }
-    const double fd = (fp - fm) / (2 * step);
-    ASSERT_NEAR(grad[c], fd, 1e-5 * std::max(1.0, std::fabs(fd))) << "gradient, variable " << c;
-  }
+  testing::expect_first_derivatives_match(
+      nlp, testing::perturbed_guess(nlp, p.spec().free_horizon.has_value(), 7));
 }
 
-// The Hessian of the Lagrangian σ∇²J + Σ y_r ∇²g_r against central differences of its gradient
-// σ∇J + Jᵀy (both exact and checked above), with random multipliers, every entry; with a free
-// horizon its row and column too (T enters x' = (1/h) Σ D X nonlinearly).
+// The Hessian of the Lagrangian against central differences of its gradient, with random
+// multipliers, every entry; with a free horizon its row and column too (T enters
+// x' = (1/h) Σ D X nonlinearly).
 TEST_P(NlpDerivatives, HessianMatchesDifferencesOfTheLagrangiansGradient) {
   testing::OptimalProblem p(GetParam());
   collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
-  ASSERT_TRUE(nlp.has_hessian());
-  std::vector<double> x = nlp.guess();
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> perturb(-0.3, 0.3), multiplier(-2.0, 2.0);
-  for (double& xi : x) xi += perturb(rng);
-  if (p.spec().free_horizon) x[0] = 1.3;
-  const size_t n = nlp.variables(), m = nlp.constraints();
-  std::vector<double> y(m);
-  for (double& yi : y) yi = multiplier(rng);
-  const double sigma = 0.7;
-  std::vector<double> J(nlp.jacobian_pattern().size()), grad(n);
-  const auto lagrangian_gradient = [&](std::vector<double>& out) {
-    nlp.gradient(x.data(), grad.data());
-    nlp.jacobian(x.data(), J.data());
-    for (size_t i = 0; i < n; ++i) out[i] = sigma * grad[i];
-    for (size_t e = 0; e < J.size(); ++e) {
-      const auto [r, c] = nlp.jacobian_pattern()[e];
-      out[c] += y[r] * J[e];
-    }
-  };
-  std::vector<double> H(nlp.hessian_pattern().size());
-  nlp.hessian(x.data(), sigma, y.data(), H.data());
-  std::vector<std::vector<double>> dense(n, std::vector<double>(n, 0.0));
-  for (size_t e = 0; e < H.size(); ++e) {
-    const auto [r, c] = nlp.hessian_pattern()[e];
-    ASSERT_GE(r, c);
-    dense[r][c] = dense[c][r] = H[e];
-  }
-  std::vector<double> lp(n), lm(n);
-  for (size_t c = 0; c < n; ++c) {
-    const double step = 1e-6 * std::max(1.0, std::fabs(x[c])), keep = x[c];
-    x[c] = keep + step;
-    lagrangian_gradient(lp);
-    x[c] = keep - step;
-    lagrangian_gradient(lm);
-    x[c] = keep;
-    for (size_t r = 0; r < n; ++r) {
-      const double fd = (lp[r] - lm[r]) / (2 * step);
-      ASSERT_NEAR(dense[r][c], fd, 2e-5 * std::max(1.0, std::fabs(fd)))
-          << "entry (" << r << ", " << c << ")";
-    }
-  }
+  testing::expect_hessian_matches(
+      nlp, testing::perturbed_guess(nlp, p.spec().free_horizon.has_value(), 11), 11);
 }
 
 INSTANTIATE_TEST_SUITE_P(

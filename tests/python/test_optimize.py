@@ -46,6 +46,22 @@ def test_the_double_integrators_minimum_energy_is_the_closed_form():
     assert r.objective == pytest.approx(12 / (1 - 1 / 100), rel=1e-9)
 
 
+def test_a_polynomial_control_has_a_value_at_each_collocation_point():
+    # u = 6 - 12t is linear: polynomial controls hold it exactly, J = 12 at N = 2 (docs/theory.md
+    # §10, "Polynomial controls"); the run's control column carries the points' values.
+    path = SOURCE_DIR / "tests" / "optimize" / "data" / "double_integrator_polynomial.yaml"
+    r = lagrange.load(str(path)).optimize(verify=True)
+    assert r.optimal, r.status
+    assert r.objective == pytest.approx(12, abs=1e-8)
+    assert r.polynomial == [True]
+    assert r.control_points.shape == (2, 3, 1)
+    np.testing.assert_array_equal(np.asarray(r.run["u"])[1:], r.control_points.ravel())
+    t = np.asarray(r.run["t"])
+    np.testing.assert_allclose(np.asarray(r.run["u"]), 6 - 12 * t, atol=1e-7)
+    np.testing.assert_allclose(r.controls[:, 0], [3, -3], atol=1e-7)  # the interval means
+    assert r.verify.final_gap < 1e-8
+
+
 def test_verify_re_simulates_onto_the_collocated_end():
     r = lagrange.load(str(OPTIMAL / "pendulum_swing_up_polar.yaml")).optimize(verify=True)
     assert r.verify.message == ""
