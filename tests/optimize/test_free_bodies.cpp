@@ -28,7 +28,7 @@ double at(const Trajectory& t, size_t row, const std::string& name) {
 // (the discrete minimum-energy problem, exact in the torque; the collocated R' = R Ω only errs
 // in the final orientation, at the collocation's order). Refining N approaches 12 J² θ²/T³.
 TEST(FreeBodies, AttitudeSlewMatchesTheDoubleIntegratorClosedForm) {
-  testing::OptimalProblem slew("data/attitude_slew.yaml");
+  testing::OptimalProblem slew("attitude_slew.yaml");
   const double J = 2.0, theta = kPi / 2, T = 2.0;
   for (const int N : {10, 20}) {
     const OptimizeResult r = slew.solve(N);
@@ -58,7 +58,7 @@ TEST(FreeBodies, AttitudeSlewMatchesTheDoubleIntegratorClosedForm) {
 // The final orientation fixes nine entries of which RᵀR = 1 implies six: three are imposed, the
 // rest checked; nothing is imposed at t = 0, where every value is fixed.
 TEST(FreeBodies, FinalOrientationImposesOnlyItsIndependentEntries) {
-  testing::OptimalProblem slew("data/attitude_slew.yaml");
+  testing::OptimalProblem slew("attitude_slew.yaml");
   collocation::Transcription nlp(slew.eq, slew.cm, *slew.dyn, slew.spec(), 10, 3, slew.cm->q0,
                                  slew.cm->v0, HessianChoice::LimitedMemory);
   EXPECT_EQ(nlp.start_invariant_rows(), 0u);

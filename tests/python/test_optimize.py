@@ -46,6 +46,17 @@ def test_the_double_integrators_minimum_energy_is_the_closed_form():
     assert r.objective == pytest.approx(12 / (1 - 1 / 100), rel=1e-9)
 
 
+def test_a_free_bodys_slew_is_the_double_integrators_closed_form():
+    # A quarter turn of an isotropic body (J = 2) at rest to rest in T = 2 s: the fixed-axis turn
+    # on the double-integrator schedule, J_N = 12 J² θ² / (T³ (1 − 1/N²)) (docs/theory.md §10).
+    r = lagrange.load(str(OPTIMAL / "attitude_slew.yaml")).optimize(intervals=20)
+    assert r.optimal, r.status
+    theta = np.pi / 2
+    assert r.objective == pytest.approx(12 * 4 * theta**2 / (8 * (1 - 1 / 400)), rel=1e-6)
+    assert np.asarray(r.run["sat.R21"])[-1] == pytest.approx(1.0, abs=2e-6)
+    assert np.abs(r.controls[:, :2]).max() < 1e-6  # about z only
+
+
 def test_a_polynomial_control_has_a_value_at_each_collocation_point():
     # u = 6 - 12t is linear: polynomial controls hold it exactly, J = 12 at N = 2 (docs/theory.md
     # §10, "Polynomial controls"); the run's control column carries the points' values.
