@@ -209,6 +209,20 @@ class ExprCompiler {
   /// Supported functions: sin cos tan asin acos atan atan2 sinh cosh tanh exp log sqrt abs.
   std::uint32_t build_function(const GiNaC::function& f) {
     const std::string name = f.get_name();
+    // A formal derivative D[0](conjugate)(x) appears in GiNaC's second derivative of abs: for
+    // real values conjugate and real part have derivative 1 (0 from the second on), the
+    // imaginary part 0. It must not fall through to the function itself (GiNaC names a
+    // derivative after its function): that made d²|x|/dx² = 1/|x| instead of 0.
+    if (GiNaC::is_a<GiNaC::fderivative>(f)) {
+      const size_t order = GiNaC::ex_to<GiNaC::fderivative>(f).derivatives().size();
+      if ((name == "conjugate" || name == "real_part") && f.nops() == 1)
+        return b_.constant(order == 1 ? 1.0 : 0.0);
+      if (name == "imag_part" && f.nops() == 1) return b_.constant(0.0);
+      throw std::invalid_argument(
+          fmt::format("cannot compile a derivative of the function '{}' (it has none in closed "
+                      "form)",
+                      name));
+    }
     if (name == "atan2" && f.nops() == 2) {
       return b_.binary(Op::Atan2, value(f.op(0)), value(f.op(1)));
     }
