@@ -7,7 +7,6 @@
 #include <cmath>
 #include <string>
 
-#include "lagrange/reader.hpp"
 #include "optimize/nlp_derivative_check.hpp"
 #include "optimize/optimal_problem.hpp"
 
@@ -37,7 +36,9 @@ TEST(PolynomialControls, MinimumEnergyDoubleIntegratorIsExactAtTwoIntervals) {
   for (size_t row = 0; row < traj.rows(); ++row) {
     const double t = traj.data[row * cols];
     EXPECT_NEAR(traj.data[row * cols + u], 6 - 12 * t, 1e-7) << "t = " << t;
-    if (row > 0) EXPECT_EQ(traj.data[row * cols + u], r.control_points[row - 1]);
+    if (row > 0) {
+      EXPECT_EQ(traj.data[row * cols + u], r.control_points[row - 1]);
+    }
     EXPECT_NEAR(traj.data[row * cols + 1], 3 * t * t - 2 * t * t * t, 1e-9) << "t = " << t;
   }
   // The interval means of 6 − 12t: 3 and −3.
@@ -112,33 +113,6 @@ INSTANTIATE_TEST_SUITE_P(Examples, PolynomialDerivatives,
                              if (c == '.' || c == '/') c = '_';
                            return s;
                          });
-
-// `constant: true` with `polynomial: true` is refused, located at the polynomial key.
-TEST(PolynomialControls, ConstantAndPolynomialTogetherIsALocatedError) {
-  const std::string model = R"(name: di
-coordinates:
-  x: {initial: 0}
-inputs:
-  u: 0
-kinetic: der(x)^2/2
-generalized_forces: {x: u}
-optimal_control:
-  controls:
-    u: {constant: true, polynomial: true}
-  horizon: 1
-  minimize: integral(u^2)
-)";
-  std::string message = "no error";
-  try {
-    read_model_string(model, "di.yaml");
-  } catch (const ModelError& e) {
-    message = e.what();
-  }
-  EXPECT_NE(message.find("di.yaml:10:37: error: expected either constant: true or polynomial: "
-                         "true for control 'u', not both"),
-            std::string::npos)
-      << message;
-}
 
 }  // namespace
 }  // namespace lagrange

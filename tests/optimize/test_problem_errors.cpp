@@ -157,5 +157,16 @@ TEST(OptimalControlErrors, APeriodicCoordinateThatCannotReturnIsRefused) {
   EXPECT_EQ(error_of(ok + "  bounds: {x_dot: {lower: 0.5}}\n  periodic: [x_dot]\n"), "no error");
 }
 
+// `constant: true` with `polynomial: true` is refused, located at the polynomial key.
+TEST(PolynomialControls, ConstantAndPolynomialTogetherIsALocatedError) {
+  const std::string message = error_of(
+      "  controls:\n    u: {constant: true, polynomial: true}\n  horizon: 1\n"
+      "  minimize: integral(u^2)\n");
+  EXPECT_NE(message.find("di.yaml:10:37: error: expected either constant: true or polynomial: "
+                         "true for control 'u', not both"),
+            std::string::npos)
+      << message;
+}
+
 }  // namespace
 }  // namespace lagrange
