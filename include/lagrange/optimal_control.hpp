@@ -66,6 +66,22 @@ struct PathConstraintSpec {
   SourceLoc loc;
 };
 
+/// One step of a homotopy (docs/theory.md §10, "Homotopy"), solved before the problem itself and
+/// warm-starting the next: the problem with its objective replaced (`replaces_objective`), some
+/// controls' bounds replaced (a fictitious force let free, then fixed at 0), a weight `track` on
+/// the states' distance from the stage's starting point, and Ipopt options of its own.
+struct StageSpec {
+  std::string name;
+  bool replaces_objective = false;
+  bool maximize = false;
+  GiNaC::ex integrand = 0, terminal = 0, mean_integrand = 0;  ///< as OptimalControlSpec's
+  std::string objective_text;
+  std::vector<std::pair<size_t, Bounds>> control_bounds;  ///< (index into controls, bounds)
+  double track = 0.0;
+  std::vector<std::pair<std::string, std::string>> ipopt;  ///< after the command line's
+  SourceLoc loc;
+};
+
 /// The problem: J = ∫₀ᵀ L dt + (1/T)∫₀ᵀ M dt + Φ(T, q(T), v(T), u(T)), minimised (or maximised)
 /// subject to the dynamics, bounds, path constraints and boundary values (docs/theory.md §10).
 struct OptimalControlSpec {
@@ -103,6 +119,8 @@ struct OptimalControlSpec {
   /// rate and control columns start the solve, stretched over the horizon; the path resolved
   /// against the model file's folder.
   std::string guess_file;
+  /// Homotopy stages solved in order before the problem, each from the last one's result.
+  std::vector<StageSpec> stages;
   int intervals = 50;  ///< collocation intervals N
   int degree = 3;      ///< Radau IIA collocation points per interval
   SourceLoc loc;

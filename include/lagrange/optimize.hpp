@@ -36,6 +36,17 @@ struct OptimizeOptions {
   const std::atomic<bool>* interrupt = nullptr;
 };
 
+/// A homotopy stage as it ended (OptimalControlSpec::stages).
+struct StageResult {
+  std::string name;
+  bool optimal = false;
+  std::string status;  ///< Ipopt's status in words
+  int iterations = 0;
+  double objective = 0.0;  ///< the stage's objective, in its own sign, without the tracking term
+  double tracking = 0.0;   ///< the tracking term's value (0 without `track`)
+  double seconds = 0.0;    ///< set-up and solve
+};
+
 /// What optimize() found.
 struct OptimizeResult {
   bool optimal = false;    ///< Ipopt converged to a (locally) optimal point
@@ -67,6 +78,9 @@ struct OptimizeResult {
   std::vector<std::string> warnings;
   /// Why the Hessian is not the exact one when it could have been (empty otherwise).
   std::string hessian_note;
+  /// The homotopy's stages before the problem, in order; the fields above are the problem's own
+  /// solve (its set-up, solve and function times include the stages').
+  std::vector<StageResult> stages;
 };
 
 /// Solve `spec` for the model `eq` (compiled as `cm`) with workspace `dyn` (its parameters and

@@ -295,17 +295,20 @@ void bind_model(py::module_& m) {
            "qdot, lam, a_q, a_v, a_w (columns: inputs, model inputs or parameters), qdot_q, "
            "qdot_v, G, C_q, and the implicit form's K = [M Gᵀ; G 0] and Phi_x = ∂Φ/∂(q, v, "
            "inputs) (dense numpy), with ∂(a, λ)/∂x = −K⁻¹ Phi_x.")
-      .def("optimize", &optimize_model, py::arg("intervals") = py::none(),
-           py::arg("degree") = py::none(), py::arg("ipopt") = std::map<std::string, py::object>{},
-           py::arg("verify") = false, py::arg("verbose") = false, py::arg("hessian") = "auto",
-           "Solve the file's optimal_control problem as `lagrange optimize` does (intervals and "
-           "degree override the file's; ipopt={'key': value} passes options through; verify "
-           "re-simulates the controls), with the GIL released: a namespace with optimal, status, "
-           "objective, horizon, controls (intervals × controls), control_names, run (the "
-           "collocated trajectory as a Run), violation, worst_constraint, iterations, "
-           "setup_seconds, solve_seconds, function_seconds and verify (final_gap, largest_gap, "
-           "message, or None). Ctrl-C raises KeyboardInterrupt carrying that namespace at "
-           "Ipopt's last iterate as .result.")
+      .def(
+          "optimize", &optimize_model, py::arg("intervals") = py::none(),
+          py::arg("degree") = py::none(), py::arg("ipopt") = std::map<std::string, py::object>{},
+          py::arg("verify") = false, py::arg("verbose") = false, py::arg("hessian") = "auto",
+          "Solve the file's optimal_control problem as `lagrange optimize` does (intervals and "
+          "degree override the file's; ipopt={'key': value} passes options through; verify "
+          "re-simulates the controls), with the GIL released: a namespace with optimal, status, "
+          "objective, horizon, controls (intervals × controls), control_names, run (the "
+          "collocated trajectory as a Run), violation, worst_constraint, iterations, "
+          "setup_seconds, solve_seconds, function_seconds, stages (the homotopy's, each with name, "
+          "optimal, status, iterations, objective, tracking, seconds) and verify (final_gap, "
+          "largest_gap, message, or None). Ctrl-C raises KeyboardInterrupt carrying that namespace "
+          "at "
+          "Ipopt's last iterate as .result.")
       .def("stepper", &make_stepper, py::arg("t_end") = py::none(),
            py::arg("integrator") = py::none(), py::arg("rtol") = py::none(),
            py::arg("atol") = py::none(), py::arg("step") = py::none(), py::arg("compile") = "auto",

@@ -118,6 +118,14 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["solve_seconds"] = r.solve_seconds;
   fields["function_seconds"] = r.function_seconds;
   fields["verify"] = verified;
+  py::list stages;
+  for (const StageResult& stage : r.stages)
+    stages.append(types.attr("SimpleNamespace")(
+        py::arg("name") = stage.name, py::arg("optimal") = stage.optimal,
+        py::arg("status") = stage.status, py::arg("iterations") = stage.iterations,
+        py::arg("objective") = stage.objective, py::arg("tracking") = stage.tracking,
+        py::arg("seconds") = stage.seconds));
+  fields["stages"] = stages;
   py::object result = types.attr("SimpleNamespace")(**fields);
   // Ctrl-C: KeyboardInterrupt carrying the result at Ipopt's last iterate (.result).
   if (interruptible.raised()) InterruptibleRun::throw_with({{"result", result}});

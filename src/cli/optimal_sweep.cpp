@@ -151,8 +151,10 @@ void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
             ic.projection.residual, ic.projection.rate_residual));
       OptimalControlSpec spec = *p.model->optimal_control;
       if (r.started_from) {
+        // A neighbour's solution is where a homotopy would lead: its stages are left out.
         write_trajectory_csv(solved.at(*r.started_from), study.guess_path);
         spec.guess_file = study.guess_path;
+        spec.stages.clear();
       }
       OptimizeResult o = optimize(p.equations, p.compiled, dyn, spec, q, v, study.options);
       r.solve_seconds = o.solve_seconds;
@@ -162,6 +164,7 @@ void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
         // case had (docs/sweeps.md, "Optimal control").
         const std::string warm_status = o.status;
         spec.guess_file = p.model->optimal_control->guess_file;
+        spec.stages = p.model->optimal_control->stages;
         OptimizeResult again = optimize(p.equations, p.compiled, dyn, spec, q, v, study.options);
         r.solve_seconds += again.solve_seconds;
         r.iterations += again.iterations;

@@ -49,6 +49,11 @@ int run_optimize(const Options& opt) {
                                         r.setup_seconds + r.solve_seconds, opt.report),
                        opt.report, opt.quiet);
   if (!opt.quiet) {
+    for (const StageResult& stage : r.stages)
+      fmt::print("  stage {:<12} {} ({} iterations), objective {:.6g}{}, {:.2f} s\n", stage.name,
+                 stage.status, stage.iterations, stage.objective,
+                 stage.tracking > 0 ? fmt::format(", tracking {:.3g}", stage.tracking) : "",
+                 stage.seconds);
     fmt::print("{}: {} ({} iterations)\n", p.model->name, r.status, r.iterations);
     fmt::print("  objective          {:.10g}\n", r.objective);
     fmt::print("  horizon            {:.10g}{}\n", r.horizon, spec.free_horizon ? " (free)" : "");

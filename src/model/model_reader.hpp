@@ -226,6 +226,10 @@ class ModelReader {
                      const std::vector<std::string>& extra_keys = {}) const;
   /// The objective `text` at `node`: integral(…) terms with constant factors, plus terminal terms.
   void read_objective(const YAML::Node& node, OptimalControlSpec& spec) const;
+  // read_stages.cpp
+  /// `stages:`, the homotopy's list of `{name, minimize or maximize, controls, track, ipopt}`
+  /// (docs/model-language.md, "Homotopy stages"), into spec.stages.
+  void read_stages(const YAML::Node& node, OptimalControlSpec& spec) const;
 
   // read_generated.cpp — names and state that elements generate (docs/model-language.md).
   Model& model() { return m_; }

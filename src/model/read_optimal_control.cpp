@@ -148,7 +148,7 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   expect_map(node, "optimal_control");
   check_keys(node,
              {"controls", "horizon", "minimize", "maximize", "bounds", "path", "initial", "final",
-              "periodic", "guess", "intervals", "degree"},
+              "periodic", "guess", "intervals", "degree", "stages"},
              "optimal_control");
   OptimalControlSpec spec;
   spec.loc = src_.at(node);
@@ -334,6 +334,7 @@ void ModelReader::read_optimal_control(const YAML::Node& node) {
   };
   count("intervals", spec.intervals, 1, 100000);
   count("degree", spec.degree, 1, 5);
+  if (node["stages"]) read_stages(node["stages"], spec);
   m_.optimal_control = std::move(spec);
 }
 

@@ -52,6 +52,22 @@ std::vector<std::string> problem_warnings(const Equations& eq, const CompiledMod
   return warnings;
 }
 
+/// The problem as a homotopy stage poses it (docs/theory.md §10, "Homotopy"): its objective and
+/// control bounds in place of the problem's.
+OptimalControlSpec staged(const OptimalControlSpec& spec, const StageSpec& stage) {
+  OptimalControlSpec s = spec;
+  s.stages.clear();
+  if (stage.replaces_objective) {
+    s.maximize = stage.maximize;
+    s.integrand = stage.integrand;
+    s.terminal = stage.terminal;
+    s.mean_integrand = stage.mean_integrand;
+    s.objective_text = stage.objective_text;
+  }
+  for (const auto& [c, bounds] : stage.control_bounds) s.controls.at(c).bounds = bounds;
+  return s;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -115,15 +131,39 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   r.degree = options.degree > 0 ? options.degree : spec.degree;
   for (const ControlSpec& c : spec.controls)
     r.control_names.push_back(eq.model->inputs[c.input].name);
-  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0, options.hessian);
+  // docs/theory.md §10, "Homotopy": each stage starts where the last one ended, the problem
+  // itself where the last stage ended.
+  std::vector<double> x_start;
+  for (const StageSpec& stage : spec.stages) {
+    const auto stage_start = std::chrono::steady_clock::now();
+    const OptimalControlSpec s = staged(spec, stage);
+    collocation::Transcription nlp(eq, cm, dyn, s, r.intervals, r.degree, q0, v0, options.hessian,
+                                   x_start.empty() ? nullptr : &x_start, stage.track);
+    r.setup_seconds += seconds_since(stage_start);
+    std::vector<std::pair<std::string, std::string>> ipopt = options.ipopt;
+    ipopt.insert(ipopt.end(), stage.ipopt.begin(), stage.ipopt.end());
+    const auto solve_start = std::chrono::steady_clock::now();
+    collocation::IpoptOutcome out =
+        collocation::solve_with_ipopt(nlp, ipopt, options.verbose, options.interrupt);
+    r.solve_seconds += seconds_since(solve_start);
+    r.function_seconds += out.function_seconds;
+    const double tracking = nlp.tracking(out.x.data());
+    r.stages.push_back({stage.name, out.optimal, out.status, out.iterations,
+                        (nlp.objective(out.x.data()) - tracking) * (nlp.maximize() ? -1.0 : 1.0),
+                        tracking, seconds_since(stage_start)});
+    x_start = std::move(out.x);
+  }
+  const auto setup_start = std::chrono::steady_clock::now();
+  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0, options.hessian,
+                                 x_start.empty() ? nullptr : &x_start);
   r.hessian_note = nlp.hessian_note();
-  r.setup_seconds = seconds_since(start);
+  r.setup_seconds += seconds_since(spec.stages.empty() ? start : setup_start);
 
   const auto solve_start = std::chrono::steady_clock::now();
   collocation::IpoptOutcome out =
       collocation::solve_with_ipopt(nlp, options.ipopt, options.verbose, options.interrupt);
-  r.solve_seconds = seconds_since(solve_start);
-  r.function_seconds = out.function_seconds;
+  r.solve_seconds += seconds_since(solve_start);
+  r.function_seconds += out.function_seconds;
   r.optimal = out.optimal;
   r.status = out.status;
   r.iterations = out.iterations;

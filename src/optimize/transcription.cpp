@@ -55,7 +55,8 @@ size_t state_index(const StateRef& s, const CompiledModel& c) {
 Transcription::Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm,
                              Dynamics& dyn, const OptimalControlSpec& spec, int intervals,
                              int degree, const std::vector<double>& q0,
-                             const std::vector<double>& v0, HessianChoice hessian)
+                             const std::vector<double>& v0, HessianChoice hessian,
+                             const std::vector<double>* start, double track)
     : eq_(eq),
       cm_(cm),
       dyn_(dyn),
@@ -129,7 +130,19 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size() +
           constant_.size() * static_cast<size_t>(N_ - 1) + turning_.size();
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
-  guess_ = make_guess();
+  if (start != nullptr && start->size() != n_)
+    throw std::invalid_argument(fmt::format(
+        "a starting point of {} values for a problem of {} variables", start->size(), n_));
+  guess_ = start != nullptr ? *start : make_guess();
+  if (track > 0) {
+    track_scale_.assign(nx_, 1.0);
+    for_each_node([&](size_t at) {
+      for (size_t i = 0; i < nx_; ++i)
+        track_scale_[i] = std::max(track_scale_[i], std::fabs(guess_[at + i]));
+    });
+    for (double& s : track_scale_) s = 1.0 / (s * s);
+    track_ = track / static_cast<double>(N_ * d_ + 1);
+  }
   const std::vector<double>& x0 = guess_;
   std::map<std::pair<size_t, size_t>, size_t> where;
   walk_jacobian(x0.data(), [&](size_t r, size_t c, double) {
@@ -193,13 +206,13 @@ void Transcription::bounds(double* xl, double* xu, double* gl, double* gu) const
     xl[0] = spec_.free_horizon->lower;
     xu[0] = spec_.free_horizon->upper;
   }
-  for (int k = 0; k <= N_; ++k)
-    for (int j = 0; j < (k < N_ ? d_ : 1); ++j)
-      for (const StateBound& b : spec_.bounds) {
-        const size_t i = xi(k, j) + state_index(b.state, *cm_);
-        xl[i] = finite(b.bounds.lower);
-        xu[i] = finite(b.bounds.upper);
-      }
+  for (const StateBound& b : spec_.bounds) {
+    const size_t i = state_index(b.state, *cm_);  // a name lookup for a free body: once per bound
+    for_each_node([&](size_t at) {
+      xl[at + i] = finite(b.bounds.lower);
+      xu[at + i] = finite(b.bounds.upper);
+    });
+  }
   for (int k = 0; k < N_; ++k)
     for (size_t c = 0; c < nu_; ++c)
       for (int j = 1; j <= control_points(c); ++j) {
@@ -494,6 +507,19 @@ void Transcription::residual(const double* x, int k, int j, double* r) {
                     r);
 }
 
+// docs/theory.md §10, "Homotopy": the tracking term.
+double Transcription::tracking(const double* x) const {
+  double J = 0.0;
+  if (track_ > 0)
+    for_each_node([&](size_t at) {
+      for (size_t i = 0; i < nx_; ++i) {
+        const double e = x[at + i] - guess_[at + i];
+        J += track_ * track_scale_[i] * e * e;
+      }
+    });
+  return J;
+}
+
 double Transcription::objective(const double* x) {
   const double h = horizon(x) / N_;
   double J = 0.0;
@@ -504,7 +530,7 @@ double Transcription::objective(const double* x) {
       J += rad_.b[static_cast<size_t>(j - 1)] * (h * out_[kIntegrand] + out_[kMean] / N_);
     }
   eval_point(x, N_ - 1, d_);  // the terminal point (T, X_{N,0}), with the multipliers there
-  return sign_ * (J + out_[kTerminal]);
+  return sign_ * (J + out_[kTerminal]) + tracking(x);
 }
 
 void Transcription::gradient(const double* x, double* grad) {
@@ -538,6 +564,11 @@ void Transcription::gradient(const double* x, double* grad) {
     else if (free_T_)
       grad[0] += d;
   }
+  if (track_ > 0)
+    for_each_node([&](size_t at) {
+      for (size_t i = 0; i < nx_; ++i)
+        grad[at + i] += 2 * track_ * track_scale_[i] * (x[at + i] - guess_[at + i]);
+    });
 }
 
 void Transcription::constraint_values(const double* x, double* g) {

@@ -38,7 +38,8 @@ class Transcription {
   Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
                 const OptimalControlSpec& spec, int intervals, int degree,
                 const std::vector<double>& q0, const std::vector<double>& v0,
-                HessianChoice hessian = HessianChoice::Auto);
+                HessianChoice hessian = HessianChoice::Auto,
+                const std::vector<double>* start = nullptr, double track = 0.0);
 
   size_t variables() const { return n_; }
   size_t constraints() const { return rows_; }
@@ -46,7 +47,12 @@ class Transcription {
   /// The starting point (docs/theory.md §10, "Initial guess"), made once: states interpolated
   /// linearly between the boundary states or simulated, controls at their guesses, multipliers
   /// from the forward dynamics there.
+  /// `start` (an earlier solve's point, the same layout: a homotopy's previous stage) replaces it.
   const std::vector<double>& guess() const { return guess_; }
+  /// The tracking term of a homotopy stage (docs/theory.md §10, "Homotopy"): `track` times the
+  /// mean over the state nodes of Σ_i ((X_i − X̄_i)/s_i)², X̄ the starting point, s_i the largest
+  /// |X̄_i| (at least 1); 0 without `track`. objective() includes it.
+  double tracking(const double* x) const;
 
   double objective(const double* x);  ///< ±J, minimised
   void gradient(const double* x, double* grad);
@@ -116,6 +122,13 @@ class Transcription {
   /// held: values into r (nq + nv + m).
   void residual(const double* x, int k, int j, double* r);
   std::vector<double> make_guess();
+  /// Calls f(offset of X) for each state node X_{k,j} (k < N, j < d) and X_{N,0}.
+  template <class F>
+  void for_each_node(F&& f) const {
+    for (int k = 0; k < N_; ++k)
+      for (int j = 0; j < d_; ++j) f(xi(k, j));
+    f(xi(N_, 0));
+  }
   /// The guessed state at time t: the guessed paths (with their time derivatives) where written,
   /// else linear between `start` and `end`; with constraints, projected onto C = 0, Ċ = 0 keeping
   /// the components flagged in `keep`.
@@ -186,6 +199,8 @@ class Transcription {
   std::vector<std::pair<size_t, size_t>> nz_;
   std::vector<size_t> slot_;  ///< per emitted entry, its index in nz_
   std::vector<double> in_, out_, xp_, guess_;
+  double track_ = 0.0;               ///< the tracking term's weight over the node count
+  std::vector<double> track_scale_;  ///< per state component, 1/s_i²
   // The Hessian: ∂² of Σ μ·(DAE residual) over (q, v, u, a, λ), of the weighted point
   // functions over (q, v, u), of the weighted invariants over (q, v).
   SecondDerivatives h_dae_, h_point_, h_invariants_;

@@ -260,6 +260,11 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
   hin_.push_back(0.0);            // M
   hin_.resize(hin_.size() + np_, 0.0);
   scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(N_ - 1, d_, col, t); });
+  // The tracking term's diagonal (docs/theory.md §10, "Homotopy").
+  if (track_ > 0)
+    for_each_node([&](size_t at) {
+      for (size_t i = 0; i < nx_; ++i) emit(at + i, at + i, sigma * 2 * track_ * track_scale_[i]);
+    });
   // A periodic orientation's y·(AᵀB − BᵀA)_ij/2 (A = R(0), B = R(T)): ∂²/∂A_ai∂B_aj = y/2 and
   // ∂²/∂A_aj∂B_ai = −y/2 (docs/theory.md §10, "Free bodies").
   const size_t turning_at = rows_ - turning_.size();

@@ -37,6 +37,20 @@ TEST(OptimizeCommand, SolvesWritesAndVerifies) {
   std::filesystem::remove(csv + ".json");
 }
 
+// A homotopy stage gets its own summary line, before the problem's (docs/model-language.md,
+// "Homotopy stages"): its status, iterations and objective, here the closed form 12·(10/11)/0.99.
+TEST(OptimizeCommand, SummarisesEachHomotopyStage) {
+  const auto r = testing::run_shell("optimize " + std::string(LAGRANGE_SOURCE_DIR) +
+                                    "/tests/optimize/data/double_integrator_fictitious.yaml");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const size_t stage = r.output.find("  stage fictitious   optimal solution found (");
+  const size_t problem = r.output.find("double integrator with a fictitious force: optimal");
+  ASSERT_NE(stage, std::string::npos) << r.output;
+  EXPECT_LT(stage, problem) << r.output;
+  EXPECT_NE(r.output.find("iterations), objective 11.0193"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("objective          12.12121212"), std::string::npos) << r.output;
+}
+
 // |u| ≤ 1 cannot carry the mass over distance 1 in T = 1 (that takes 2 s): exit 3, naming a
 // constraint and where.
 TEST(OptimizeCommand, InfeasibleProblemExitsThreeNamingTheMostViolatedConstraint) {

@@ -73,6 +73,49 @@ TEST(OptimalControlErrors, AreLocatedAndSayWhatWasExpected) {
             std::string::npos);
 }
 
+// stages: a list of changes to the problem, each read and located like the problem's own keys.
+TEST(OptimalControlErrors, HomotopyStagesAreCheckedWhereWritten) {
+  const std::string ok =
+      "  controls: {u: {lower: -5, upper: 5}}\n  horizon: 1\n  minimize: "
+      "integral(u^2)\n  stages:\n";
+  const Model m = read_model_string(
+      kModel + ok +
+          "    - {name: loose, controls: {u: 0.5}, maximize: x, track: 2, ipopt: {tol: 1e-4}}\n",
+      "di.yaml");
+  ASSERT_EQ(m.optimal_control->stages.size(), 1u);
+  const StageSpec& s = m.optimal_control->stages[0];
+  EXPECT_TRUE(s.replaces_objective && s.maximize);
+  EXPECT_TRUE((s.terminal - m.coordinates[0].q).is_zero());
+  ASSERT_EQ(s.control_bounds.size(), 1u);
+  EXPECT_EQ(s.control_bounds[0].second.lower, 0.5);  // a number fixes the control
+  EXPECT_EQ(s.control_bounds[0].second.upper, 0.5);
+  EXPECT_EQ(s.track, 2.0);
+  ASSERT_EQ(s.ipopt.size(), 1u);
+  EXPECT_EQ(s.ipopt[0].second, "1e-4");
+  const std::string unknown = error_of(ok + "    - {name: a, controls: {v: 1}}\n");
+  EXPECT_NE(unknown.find("di.yaml:13:28: error: expected a control of the problem in stage 'a', "
+                         "got 'v' (controls: u)"),
+            std::string::npos)
+      << unknown;
+  const std::string negative = error_of(ok + "    - {name: a, track: -1}\n");
+  EXPECT_NE(negative.find("di.yaml:13:24: error: expected track >= 0 in stage 'a'"),
+            std::string::npos)
+      << negative;
+  const std::string twice = error_of(ok + "    - {name: a, track: 1}\n    - {name: a, track: 2}\n");
+  EXPECT_NE(twice.find("di.yaml:14:14: error: expected stage names used once, got 'a' twice (the "
+                       "first at di.yaml:13:7)"),
+            std::string::npos)
+      << twice;
+  const std::string idle = error_of(ok + "    - {name: a}\n");
+  EXPECT_NE(idle.find("di.yaml:13:7: error: expected stage 'a' to change the problem"),
+            std::string::npos)
+      << idle;
+  const std::string key = error_of(ok + "    - {name: a, trak: 1}\n");
+  EXPECT_NE(key.find("track"), std::string::npos) << key;
+  const std::string nameless = error_of(ok + "    - {track: 1}\n");
+  EXPECT_NE(nameless.find("expected 'name' in a stage"), std::string::npos) << nameless;
+}
+
 // mean(M) is (1/T) ∫ M: its own term, whatever the horizon (docs/theory.md §10).
 TEST(OptimalControlErrors, MeanTermsAreTheirOwnIntegrand) {
   const Model m = read_model_string(

@@ -46,6 +46,20 @@ def test_the_double_integrators_minimum_energy_is_the_closed_form():
     assert r.objective == pytest.approx(12 / (1 - 1 / 100), rel=1e-9)
 
 
+def test_homotopy_stages_are_reported_with_the_problems_result():
+    # A fictitious force at price w = 10 in the stage: w/(1 + w) of the problem's 12/(1 - 1/N^2)
+    # (docs/theory.md §10, "Homotopy"); the problem itself then reaches 12/(1 - 1/N^2).
+    data = SOURCE_DIR / "tests" / "optimize" / "data" / "double_integrator_fictitious.yaml"
+    r = lagrange.load(str(data)).optimize()
+    assert r.optimal, r.status
+    assert [s.name for s in r.stages] == ["fictitious"]
+    stage = r.stages[0]
+    assert stage.optimal and stage.iterations > 0
+    assert stage.objective == pytest.approx(10 / 11 * 12 / (1 - 1 / 100), rel=1e-8)
+    assert stage.tracking == 0
+    assert r.objective == pytest.approx(12 / (1 - 1 / 100), rel=1e-9)
+
+
 def test_a_free_bodys_slew_is_the_double_integrators_closed_form():
     # A quarter turn of an isotropic body (J = 2) at rest to rest in T = 2 s: the fixed-axis turn
     # on the double-integrator schedule, J_N = 12 J² θ² / (T³ (1 − 1/N²)) (docs/theory.md §10).

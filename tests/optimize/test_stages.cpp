@@ -1,0 +1,71 @@
+// Homotopy stages (docs/theory.md §10, "Homotopy"): each stage's optimum against its closed form,
+// the problem's optimum unchanged by the path to it, and the tracking term's exact derivatives.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "optimize/nlp_derivative_check.hpp"
+#include "optimize/optimal_problem.hpp"
+
+namespace lagrange {
+namespace {
+
+// A fictitious force F, free at a price w in the stage and fixed at 0 in the problem: the stage
+// costs w/(1 + w) of the minimum-energy optimum 12/(1 − h²), the problem that optimum itself,
+// with F back at 0 (the data file's header derives both).
+TEST(HomotopyStages, FictitiousForceStageAndProblemMeetTheirClosedForms) {
+  testing::OptimalProblem p("data/double_integrator_fictitious.yaml");
+  const OptimizeResult r = p.solve();
+  ASSERT_TRUE(r.optimal) << r.status;
+  ASSERT_EQ(r.stages.size(), 1U);
+  const StageResult& stage = r.stages[0];
+  EXPECT_EQ(stage.name, "fictitious");
+  EXPECT_TRUE(stage.optimal) << stage.status;
+  EXPECT_GT(stage.iterations, 0);
+  const double h = 1.0 / 10, w = 10, closed = 12.0 / (1 - h * h);
+  EXPECT_NEAR(stage.objective, w / (1 + w) * closed, 1e-7);
+  EXPECT_EQ(stage.tracking, 0.0);
+  EXPECT_NEAR(r.objective, closed, 1e-7);
+  for (size_t k = 0; k < 10; ++k) {
+    EXPECT_NEAR(r.controls[2 * k], (6 - 12 * (k + 0.5) * h) / (1 - h * h), 1e-5) << k;
+    EXPECT_NEAR(r.controls[2 * k + 1], 0.0, 1e-12) << k;  // F, fixed at 0 by its bounds
+  }
+}
+
+// A stage that only tracks its start (no objective): the motion nearest the straight-line guess
+// that the dynamics allow (the line moves x at zero rate, which no motion does). The problem is
+// convex, so from there it reaches the same optimum, 12/(1 − h²), as from the guess itself.
+TEST(HomotopyStages, TrackingStageLeadsToTheSameOptimum) {
+  testing::OptimalProblem p("double_integrator_min_energy.yaml");
+  StageSpec track;
+  track.name = "feasible";
+  track.replaces_objective = true;  // objective 0: only the tracking term
+  track.track = 1.0;
+  p.model->optimal_control->stages = {track};
+  const OptimizeResult staged = p.solve(10, 3);
+  ASSERT_TRUE(staged.optimal) << staged.status;
+  ASSERT_EQ(staged.stages.size(), 1U);
+  EXPECT_TRUE(staged.stages[0].optimal) << staged.stages[0].status;
+  EXPECT_EQ(staged.stages[0].objective, 0.0);
+  EXPECT_GT(staged.stages[0].tracking, 1e-3);
+  EXPECT_NEAR(staged.objective, 12.0 / (1 - 0.01), 1e-7);
+}
+
+// The tracking term's gradient and Hessian (a diagonal on every state node) against central
+// differences, from a starting point other than the problem's own guess.
+TEST(HomotopyStages, TrackingTermDerivativesMatchCentralDifferences) {
+  testing::OptimalProblem p("cart_pole_swing_up.yaml");
+  const collocation::Transcription plain(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
+  const std::vector<double> start = testing::perturbed_guess(plain, false, 5);
+  collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0,
+                                 HessianChoice::Exact, &start, 2.5);
+  EXPECT_EQ(nlp.guess(), start);
+  const std::vector<double> x = testing::perturbed_guess(nlp, false, 13);
+  EXPECT_GT(nlp.tracking(x.data()), 0.0);
+  testing::expect_first_derivatives_match(nlp, x);
+  testing::expect_hessian_matches(nlp, x, 17);
+}
+
+}  // namespace
+}  // namespace lagrange
