@@ -264,9 +264,10 @@ class SummaryFile {
   /// numbers are returned by done(). A new file is
   /// written by the first append() or finish() (with worker processes, while the first cases
   /// run), after `before_first_write` (the study's record, say), which an existing file runs at
-  /// once.
+  /// once. With `repeats_replace` a later row of a case replaces its earlier one (an optimisation
+  /// study's improved cases) instead of being refused.
   SummaryFile(const std::string& path, std::vector<std::string> header, bool resume,
-              std::function<void()> before_first_write = {});
+              std::function<void()> before_first_write = {}, bool repeats_replace = false);
   ~SummaryFile();
   SummaryFile(const SummaryFile&) = delete;
   SummaryFile& operator=(const SummaryFile&) = delete;

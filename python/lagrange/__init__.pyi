@@ -307,6 +307,7 @@ def sweep(
     """Every case of a grid ({name: values}) or list of cases ([{name: value}]) run on model as
     `lagrange sweep` runs it, here or on an Executor: a pandas DataFrame, one row per case
     (values, status, reason, failure_time, metrics, wall_s). optimize=True: each case solves the
-    optimal_control problem, started from the nearest solved case, as `lagrange sweep
-    --optimize` (objective, horizon, iterations, violation, warm_start, solve_s). docs/sweeps.md.
+    optimal_control problem, started from the nearest solved case and then re-solved from its
+    neighbours' optima, as `lagrange sweep --optimize` (objective, horizon, iterations, violation,
+    warm_start, solve_s). docs/sweeps.md.
     Ctrl-C raises KeyboardInterrupt with .frame, the finished cases' rows."""

@@ -86,7 +86,8 @@ def sweep(model, grid_or_samples, metrics, executor=None, *, chunk=None, t_end=N
 
     ``optimize=True``: every case solves the model's optimal_control problem, as ``lagrange
     sweep --optimize`` does (docs/sweeps.md, "Optimal control: a power curve"), here and one
-    after another, each started from the nearest case solved before it; ``intervals``,
+    after another, each started from the nearest case solved before it, then every case again
+    from its neighbours' solutions, keeping a better optimum; ``intervals``,
     ``degree``, ``ipopt`` ({key: value}) and ``hessian`` are those of ``Model.optimize``, the
     simulation settings and ``executor`` do not apply. Columns: the parameters, ``status``,
     ``reason``, ``objective``, ``horizon``, ``iterations``, ``violation``, ``warm_start`` (the

@@ -212,9 +212,7 @@ py::list optimize_cases(const PyModel& m, const std::vector<std::map<std::string
     py::dict row;
     for (const auto& [name, value] : cases[i]) row[py::str(name)] = value;
     row["status"] = r.optimal ? "ok" : "failed";
-    row["reason"] = r.retry.empty() ? r.reason
-                                    : (r.reason.empty() ? "" : r.reason + "; ") + "started " +
-                                          r.retry + "; solved again from the problem's guess";
+    row["reason"] = cli::reason_text(r);
     row["objective"] = r.objective;
     row["horizon"] = r.horizon;
     row["iterations"] = r.iterations;

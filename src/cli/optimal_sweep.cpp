@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "lagrange/io.hpp"
@@ -114,6 +115,38 @@ std::vector<std::string> optimal_trajectory_columns(const Prepared& p) {
   return columns;
 }
 
+std::string reason_text(const OptimalCaseResult& r) {
+  std::string text = r.reason;
+  const auto add = [&](const std::string& part) { text += (text.empty() ? "" : "; ") + part; };
+  if (!r.retry.empty())
+    add(fmt::format("started {}; solved again from the problem's guess", r.retry));
+  if (!r.improved.empty()) add("improved " + r.improved);
+  return text;
+}
+
+std::vector<std::vector<size_t>> grid_neighbours(const std::vector<sweep::Case>& cases) {
+  std::vector<std::vector<size_t>> out(cases.size());
+  const size_t k = cases.empty() ? 0 : cases.front().values.size();
+  for (size_t i = 0; i < cases.size(); ++i)
+    for (size_t d = 0; d < k; ++d) {
+      // The nearest case below and above in parameter d among those equal in the others.
+      std::optional<size_t> below, above;
+      const double at = cases[i].values[d].second;
+      for (size_t j = 0; j < cases.size(); ++j) {
+        bool same = j != i;
+        for (size_t e = 0; e < k && same; ++e)
+          if (e != d) same = cases[j].values[e].second == cases[i].values[e].second;
+        if (!same) continue;
+        const double v = cases[j].values[d].second;
+        if (v < at && (!below || v > cases[*below].values[d].second)) below = j;
+        if (v > at && (!above || v < cases[*above].values[d].second)) above = j;
+      }
+      for (const auto& n : {below, above})
+        if (n) out[i].push_back(*n);
+    }
+  return out;
+}
+
 void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
                        const std::vector<sweep::Case>& cases, const std::vector<size_t>& order,
                        const std::function<sweep::CaseRead(size_t)>& read,
@@ -122,23 +155,17 @@ void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
                        const std::atomic<bool>* interrupt) {
   const Prepared& p = *study.prepared;
   const double nan = std::nan("");
-  for (const size_t index : order) {
-    if (interrupt != nullptr && interrupt->load()) return;
-    const auto start = std::chrono::steady_clock::now();
-    OptimalCaseResult r;
-    r.index = index;
-    r.objective = r.horizon = r.violation = nan;
-    r.metrics.assign(study.metrics.size(), nan);
-    Trajectory traj;
-    std::vector<size_t> converged;
-    for (const auto& [i, t] : solved) converged.push_back(i);
-    r.started_from = nearest_case(cases, index, converged);
+  const bool maximize = p.model->optimal_control->maximize;
+  // Solves case `index` from the solution of case `from` (none: the problem's own guess, its
+  // homotopy stages included) into r and traj; false when its inputs cannot be read or made
+  // consistent (r.reason says why).
+  const auto solve = [&](size_t index, std::optional<size_t> from, OptimalCaseResult& r,
+                         Trajectory& traj) {
     try {
       const sweep::CaseRead in = read(index);
       if (!in.input) throw std::runtime_error(in.rejected);
       // The case's parameters and its initial state made consistent, as sweep::run_case does
-      // for a simulation (docs/theory.md §4.3); the problem is the model file's, started from
-      // the nearest solution (docs/sweeps.md, "Optimal control").
+      // for a simulation (docs/theory.md §4.3); the problem is the model file's.
       dyn.set_parameters(in.input->parameters);
       dyn.set_baumgarte(in.input->baumgarte);
       std::vector<double> q = in.input->q0, v = in.input->v0;
@@ -150,43 +177,106 @@ void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
             "{:.3g}, max |Cdot| = {:.3g} after projection)",
             ic.projection.residual, ic.projection.rate_residual));
       OptimalControlSpec spec = *p.model->optimal_control;
-      if (r.started_from) {
+      if (from) {
         // A neighbour's solution is where a homotopy would lead: its stages are left out.
-        write_trajectory_csv(solved.at(*r.started_from), study.guess_path);
+        write_trajectory_csv(solved.at(*from), study.guess_path);
         spec.guess_file = study.guess_path;
         spec.stages.clear();
       }
       OptimizeResult o = optimize(p.equations, p.compiled, dyn, spec, q, v, study.options);
-      r.solve_seconds = o.solve_seconds;
-      r.iterations = o.iterations;
-      if (!o.optimal && r.started_from) {
-        // A neighbour's solution that leads nowhere: the problem's own guess, as the first
-        // case had (docs/sweeps.md, "Optimal control").
-        const std::string warm_status = o.status;
-        spec.guess_file = p.model->optimal_control->guess_file;
-        spec.stages = p.model->optimal_control->stages;
-        OptimizeResult again = optimize(p.equations, p.compiled, dyn, spec, q, v, study.options);
-        r.solve_seconds += again.solve_seconds;
-        r.iterations += again.iterations;
-        r.retry = fmt::format("from case {}: {}", *r.started_from, warm_status);
-        r.started_from.reset();
-        o = std::move(again);
-      }
+      r.solve_seconds += o.solve_seconds;
+      r.iterations += o.iterations;
       r.optimal = o.optimal;
-      if (!o.optimal) r.reason = o.status;
+      r.reason = o.optimal ? "" : o.status;
       r.objective = o.objective;
       r.horizon = o.horizon;
       r.violation = o.violation;
       traj = std::move(o.trajectory);
       for (size_t m = 0; m < study.metrics.size(); ++m)
         r.metrics[m] = sweep::evaluate(study.metrics[m], traj, in.input->parameters);
-      if (o.optimal) solved[index] = traj;
+      return true;
     } catch (const std::exception& e) {
       r.optimal = false;
       r.reason = e.what();
+      return false;
     }
+  };
+  const auto fresh = [&](size_t index) {
+    OptimalCaseResult r;
+    r.index = index;
+    r.objective = r.horizon = r.violation = nan;
+    r.metrics.assign(study.metrics.size(), nan);
+    return r;
+  };
+  const std::vector<std::vector<size_t>> neighbours = grid_neighbours(cases);
+  // version[j] counts the changes of case j's solution; tried[{i, j}]: the version of j's
+  // solution case i last started from.
+  std::vector<int> version(cases.size(), 0);
+  std::map<std::pair<size_t, size_t>, int> tried;
+  std::map<size_t, std::pair<OptimalCaseResult, Trajectory>> results;
+  for (const size_t index : order) {
+    if (interrupt != nullptr && interrupt->load()) return;
+    const auto start = std::chrono::steady_clock::now();
+    OptimalCaseResult r = fresh(index);
+    Trajectory traj;
+    std::vector<size_t> converged;
+    for (const auto& [i, t] : solved) converged.push_back(i);
+    r.started_from = nearest_case(cases, index, converged);
+    if (r.started_from) tried[{index, *r.started_from}] = 0;
+    if (solve(index, r.started_from, r, traj) && !r.optimal && r.started_from) {
+      // A neighbour's solution that leads nowhere: the problem's own guess, as the first case
+      // had (docs/sweeps.md, "Optimal control").
+      r.retry = fmt::format("from case {}: {}", *r.started_from, r.reason);
+      r.started_from.reset();
+      solve(index, std::nullopt, r, traj);
+    }
+    if (r.optimal) solved[index] = traj;
     r.wall_seconds = seconds_since(start);
     done(r, traj);
+    results.emplace(index, std::make_pair(std::move(r), std::move(traj)));
+  }
+  // docs/sweeps.md, "Optimal control": each case again from every optimal neighbour's solution
+  // it has not started from in its present form, keeping a better optimum (a failed case: any
+  // optimum), until none improves (at most kImprovementPasses passes over the study).
+  constexpr int kImprovementPasses = 4;
+  for (int pass = 0; pass < kImprovementPasses; ++pass) {
+    bool changed = false;
+    for (const size_t index : order) {
+      auto& [r, traj] = results.at(index);
+      for (const size_t j : neighbours[index]) {
+        if (interrupt != nullptr && interrupt->load()) return;
+        const auto t = tried.find({index, j});
+        if (!solved.count(j) || (t != tried.end() && t->second == version[j])) continue;
+        tried[{index, j}] = version[j];
+        const auto start = std::chrono::steady_clock::now();
+        OptimalCaseResult again = fresh(index);
+        Trajectory from_j;
+        solve(index, j, again, from_j);
+        r.iterations += again.iterations;
+        r.solve_seconds += again.solve_seconds;
+        r.wall_seconds += seconds_since(start);
+        const double margin = 1e-6 * (1 + std::fabs(r.objective));
+        const bool better = !r.optimal || (maximize ? again.objective > r.objective + margin
+                                                    : again.objective < r.objective - margin);
+        if (!again.optimal || !better) continue;
+        again.improved =
+            r.optimal
+                ? fmt::format("from case {}'s solution (objective before: {:.10g})", j, r.objective)
+                : fmt::format("from case {}'s solution (failed before: {})", j, r.reason);
+        again.iterations = r.iterations;
+        again.solve_seconds = r.solve_seconds;
+        again.wall_seconds = r.wall_seconds;
+        again.retry = r.retry;
+        again.started_from = j;
+        r = std::move(again);
+        traj = std::move(from_j);
+        solved[index] = traj;
+        ++version[index];
+        changed = true;
+        done(r, traj);
+      }
+    }
+    if (!changed) return;
   }
 }
 

@@ -50,6 +50,10 @@ struct OptimalCaseResult {
   /// from the problem's own guess: "from case K: Ipopt's status" (`started_from` is then none,
   /// `iterations` and `solve_seconds` count both solves).
   std::string retry;
+  /// When a neighbour's solution, tried after both were solved, led to a better optimum: "from
+  /// case J's solution (objective before: …)" (`started_from` is then J; docs/sweeps.md,
+  /// "Optimal control").
+  std::string improved;
   std::vector<double> metrics;  ///< over the result's trajectory (also when not optimal)
   double solve_seconds = 0.0, wall_seconds = 0.0;
 };
@@ -68,12 +72,23 @@ struct OptimalStudy {
 /// The columns of optimize()'s trajectory for `p`: simulate's, the controls, the multipliers.
 std::vector<std::string> optimal_trajectory_columns(const Prepared& p);
 
+/// The summary's `reason` of a case: Ipopt's status when not optimal, a retry from the problem's
+/// guess, a better optimum from a neighbour's solution.
+std::string reason_text(const OptimalCaseResult& r);
+
+/// Per case, its neighbours in the study: the cases with the same values but in one parameter,
+/// and in that one the next distinct value below or above (a grid's adjacent cases).
+std::vector<std::vector<size_t>> grid_neighbours(const std::vector<sweep::Case>& cases);
+
 /// Solves the cases in `order` one after another on `dyn` (a workspace over the study's
 /// compiled model), each from its inputs (`read`) and started from the solution of the nearest
 /// case in `solved` (index → optimal trajectory; each optimal result is added to it), or, when
 /// none is solved yet or that start does not converge, from the problem's own first guess. `done`
 /// receives each result and its trajectory (empty when nothing was solved); a case that fails is
-/// recorded as such and the study goes on. Stops before the next case when `interrupt` is set.
+/// recorded as such and the study goes on. Then each case is solved again from each optimal grid
+/// neighbour's solution it has not started from in that form, and a better optimum found so
+/// (local optima: docs/sweeps.md, "Optimal control") goes to `done` again, `improved` set, until
+/// no case improves. Stops before the next solve when `interrupt` is set.
 void run_optimal_cases(const OptimalStudy& study, Dynamics& dyn,
                        const std::vector<sweep::Case>& cases, const std::vector<size_t>& order,
                        const std::function<sweep::CaseRead(size_t)>& read,

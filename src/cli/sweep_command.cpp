@@ -308,7 +308,7 @@ std::unique_ptr<sweep::SummaryFile> open_summary(const Options& opt, const Study
     // cases run), or at once when resuming.
     auto summary = std::make_unique<sweep::SummaryFile>(
         (fs::path(opt.study) / "summary.csv").string(), s.header, opt.resume,
-        [about, text] { write_file_atomically(about.string(), text); });
+        [about, text] { write_file_atomically(about.string(), text); }, opt.optimize);
     for (const size_t index : summary->done())
       if (index >= s.plan.cases.size())
         throw UsageError(
@@ -616,10 +616,7 @@ int run_optimal_sweep(const Options& opt) {
     std::vector<std::string> row{std::to_string(c.index)};
     for (const auto& [name, value] : c.values) row.push_back(sweep::csv_field(value));
     row.emplace_back(r.optimal ? "ok" : "failed");
-    row.push_back(sweep::csv_field(
-        r.retry.empty() ? r.reason
-                        : fmt::format("{}started {}; solved again from the problem's guess",
-                                      r.reason.empty() ? "" : r.reason + "; ", r.retry)));
+    row.push_back(sweep::csv_field(reason_text(r)));
     for (const double x : {r.objective, r.horizon}) row.push_back(sweep::csv_field(x));
     row.push_back(std::to_string(r.iterations));
     row.push_back(sweep::csv_field(r.violation));
@@ -627,8 +624,8 @@ int run_optimal_sweep(const Options& opt) {
     for (const double x : r.metrics) row.push_back(sweep::csv_field(x));
     row.push_back(fmt::format("{:.6f}", r.solve_seconds));
     row.push_back(fmt::format("{:.6f}", r.wall_seconds));
-    summary->append(r.index, row);
-    progress.add(r.optimal);
+    summary->append(r.index, row);  // an improved case again: its new row replaces the first
+    if (r.improved.empty()) progress.add(r.optimal);
   };
   run_optimal_cases(study, *s.prepared.dynamics, s.plan.cases, order, read, solved, done,
                     opt.interrupt);

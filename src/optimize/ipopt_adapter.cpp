@@ -1,9 +1,12 @@
 #include "optimize/ipopt_adapter.hpp"
 
+#include <fmt/format.h>
+
 #include <IpIpoptApplication.hpp>
 #include <IpSolveStatistics.hpp>
 #include <IpTNLP.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -88,13 +91,25 @@ class Adapter : public Ipopt::TNLP {
     return true;
   }
   bool eval_f(Index, const Number* x, bool, Number& f) override {
-    return timed([&] { f = nlp_.objective(x); });
+    return timed([&] {
+      f = nlp_.objective(x);
+      if (!std::isfinite(f)) note_invalid(f, "the objective");
+    });
   }
-  bool eval_grad_f(Index, const Number* x, bool, Number* g) override {
-    return timed([&] { nlp_.gradient(x, g); });
+  bool eval_grad_f(Index n, const Number* x, bool, Number* g) override {
+    return timed([&] {
+      nlp_.gradient(x, g);
+      for (Index i = 0; i < n; ++i)
+        if (!std::isfinite(g[i]))
+          note_invalid(g[i], "the objective's gradient in " + nlp_.describe_variable(i, x));
+    });
   }
-  bool eval_g(Index, const Number* x, bool, Index, Number* g) override {
-    return timed([&] { nlp_.constraint_values(x, g); });
+  bool eval_g(Index, const Number* x, bool, Index m, Number* g) override {
+    return timed([&] {
+      nlp_.constraint_values(x, g);
+      for (Index r = 0; r < m; ++r)
+        if (!std::isfinite(g[r])) note_invalid(g[r], nlp_.describe(static_cast<size_t>(r), x));
+    });
   }
   bool eval_jac_g(Index, const Number* x, bool, Index, Index, Index* rows, Index* cols,
                   Number* values) override {
@@ -106,7 +121,14 @@ class Adapter : public Ipopt::TNLP {
       }
       return true;
     }
-    return timed([&] { nlp_.jacobian(x, values); });
+    return timed([&] {
+      nlp_.jacobian(x, values);
+      const auto& nz = nlp_.jacobian_pattern();
+      for (size_t e = 0; e < nz.size(); ++e)
+        if (!std::isfinite(values[e]))
+          note_invalid(values[e], "the derivative of " + nlp_.describe(nz[e].first, x) + " in " +
+                                      nlp_.describe_variable(nz[e].second, x));
+    });
   }
   bool eval_h(Index, const Number* x, bool, Number sigma, Index, const Number* y, bool, Index,
               Index* rows, Index* cols, Number* values) override {
@@ -118,7 +140,15 @@ class Adapter : public Ipopt::TNLP {
       }
       return true;
     }
-    return timed([&] { nlp_.hessian(x, sigma, y, values); });
+    return timed([&] {
+      nlp_.hessian(x, sigma, y, values);
+      const auto& nz = nlp_.hessian_pattern();
+      for (size_t e = 0; e < nz.size(); ++e)
+        if (!std::isfinite(values[e]))
+          note_invalid(values[e], "the Hessian of the Lagrangian in " +
+                                      nlp_.describe_variable(nz[e].first, x) + " and " +
+                                      nlp_.describe_variable(nz[e].second, x));
+    });
   }
   // After each iteration: false stops Ipopt (USER_REQUESTED_STOP) at the current iterate.
   bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number, Number, Number, Number, Number,
@@ -132,6 +162,9 @@ class Adapter : public Ipopt::TNLP {
                          const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.optimal = status == Ipopt::SUCCESS;
     out_.status = words(status);
+    // Where the last NaN or Inf was met: Ipopt stops on it (invalid number) or, when it is in a
+    // derivative, fails to factorise and ends in restoration.
+    if (!out_.optimal && !invalid_.empty()) out_.status += "; " + invalid_;
     out_.x.assign(x, x + n);
   }
 
@@ -151,6 +184,11 @@ class Adapter : public Ipopt::TNLP {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return ok;
   }
+  /// Records where a value is not finite; the last such place is reported.
+  void note_invalid(double value, const std::string& where) {
+    invalid_ = fmt::format("{} is {}", where, value);
+  }
+  std::string invalid_;
   Transcription& nlp_;
   IpoptOutcome& out_;
   const std::atomic<bool>* interrupt_;

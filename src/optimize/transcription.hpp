@@ -75,6 +75,8 @@ class Transcription {
   void scaling(double* x_scale, double* g_scale, double& f_scale);
   /// What constraint `row` is and where, in words ("equation of motion of 'x_dot' at t = 0.25").
   std::string describe(size_t row, const double* x) const;
+  /// What variable `column` is and where ("'plane.wx' at t = 3.2", "control 'u' on interval 4").
+  std::string describe_variable(size_t column, const double* x) const;
   /// A final value left out because the invariants imply it (docs/theory.md §10, "Constrained
   /// models"): its description, |x(T) − value|, and the same after x(T) is projected onto the
   /// invariants keeping the imposed final values (the collocation's drift removed).

@@ -59,7 +59,7 @@ std::string csv_field(const std::string& text) {
 }
 
 SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> header, bool resume,
-                         std::function<void()> before_first_write)
+                         std::function<void()> before_first_write, bool repeats_replace)
     : path_(path), header_(std::move(header)), before_first_write_(std::move(before_first_write)) {
   const std::string head = join(header_);
   const bool exists = std::filesystem::exists(path_);
@@ -86,7 +86,7 @@ SummaryFile::SummaryFile(const std::string& path, std::vector<std::string> heade
       if (nl == std::string::npos) break;
       // A row this study did not write (edited by hand, issue 37 item 2) is refused, not mixed in.
       const long index = row_case(text.substr(at, nl - at));
-      if (index < 0 || !done_.insert(static_cast<size_t>(index)).second)
+      if (index < 0 || (!done_.insert(static_cast<size_t>(index)).second && !repeats_replace))
         throw std::runtime_error(
             fmt::format("{}: row {} {}; --resume finishes a summary only as the study wrote it",
                         path_, done_.size() + 1,

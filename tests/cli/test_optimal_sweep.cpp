@@ -72,6 +72,18 @@ TEST(OptimalSweepOrder, AGridFillsOutwardsInUnitsOfEachSpan) {
   EXPECT_TRUE(*from == 5 || *from == 7) << *from;
 }
 
+TEST(OptimalSweepOrder, GridNeighboursAreTheAdjacentValuesOfOneParameter) {
+  const std::vector<std::vector<size_t>> n = grid_neighbours(line({8, 4, 6, 10}));
+  EXPECT_EQ(n[0], (std::vector<size_t>{2, 3}));  // 8: 6 below, 10 above
+  EXPECT_EQ(n[1], (std::vector<size_t>{2}));     // 4: the lowest
+  EXPECT_EQ(n[3], (std::vector<size_t>{0}));
+  std::vector<sweep::Case> grid;
+  for (double w : {6.0, 8.0})
+    for (double l : {100.0, 200.0, 300.0}) grid.push_back({grid.size(), {{"W", w}, {"L", l}}});
+  // (6, 200): (8, 200) above in W; (6, 100) and (6, 300) in L; not the diagonal (8, 100).
+  EXPECT_EQ(grid_neighbours(grid)[1], (std::vector<size_t>{4, 0, 2}));
+}
+
 namespace fs = std::filesystem;
 using hardening::run_lagrange;
 using hardening::RunResult;
@@ -175,6 +187,36 @@ TEST(OptimalSweep, TheRotorsPowerCurveIsItsClosedFormAndACaseThatCannotBeSolvedI
   }
   // Above it the bound holds and the power grows about linearly.
   EXPECT_NEAR(std::stod(rows[7].at("u_max")), 40, 1e-6);
+}
+
+// The point-mass kite's power cycle has several local optima: started outwards from W = 10, each
+// wind is solved again from its neighbours' solutions and keeps the better optimum, so the power
+// curve comes out monotone in the wind (issue 35). An improved case names the neighbour whose
+// solution gave it and the objective it had before, which it beats.
+TEST(OptimalSweep, TheKitesPowerCurveIsMonotoneInTheWind) {
+  ScratchDir dir("optimal_kite");
+  const fs::path study = dir.path() / "curve";
+  const RunResult r = run_lagrange(
+      dir.path(),
+      {"sweep", std::string(LAGRANGE_SOURCE_DIR) + "/examples/optimal/power_cycle_pointmass.yaml",
+       "--optimize", "--vary", "W=6:10:5", "--intervals", "20", "-o", study.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<Row> rows = read_summary(study / "summary.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  double previous = 0.0;
+  for (const Row& row : rows) {
+    ASSERT_EQ(row.at("status"), "ok") << row.at("reason");
+    const double P = std::stod(row.at("objective"));
+    EXPECT_GT(P, previous) << "W = " << row.at("W");
+    previous = P;
+    const std::string& reason = row.at("reason");
+    const std::string before = "(objective before: ";
+    if (const size_t at = reason.find(before); at != std::string::npos) {
+      EXPECT_EQ(reason.find("improved from case " + row.at("warm_start") + "'s solution"), 0u)
+          << reason;
+      EXPECT_GT(P, std::stod(reason.substr(at + before.size()))) << reason;
+    }
+  }
 }
 
 TEST(OptimalSweep, AWarmStartedCaseReachesTheColdOptimumInFewerIterations) {

@@ -104,7 +104,7 @@ TEST(PeriodicProblems, RowsAndInvariantsNeverExceedTheStateDimension) {
   };
   for (const Case& c : {Case{"power_cycle_pointmass.yaml", 6, 2},
                         Case{"data/pendulum_period_cartesian.yaml", 1, 2},
-                        Case{"data/power_cycle_ap2.yaml", 12, 8}}) {
+                        Case{"power_cycle_ap2.yaml", 12, 8}}) {
     testing::OptimalProblem p(c.file);
     const collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 4, 3, p.cm->q0, p.cm->v0,
                                          HessianChoice::LimitedMemory);

@@ -69,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "pendulum_swing_up_cartesian.yaml", "van_der_pol_limit_cycle.yaml",
                       "data/everything.yaml", "data/everything_fixed_horizon.yaml",
                       "attitude_slew.yaml", "data/spin_orbit.yaml", "power_cycle_pointmass.yaml",
-                      "data/power_cycle_ap2.yaml"),
+                      "power_cycle_ap2.yaml"),
     [](const auto& info) {
       std::string s = info.param.substr(0, info.param.size() - 5);
       for (char& c : s)

@@ -186,6 +186,32 @@ TEST(StudyCases, SummaryKeepsWholeRowsAcrossAResume) {
   std::filesystem::remove(path);
 }
 
+// An optimisation study appends an improved case's row again: a resume takes the later row, and
+// finish() keeps it alone; a summary that does not allow it refuses the repeat.
+TEST(StudyCases, ARepeatedRowReplacesTheFirstWhenAllowed) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("lagrange-summary-repeat-" + std::to_string(getpid())))
+                               .string();
+  std::filesystem::remove(path);
+  {
+    SummaryFile s(path, {"case", "P", "status"}, false, {}, true);
+    s.append(0, {"0", "10", "ok"});
+    s.append(1, {"1", "20", "ok"});
+    s.append(0, {"0", "15", "ok"});  // improved
+  }
+  EXPECT_THROW(SummaryFile(path, {"case", "P", "status"}, true), std::runtime_error);
+  {
+    SummaryFile s(path, {"case", "P", "status"}, true, {}, true);
+    EXPECT_EQ(s.done(), (std::set<size_t>{0, 1}));
+    s.finish();
+  }
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "case,P,status\n0,15,ok\n1,20,ok\n");
+  std::filesystem::remove(path);
+}
+
 // A ball thrown at (1, 10) m/s under g = 9.81 (issue 36 item 7): its apex 10²/(2 g) at
 // t = 10/g = 1.0194 s falls between samples 0.1 s apart, which miss it by 3e-3 m; located from
 // the run between them it is exact to 1e-9, and so is the slowest speed² = 1 there.
