@@ -133,12 +133,14 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     r.control_names.push_back(eq.model->inputs[c.input].name);
   // docs/theory.md §10, "Homotopy": each stage starts where the last one ended, the problem
   // itself where the last stage ended.
-  std::vector<double> x_start;
+  collocation::StageStart from;  // x empty: the problem's guess
   for (const StageSpec& stage : spec.stages) {
     const auto stage_start = std::chrono::steady_clock::now();
     const OptimalControlSpec s = staged(spec, stage);
+    from.track = stage.track;
     collocation::Transcription nlp(eq, cm, dyn, s, r.intervals, r.degree, q0, v0, options.hessian,
-                                   x_start.empty() ? nullptr : &x_start, stage.track);
+                                   &from);
+    from.dae_hessian = nlp.dae_hessian();
     r.setup_seconds += seconds_since(stage_start);
     std::vector<std::pair<std::string, std::string>> ipopt = options.ipopt;
     ipopt.insert(ipopt.end(), stage.ipopt.begin(), stage.ipopt.end());
@@ -151,11 +153,12 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     r.stages.push_back({stage.name, out.optimal, out.status, out.iterations,
                         (nlp.objective(out.x.data()) - tracking) * (nlp.maximize() ? -1.0 : 1.0),
                         tracking, seconds_since(stage_start)});
-    x_start = std::move(out.x);
+    from.x = std::move(out.x);
   }
   const auto setup_start = std::chrono::steady_clock::now();
+  from.track = 0.0;
   collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0, options.hessian,
-                                 x_start.empty() ? nullptr : &x_start);
+                                 &from);
   r.hessian_note = nlp.hessian_note();
   r.setup_seconds += seconds_since(spec.stages.empty() ? start : setup_start);
 

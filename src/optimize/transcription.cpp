@@ -56,7 +56,7 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
                              Dynamics& dyn, const OptimalControlSpec& spec, int intervals,
                              int degree, const std::vector<double>& q0,
                              const std::vector<double>& v0, HessianChoice hessian,
-                             const std::vector<double>* start, double track)
+                             const StageStart* stage)
     : eq_(eq),
       cm_(cm),
       dyn_(dyn),
@@ -130,10 +130,12 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size() +
           constant_.size() * static_cast<size_t>(N_ - 1) + turning_.size();
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
-  if (start != nullptr && start->size() != n_)
+  const bool warm = stage != nullptr && !stage->x.empty();
+  if (warm && stage->x.size() != n_)
     throw std::invalid_argument(fmt::format(
-        "a starting point of {} values for a problem of {} variables", start->size(), n_));
-  guess_ = start != nullptr ? *start : make_guess();
+        "a starting point of {} values for a problem of {} variables", stage->x.size(), n_));
+  guess_ = warm ? stage->x : make_guess();
+  const double track = stage != nullptr ? stage->track : 0.0;
   if (track > 0) {
     track_scale_.assign(nx_, 1.0);
     for_each_node([&](size_t at) {
@@ -150,7 +152,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
     if (added) nz_.emplace_back(r, c);
     slot_.push_back(it->second);
   });
-  if (hessian != HessianChoice::LimitedMemory) prepare_hessian(hessian);
+  if (hessian != HessianChoice::LimitedMemory)
+    prepare_hessian(hessian, stage != nullptr ? stage->dae_hessian : nullptr);
 }
 
 size_t Transcription::xi(int k, int j) const {

@@ -33,13 +33,22 @@ inline constexpr std::array<std::pair<size_t, size_t>, 3> kSkewPairs{{{2, 1}, {0
 /// independent; then U_{k+1,c} − U_{k,c} for each constant control. Final values that the
 /// invariants imply (the dynamics keep them) are not imposed
 /// but checked (implied_final_gaps).
+/// Where a homotopy stage starts (docs/theory.md §10, "Homotopy"): the point `x` (an earlier
+/// solve's, the same layout; empty: the problem's guess), the tracking weight, and the DAE's
+/// compiled second derivatives when an earlier stage made them (the same model and controls: only
+/// the objective differs).
+struct StageStart {
+  std::vector<double> x;
+  double track = 0.0;
+  std::shared_ptr<const SecondDerivatives> dae_hessian;
+};
+
 class Transcription {
  public:
   Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
                 const OptimalControlSpec& spec, int intervals, int degree,
                 const std::vector<double>& q0, const std::vector<double>& v0,
-                HessianChoice hessian = HessianChoice::Auto,
-                const std::vector<double>* start = nullptr, double track = 0.0);
+                HessianChoice hessian = HessianChoice::Auto, const StageStart* stage = nullptr);
 
   size_t variables() const { return n_; }
   size_t constraints() const { return rows_; }
@@ -47,7 +56,7 @@ class Transcription {
   /// The starting point (docs/theory.md §10, "Initial guess"), made once: states interpolated
   /// linearly between the boundary states or simulated, controls at their guesses, multipliers
   /// from the forward dynamics there.
-  /// `start` (an earlier solve's point, the same layout: a homotopy's previous stage) replaces it.
+  /// A stage's start (StageStart::x) replaces it.
   const std::vector<double>& guess() const { return guess_; }
   /// The tracking term of a homotopy stage (docs/theory.md §10, "Homotopy"): `track` times the
   /// mean over the state nodes of Σ_i ((X_i − X̄_i)/s_i)², X̄ the starting point, s_i the largest
@@ -60,6 +69,8 @@ class Transcription {
   /// (row, column) of the Jacobian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& jacobian_pattern() const { return nz_; }
   void jacobian(const double* x, double* values);
+  /// The DAE's compiled second derivatives, for the next stage (null without the exact Hessian).
+  std::shared_ptr<const SecondDerivatives> dae_hessian() const { return h_dae_; }
   /// Whether the exact Hessian of the Lagrangian is available (docs/theory.md §10, "Hessian").
   bool has_hessian() const { return hessian_ready_; }
   /// Why the exact Hessian was not made (empty when it was, or when it was not asked for).
@@ -157,7 +168,7 @@ class Transcription {
                         EmitB&& on_end) const;
   /// Compiles the second derivatives of the DAE, the point functions and the invariants, and
   /// finds the Hessian's pattern (docs/theory.md §10, "Hessian").
-  void prepare_hessian(HessianChoice choice);
+  void prepare_hessian(HessianChoice choice, std::shared_ptr<const SecondDerivatives> dae);
   /// Every Hessian entry as emit(row, column, value), row ≥ column, in a fixed order.
   template <class Emit>
   void walk_hessian(const double* x, double sigma, const double* y, Emit&& emit);
@@ -205,7 +216,8 @@ class Transcription {
   std::vector<double> track_scale_;  ///< per state component, 1/s_i²
   // The Hessian: ∂² of Σ μ·(DAE residual) over (q, v, u, a, λ), of the weighted point
   // functions over (q, v, u), of the weighted invariants over (q, v).
-  SecondDerivatives h_dae_, h_point_, h_invariants_;
+  std::shared_ptr<const SecondDerivatives> h_dae_;
+  SecondDerivatives h_point_, h_invariants_;
   bool hessian_ready_ = false;
   std::string hessian_note_;
   std::vector<std::pair<size_t, size_t>> hnz_;

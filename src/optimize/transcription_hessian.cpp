@@ -58,7 +58,8 @@ size_t distinct_terms(const GiNaC::ex& e, size_t limit) {
 
 }  // namespace
 
-void Transcription::prepare_hessian(HessianChoice choice) {
+void Transcription::prepare_hessian(HessianChoice choice,
+                                    std::shared_ptr<const SecondDerivatives> dae) {
   const Equations& eq = eq_;
   const CompiledModel& cm = *cm_;
   const std::vector<GiNaC::ex> out = dynamics_expressions(eq, cm);
@@ -68,8 +69,9 @@ void Transcription::prepare_hessian(HessianChoice choice) {
   for (size_t c : controls_) state_columns.push_back(cm.u_offset() + c);
 
   // Σ μ_r r_r (docs/theory.md §4.3): r_q = q' − q̇ (q' linear: no second derivative),
-  // r_v = M a + Gᵀλ − (h + Q), r_λ = G a + c + 2αĊ + α²C.
-  {
+  // r_v = M a + Gᵀλ − (h + Q), r_λ = G a + c + 2αĊ + α²C; an earlier stage's when given.
+  h_dae_ = std::move(dae);
+  if (!h_dae_) {
     const std::vector<GiNaC::symbol> a = symbols("hess_a", nv_), lam = symbols("hess_l", m_),
                                      mu = symbols("hess_mu", nx_ + m_);
     const GiNaC::symbol alpha("hess_alpha");
@@ -108,7 +110,7 @@ void Transcription::prepare_hessian(HessianChoice choice) {
       }
     in.push_back(alpha);
     in.insert(in.end(), mu.begin(), mu.end());
-    h_dae_ = SecondDerivatives(s, in, columns);
+    h_dae_ = std::make_shared<const SecondDerivatives>(s, in, columns);
   }
   // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p, over (q, v, u, λ) and, with T free, t = T (k + τ_j)/N.
   {
@@ -209,7 +211,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
       hin_.push_back(dyn_.baumgarte());
       hin_.insert(hin_.end(), y + p * nr, y + (p + 1) * nr);
-      scatter_all(h_dae_, [&](size_t col, std::vector<Term>& t) { dae_terms(k, j, col, t); });
+      scatter_all(*h_dae_, [&](size_t col, std::vector<Term>& t) { dae_terms(k, j, col, t); });
       if (free_T_) {
         // x' = (1/h) Σ_l D_jl X_l is not linear in T: with g = Σ μ ∂r/∂x' (μ_q for q', Mμ_v + Gᵀμ_λ
         // for v'), ∂²x'/∂T² = 2x'/T² and ∂²x'/∂T∂X_l = −D_jl/(hT).
