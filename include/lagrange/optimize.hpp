@@ -78,6 +78,9 @@ struct OptimizeResult {
   std::vector<std::string> warnings;
   /// Why the Hessian is not the exact one when it could have been (empty otherwise).
   std::string hessian_note;
+  /// The bounds the result lies on (docs/theory.md §10, "Checks"): per bounded quantity and
+  /// side, "control 'tau' ≥ -360 at 28 of 40 values", in the order of the variables and rows.
+  std::vector<std::string> active_bounds;
   /// The homotopy's stages before the problem, in order; the fields above are the problem's own
   /// solve (its set-up, solve and function times include the stages').
   std::vector<StageResult> stages;

@@ -236,7 +236,7 @@ class Model:
     ) -> SimpleNamespace:
         """Solve the file's optimal_control problem as `lagrange optimize` does: optimal, status,
         objective, horizon, controls (intervals x controls), control_names, run (a Run),
-        violation, worst_constraint, iterations, setup/solve/function seconds, stages (the
+        violation, worst_constraint, active_bounds, iterations, setup/solve/function seconds, stages (the
         homotopy's: name, optimal, status, iterations, objective, tracking, seconds), and verify
         (final_gap, largest_gap, message) or None. Ctrl-C raises KeyboardInterrupt with
         .result, this namespace at Ipopt's last iterate."""

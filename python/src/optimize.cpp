@@ -109,6 +109,7 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["hessian_note"] = r.hessian_note;
   fields["violation"] = r.violation;
   fields["worst_constraint"] = r.worst_constraint;
+  fields["active_bounds"] = r.active_bounds;
   fields["control_names"] = r.control_names;
   fields["controls"] = controls;
   fields["control_points"] = control_points;

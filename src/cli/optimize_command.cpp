@@ -65,6 +65,9 @@ int run_optimize(const Options& opt) {
     if (!polynomial.empty())
       fmt::print("  polynomial         {} (degree {} on each interval)\n",
                  fmt::join(polynomial, ", "), r.degree - 1);
+    if (!r.active_bounds.empty())
+      fmt::print("  active bounds      {}\n",
+                 fmt::join(r.active_bounds, "\n                     "));
     fmt::print("  worst violation    {:.3g}{}\n", r.violation,
                r.worst_constraint.empty() ? "" : " (" + r.worst_constraint + ")");
     fmt::print(

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "optimize/ipopt_adapter.hpp"
@@ -66,6 +67,40 @@ OptimalControlSpec staged(const OptimalControlSpec& spec, const StageSpec& stage
   }
   for (const auto& [c, bounds] : stage.control_bounds) s.controls.at(c).bounds = bounds;
   return s;
+}
+
+/// docs/theory.md §10, "Checks": the bounds x lies on, counted per quantity and side. A value
+/// within 1e-6 (relative to 1 + |bound|) of a bound is on it (Ipopt's interior points stop about
+/// 1e-8 inside); a fixed value (lower = upper) is a boundary condition, not counted.
+std::vector<std::string> active_bounds(const collocation::Transcription& nlp, const double* x,
+                                       const std::vector<double>& g, const std::vector<double>& xl,
+                                       const std::vector<double>& xu, const std::vector<double>& gl,
+                                       const std::vector<double>& gu) {
+  struct Count {
+    size_t order, on = 0, of = 0;
+  };
+  std::map<std::string, Count> counts;
+  const auto count = [&](const std::string& quantity, double value, double lower, double upper) {
+    if (quantity.empty() || lower == upper) return;
+    for (const auto& [bound, side] : {std::pair{lower, "≥"}, std::pair{upper, "≤"}}) {
+      if (!(std::fabs(bound) < 1e19)) continue;  // Ipopt's infinity: no bound
+      const std::string key = fmt::format("{} {} {:g}", quantity, side, bound);
+      auto [it, added] = counts.try_emplace(key, Count{counts.size()});
+      ++it->second.of;
+      if (std::fabs(value - bound) <= 1e-6 * (1 + std::fabs(bound))) ++it->second.on;
+    }
+  };
+  for (size_t i = 0; i < xl.size(); ++i)
+    count(nlp.variable_name(i, x).quantity, x[i], xl[i], xu[i]);
+  for (size_t r = 0; r < g.size(); ++r) count(nlp.row_quantity(r), g[r], gl[r], gu[r]);
+  std::vector<std::pair<size_t, std::string>> ordered;
+  for (const auto& [key, c] : counts)
+    if (c.on > 0)
+      ordered.emplace_back(c.order, fmt::format("{} at {} of {} values", key, c.on, c.of));
+  std::sort(ordered.begin(), ordered.end());
+  std::vector<std::string> out;
+  for (auto& [order, text] : ordered) out.push_back(std::move(text));
+  return out;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -187,6 +222,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
       r.worst_constraint = nlp.describe(i, x);
     }
   }
+  r.active_bounds = active_bounds(nlp, x, g, xl, xu, gl, gu);
   // A final value the constraints imply is checked, not imposed. Its gap includes the
   // collocation's drift off the constraints; projected back onto them (the imposed final values
   // kept), a gap that remains means another branch (docs/theory.md §10, "Constrained models").

@@ -169,25 +169,38 @@ size_t Transcription::ui(int k, int j, size_t c) const {
          u_offset_[c] + (polynomial_[c] ? static_cast<size_t>(j - 1) : 0);
 }
 
-std::string Transcription::describe_variable(size_t column, const double* x) const {
+Transcription::VariableName Transcription::variable_name(size_t column, const double* x) const {
   const CompiledModel& c = *cm_;
-  if (free_T_ && column == 0) return "the horizon T";
+  if (free_T_ && column == 0) return {"the horizon T", ""};
   const size_t at = column - first_, k = at / block_, in = at % block_;
-  const auto state = [&](size_t i, int kk, int j) {
-    return fmt::format("'{}' at t = {:.6g}",
-                       i < nq_ ? c.coordinate_names[i] : c.velocity_names[i - nq_], time(x, kk, j));
+  const auto state = [&](size_t i, int kk, int j) -> VariableName {
+    return {fmt::format("'{}'", i < nq_ ? c.coordinate_names[i] : c.velocity_names[i - nq_]),
+            fmt::format("at t = {:.6g}", time(x, kk, j))};
   };
   if (k == static_cast<size_t>(N_)) return state(in, N_, 0);
   const int K = static_cast<int>(k);
   if (in < static_cast<size_t>(d_) * nx_) return state(in % nx_, K, static_cast<int>(in / nx_));
   const size_t after = in - static_cast<size_t>(d_) * nx_;
   if (after < static_cast<size_t>(d_) * m_)
-    return fmt::format("the multiplier of '{}' at t = {:.6g}", c.constraint_names[after % m_],
-                       time(x, K, static_cast<int>(after / m_) + 1));
+    return {fmt::format("the multiplier of '{}'", c.constraint_names[after % m_]),
+            fmt::format("at t = {:.6g}", time(x, K, static_cast<int>(after / m_) + 1))};
   const size_t u = after - static_cast<size_t>(d_) * m_;
   size_t control = 0;
   while (control + 1 < nu_ && u_offset_[control + 1] <= u) ++control;
-  return fmt::format("control '{}' on interval {}", eq_.model->inputs[controls_[control]].name, k);
+  return {fmt::format("control '{}'", eq_.model->inputs[controls_[control]].name),
+          fmt::format("on interval {}", k)};
+}
+
+std::string Transcription::describe_variable(size_t column, const double* x) const {
+  const VariableName n = variable_name(column, x);
+  return n.where.empty() ? n.quantity : n.quantity + " " + n.where;
+}
+
+std::string Transcription::row_quantity(size_t row) const {
+  const size_t first_path = path_rows_, end_path = path_rows_ + static_cast<size_t>(N_ * d_) * np_;
+  if (row >= first_path && row < end_path)
+    return fmt::format("path '{}'", spec_.path[(row - first_path) % np_].name);
+  return "";
 }
 
 // docs/theory.md §10, "Polynomial controls": U_{k,j} at a collocation point, Σ_l ℓ̃_l(0) U_{k,l}

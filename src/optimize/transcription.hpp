@@ -88,6 +88,13 @@ class Transcription {
   std::string describe(size_t row, const double* x) const;
   /// What variable `column` is and where ("'plane.wx' at t = 3.2", "control 'u' on interval 4").
   std::string describe_variable(size_t column, const double* x) const;
+  /// A variable's quantity ("'plane.wx'", "control 'u'") and where it is ("at t = 3.2").
+  struct VariableName {
+    std::string quantity, where;
+  };
+  VariableName variable_name(size_t column, const double* x) const;
+  /// A path constraint row's quantity ("path 'height'"), else "".
+  std::string row_quantity(size_t row) const;
   /// A final value left out because the invariants imply it (docs/theory.md §10, "Constrained
   /// models"): its description, |x(T) − value|, and the same after x(T) is projected onto the
   /// invariants keeping the imposed final values (the collocation's drift removed).

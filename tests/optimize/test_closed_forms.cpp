@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "optimize/optimal_problem.hpp"
 
@@ -41,6 +42,9 @@ TEST(OptimalControl, MinimumTimeDoubleIntegratorIsTwiceTheSquareRootOfTheDistanc
     EXPECT_NEAR(r.objective, r.horizon, 1e-12);
     EXPECT_NEAR(r.controls.front(), 1.0, 1e-5);
     EXPECT_NEAR(r.controls.back(), -1.0, 1e-5);
+    // Bang-bang: u on each bound on half the intervals, and nothing else bounded is reached.
+    EXPECT_EQ(r.active_bounds, (std::vector<std::string>{"control 'u' ≥ -1 at 5 of 10 values",
+                                                         "control 'u' ≤ 1 at 5 of 10 values"}));
   }
 }
 

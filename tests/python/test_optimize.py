@@ -44,6 +44,7 @@ def test_the_double_integrators_minimum_energy_is_the_closed_form():
     r = lagrange.load(str(OPTIMAL / "double_integrator_min_energy.yaml")).optimize(intervals=10)
     assert r.optimal
     assert r.objective == pytest.approx(12 / (1 - 1 / 100), rel=1e-9)
+    assert r.active_bounds == []  # u is unbounded, the end states fixed
 
 
 def test_homotopy_stages_are_reported_with_the_problems_result():
