@@ -10,6 +10,7 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
+#include "lagrange/energy_balance.hpp"
 #include "lagrange/equations.hpp"
 #include "lagrange/optimal_control.hpp"
 #include "lagrange/simulation.hpp"
@@ -81,6 +82,8 @@ struct OptimizeResult {
   /// The bounds the result lies on (docs/theory.md §10, "Checks"): per bounded quantity and
   /// side, "control 'tau' ≥ -360 at 28 of 40 values", in the order of the variables and rows.
   std::vector<std::string> active_bounds;
+  /// H(T) − H(0) against each source's work over [0, T] (docs/theory.md §10, "Checks").
+  EnergyBalance energy_balance;
   /// The homotopy's stages before the problem, in order; the fields above are the problem's own
   /// solve (its set-up, solve and function times include the stages').
   std::vector<StageResult> stages;

@@ -304,6 +304,7 @@ void bind_model(py::module_& m) {
           "re-simulates the controls), with the GIL released: a namespace with optimal, status, "
           "objective, horizon, controls (intervals × controls), control_names, run (the "
           "collocated trajectory as a Run), violation, worst_constraint, active_bounds, "
+          "energy_balance (change, work by source, residual, scale, relative_residual, unsuitable), "
           "iterations, "
           "setup_seconds, solve_seconds, function_seconds, stages (the homotopy's, each with name, "
           "optimal, status, iterations, objective, tracking, seconds) and verify (final_gap, "

@@ -110,6 +110,13 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["violation"] = r.violation;
   fields["worst_constraint"] = r.worst_constraint;
   fields["active_bounds"] = r.active_bounds;
+  py::dict work;
+  for (const auto& [name, w] : r.energy_balance.work) work[py::str(name)] = w;
+  fields["energy_balance"] = types.attr("SimpleNamespace")(
+      py::arg("unsuitable") = r.energy_balance.unsuitable,
+      py::arg("change") = r.energy_balance.change, py::arg("work") = work,
+      py::arg("residual") = r.energy_balance.residual, py::arg("scale") = r.energy_balance.scale,
+      py::arg("relative_residual") = r.energy_balance.relative_residual());
   fields["control_names"] = r.control_names;
   fields["controls"] = controls;
   fields["control_points"] = control_points;

@@ -17,6 +17,23 @@
 
 namespace lagrange::cli {
 
+namespace {
+
+// docs/theory.md §10, "Checks": H(T) − H(0) against each source's work, and what is left.
+void print_energy_balance(const EnergyBalance& b) {
+  if (!b.unsuitable.empty()) {
+    fmt::print("  energy balance     not checked: {}\n", b.unsuitable);
+    return;
+  }
+  fmt::print("  energy balance     H(T) - H(0) = {:.6g}, the work over [0, T]:\n", b.change);
+  for (const auto& [name, work] : b.work)
+    fmt::print("                     {:+.6g}  {}\n", work, name);
+  fmt::print("                     residual {:.3g} ({:.2g} of the energy moved)\n", b.residual,
+             b.relative_residual());
+}
+
+}  // namespace
+
 int run_optimize(const Options& opt) {
   // Output locations are checked before the solve, not found unwritable after it (issue 37).
   for (const auto& [path, option] :
@@ -68,6 +85,7 @@ int run_optimize(const Options& opt) {
     if (!r.active_bounds.empty())
       fmt::print("  active bounds      {}\n",
                  fmt::join(r.active_bounds, "\n                     "));
+    print_energy_balance(r.energy_balance);
     fmt::print("  worst violation    {:.3g}{}\n", r.violation,
                r.worst_constraint.empty() ? "" : " (" + r.worst_constraint + ")");
     fmt::print(

@@ -11,6 +11,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "optimize/energy_balance.hpp"
 #include "optimize/ipopt_adapter.hpp"
 #include "optimize/transcription.hpp"
 #include "simulation/row_writer.hpp"
@@ -223,6 +224,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     }
   }
   r.active_bounds = active_bounds(nlp, x, g, xl, xu, gl, gu);
+  r.energy_balance = collocation::energy_balance(eq, nlp, x);
   // A final value the constraints imply is checked, not imposed. Its gap includes the
   // collocation's drift off the constraints; projected back onto them (the imposed final values
   // kept), a gap that remains means another branch (docs/theory.md §10, "Constrained models").

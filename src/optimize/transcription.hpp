@@ -122,6 +122,9 @@ class Transcription {
   size_t start_invariant_rows() const { return start_rows_.size(); }
   size_t periodic_rows() const { return periodic_.size() + turning_.size(); }
   const std::vector<size_t>& control_inputs() const { return controls_; }
+  /// The tape inputs (t, q, v, u, u̇, ü, p) at state x with controls `u` (the other inputs at
+  /// their expressions), in a buffer the next call overwrites.
+  const std::vector<double>& load(double t, const double* x, const double* u);
 
  private:
   // Offsets of X_{k,j}, Λ_{k,j} (j ≥ 1), and of control c at point j ≥ 1 of interval k (U_{k,j}
@@ -136,8 +139,6 @@ class Transcription {
   size_t point_variable(size_t column, int k, int j) const;
   /// The point functions at collocation point (k, j ≥ 1) into out_.
   void eval_point(const double* x, int k, int j);
-  /// The tape inputs (t, q, v, u, u̇, ü, p) at a point with controls `u`.
-  const std::vector<double>& load(double t, const double* x, const double* u);
   /// x'(τ_j)/h of interval k into qp_, and the residual's dynamics at (k, j) with the controls
   /// held: values into r (nq + nv + m).
   void residual(const double* x, int k, int j, double* r);

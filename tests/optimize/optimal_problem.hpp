@@ -1,8 +1,12 @@
 #pragma once
 // Test helper: an example's model, equations, tapes and workspace, ready for optimize().
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/dynamics.hpp"
@@ -19,6 +23,17 @@ inline std::string path(const std::string& name) {
   const std::string root = LAGRANGE_SOURCE_DIR;
   if (name.rfind("data/", 0) == 0) return root + "/tests/optimize/" + name;
   return root + "/examples/optimal/" + name;
+}
+
+/// Column `name` of a trajectory (a failed expectation when there is none).
+inline std::vector<double> column(const Trajectory& t, const std::string& name) {
+  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
+  EXPECT_NE(it, t.columns.end()) << name;
+  const size_t c = static_cast<size_t>(it - t.columns.begin()), n = t.columns.size();
+  std::vector<double> out;
+  if (it == t.columns.end()) return out;
+  for (size_t r = 0; r < t.rows(); ++r) out.push_back(t.data[r * n + c]);
+  return out;
 }
 
 struct OptimalProblem {

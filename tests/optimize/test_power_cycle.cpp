@@ -15,15 +15,7 @@
 namespace lagrange {
 namespace {
 
-// Column `name` of a trajectory.
-std::vector<double> column(const Trajectory& t, const std::string& name) {
-  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
-  EXPECT_NE(it, t.columns.end()) << name;
-  const size_t c = static_cast<size_t>(it - t.columns.begin()), n = t.columns.size();
-  std::vector<double> out;
-  for (size_t r = 0; r < t.rows(); ++r) out.push_back(t.data[r * n + c]);
-  return out;
-}
+using testing::column;
 
 TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
   testing::OptimalProblem kite("power_cycle_pointmass.yaml");
@@ -31,6 +23,18 @@ TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
   ASSERT_TRUE(coarse.optimal) << coarse.status;
   const double power = coarse.objective;
   EXPECT_GT(power, 1000.0);
+
+  // The energy balance over the cycle (docs/theory.md §10, "Checks"): the orbit closes, so the
+  // kite's aerodynamic work (its line's drag included) is what the winch takes, and the winch's
+  // work over the period is the objective's mean power, by the same quadrature.
+  const EnergyBalance& e = coarse.energy_balance;
+  ASSERT_TRUE(e.unsuitable.empty()) << e.unsuitable;
+  ASSERT_EQ(e.work.size(), 2u);
+  EXPECT_EQ(e.work[0].first.rfind("force at 'kite'", 0), 0u) << e.work[0].first;
+  EXPECT_EQ(e.work[1].first, "generalised force on 'drum.reeled_out'");
+  EXPECT_NEAR(-e.work[1].second / coarse.horizon, power, 1e-9 * power);
+  EXPECT_NEAR(e.change, 0.0, 1e-6 * e.scale);
+  EXPECT_NEAR(e.work[0].second, -e.work[1].second, 1e-3 * e.scale);
 
   // Loyd (1980): P ≤ (2/27) ρ S C_L (C_L/C_D)² v_w³, with the best C_L of its bounds, the least
   // tether drag the run had (the shortest line) and the wind at the highest point it reached.

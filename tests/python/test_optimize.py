@@ -47,6 +47,23 @@ def test_the_double_integrators_minimum_energy_is_the_closed_form():
     assert r.active_bounds == []  # u is unbounded, the end states fixed
 
 
+def test_the_energy_balance_names_each_sources_work(cli):
+    # From rest at x = 0 to speed 1 at x = 1: H gains m/2 + k/2 = 2, the force's work less the
+    # damper's (docs/theory.md §10, "Checks"); the CLI prints the same figures.
+    data = SOURCE_DIR / "tests" / "optimize" / "data" / "spring_damper_to_speed.yaml"
+    e = lagrange.load(str(data)).optimize().energy_balance
+    assert e.unsuitable == ""
+    assert e.change == pytest.approx(2.0, abs=1e-9)
+    damper = "damper 'anchor'–'mass' (line 19)"
+    assert list(e.work) == ["force at 'mass' (line 21)", damper]
+    assert sum(e.work.values()) == pytest.approx(2.0, abs=1e-8)
+    assert e.work[damper] < -0.1
+    assert e.relative_residual < 1e-8
+    done = subprocess.run([cli, "optimize", str(data)], capture_output=True, text=True, check=True)
+    assert "energy balance     H(T) - H(0) = 2, the work over [0, T]:" in done.stdout
+    assert f"{e.work[damper]:+.6g}  {damper}" in done.stdout
+
+
 def test_homotopy_stages_are_reported_with_the_problems_result():
     # A fictitious force at price w = 10 in the stage: w/(1 + w) of the problem's 12/(1 - 1/N^2)
     # (docs/theory.md §10, "Homotopy"); the problem itself then reaches 12/(1 - 1/N^2).
