@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "optimize/energy_balance.hpp"
 #include "optimize/ipopt_adapter.hpp"
@@ -170,39 +172,40 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   // docs/theory.md §10, "Homotopy": each stage starts where the last one ended, the problem
   // itself where the last stage ended.
   collocation::StageStart from;  // x empty: the problem's guess
+  using IpoptOptions = std::vector<std::pair<std::string, std::string>>;
+  // Transcribes `s` from `from` and solves it, adding the times to r (set-up since `setup_from`).
+  const auto solve = [&](const OptimalControlSpec& s, const IpoptOptions& ipopt,
+                         std::chrono::steady_clock::time_point setup_from) {
+    std::pair<std::unique_ptr<collocation::Transcription>, collocation::IpoptOutcome> done;
+    done.first = std::make_unique<collocation::Transcription>(eq, cm, dyn, s, r.intervals, r.degree,
+                                                              q0, v0, options.hessian, &from);
+    r.setup_seconds += seconds_since(setup_from);
+    const auto solve_start = std::chrono::steady_clock::now();
+    done.second =
+        collocation::solve_with_ipopt(*done.first, ipopt, options.verbose, options.interrupt);
+    r.solve_seconds += seconds_since(solve_start);
+    r.function_seconds += done.second.function_seconds;
+    return done;
+  };
   for (const StageSpec& stage : spec.stages) {
     const auto stage_start = std::chrono::steady_clock::now();
     const OptimalControlSpec s = staged(spec, stage);
     from.track = stage.track;
-    collocation::Transcription nlp(eq, cm, dyn, s, r.intervals, r.degree, q0, v0, options.hessian,
-                                   &from);
-    from.dae_hessian = nlp.dae_hessian();
-    r.setup_seconds += seconds_since(stage_start);
-    std::vector<std::pair<std::string, std::string>> ipopt = options.ipopt;
+    IpoptOptions ipopt = options.ipopt;
     ipopt.insert(ipopt.end(), stage.ipopt.begin(), stage.ipopt.end());
-    const auto solve_start = std::chrono::steady_clock::now();
-    collocation::IpoptOutcome out =
-        collocation::solve_with_ipopt(nlp, ipopt, options.verbose, options.interrupt);
-    r.solve_seconds += seconds_since(solve_start);
-    r.function_seconds += out.function_seconds;
-    const double tracking = nlp.tracking(out.x.data());
+    auto [nlp, out] = solve(s, ipopt, stage_start);
+    from.dae_hessian = nlp->dae_hessian();
+    const double tracking = nlp->tracking(out.x.data());
     r.stages.push_back({stage.name, out.optimal, out.status, out.iterations,
-                        (nlp.objective(out.x.data()) - tracking) * (nlp.maximize() ? -1.0 : 1.0),
+                        (nlp->objective(out.x.data()) - tracking) * (nlp->maximize() ? -1.0 : 1.0),
                         tracking, seconds_since(stage_start)});
     from.x = std::move(out.x);
   }
-  const auto setup_start = std::chrono::steady_clock::now();
   from.track = 0.0;
-  collocation::Transcription nlp(eq, cm, dyn, spec, r.intervals, r.degree, q0, v0, options.hessian,
-                                 &from);
+  auto [final_nlp, out] =
+      solve(spec, options.ipopt, spec.stages.empty() ? start : std::chrono::steady_clock::now());
+  collocation::Transcription& nlp = *final_nlp;
   r.hessian_note = nlp.hessian_note();
-  r.setup_seconds += seconds_since(spec.stages.empty() ? start : setup_start);
-
-  const auto solve_start = std::chrono::steady_clock::now();
-  collocation::IpoptOutcome out =
-      collocation::solve_with_ipopt(nlp, options.ipopt, options.verbose, options.interrupt);
-  r.solve_seconds += seconds_since(solve_start);
-  r.function_seconds += out.function_seconds;
   r.optimal = out.optimal;
   r.status = out.status;
   r.iterations = out.iterations;
