@@ -24,28 +24,6 @@ struct Term {
   bool times_cj;
 };
 
-bool finite(const ImplicitJacobian& J) {
-  const auto ok = [](const Eigen::SparseMatrix<double>& A) {
-    return std::all_of(A.valuePtr(), A.valuePtr() + A.nonZeros(),
-                       [](double x) { return std::isfinite(x); });
-  };
-  return ok(J.K) && ok(J.Phi_x) && ok(J.qdot_x);
-}
-
-/// The implicit form's Jacobians at (t, q, v) and (a, λ); at a kink (docs/theory.md §5.6) those
-/// at (q, v) moved by 1e-9 relative, as for the first-order form.
-ImplicitJacobian implicit_at(const DynamicsJacobian& jac, Dynamics& dyn, double t, const double* y,
-                             const double* a, const double* lambda) {
-  const size_t nq = jac.model().nq, n = nq + jac.model().nv;
-  ImplicitJacobian J = jac.implicit(dyn, t, y, y + nq, a, lambda);
-  std::mt19937 random(5);
-  for (int attempt = 0; attempt < 3 && !finite(J); ++attempt) {
-    const std::vector<double> moved = analysis_detail::off_kink(y, n, random);
-    J = jac.implicit(dyn, t, moved.data(), moved.data() + nq, a, lambda);
-  }
-  return J;
-}
-
 }  // namespace
 
 // docs/theory.md §5.6, "The DAE's Newton matrix": with y = (q, v, λ) and
@@ -110,7 +88,7 @@ DaeJacobian dae_jacobian(const DynamicsJacobian& jac, Dynamics& dyn, double t0,
   out.values = [&jac, &dyn, terms = std::move(terms), nq, n, nonzeros](
                    double t, double cj, const double* y, const double* yp, double* values) {
     // v' is the accelerations a of the implicit form, y's λ its multipliers.
-    const ImplicitJacobian J = implicit_at(jac, dyn, t, y, yp + nq, y + n);
+    const ImplicitJacobian J = analysis_detail::implicit_off_kink(jac, dyn, t, y, yp + nq, y + n);
     std::fill(values, values + nonzeros, 0.0);
     for (const Term& term : terms) {
       double x = term.sign * (term.times_cj ? cj : 1.0);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "analysis/off_kink.hpp"
 #include "optimize/file_guess.hpp"
 #include "optimize/simulated_guess.hpp"
 
@@ -226,8 +227,18 @@ size_t Transcription::point_variable(size_t column, int k, int j) const {
   return li(k, j) + column - cl;
 }
 
+// At a kink of a point function (|x| at x = 0) its derivatives are the one-sided ones there
+// (docs/theory.md §10, "Kinks"); its values are those at the point.
 void Transcription::eval_point(const double* x, int k, int j) {
-  fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k, j)), multipliers(x, k, j), out_);
+  const double* lambda = multipliers(x, k, j);
+  fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k, j)), lambda, out_);
+  const size_t nf = fun_.count();
+  if (analysis_detail::all_finite(out_.data() + nf, out_.data() + out_.size())) return;
+  const std::vector<double> values(out_.begin(), out_.begin() + static_cast<long>(nf));
+  std::vector<double> in = in_;  // load()'s inputs, to move off the kink
+  analysis_detail::eval_off_kink(in.data() + cm_->q_offset(), nx_, out_.data() + nf,
+                                 out_.data() + out_.size(), [&] { fun_.eval(in, lambda, out_); });
+  std::copy(values.begin(), values.end(), out_.begin());
 }
 
 double Transcription::time(const double* x, int k, int j) const {
@@ -696,8 +707,8 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       const size_t row = static_cast<size_t>(k * d_ + j - 1) * nr;
       residual(x, k, j, r.data());  // x'/h in xp_, the controls held
       const double* X = state(x, k, j);
-      const ImplicitJacobian J =
-          jac_.implicit(dyn_, time(x, k, j), X, X + nq_, xp_.data() + nq_, multipliers(x, k, j));
+      const ImplicitJacobian J = analysis_detail::implicit_off_kink(
+          jac_, dyn_, time(x, k, j), X, xp_.data() + nq_, multipliers(x, k, j));
       // r_q = q' − q̇(q, v): ∂/∂q' through the collocation derivative, −∂q̇/∂(q, v) at X_{k,j}.
       for (int l = 0; l <= d_; ++l) {
         const double f = rad_.derivative(j, l) / h;

@@ -8,6 +8,7 @@
 
 #include <map>
 
+#include "analysis/off_kink.hpp"
 #include "optimize/transcription.hpp"
 
 namespace lagrange::collocation {
@@ -191,8 +192,11 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
     else
       on_T(t, (k + rad_.tau[static_cast<size_t>(j)]) / N_);
   };
+  // At a kink (|x| at x = 0) the one-sided second derivatives (docs/theory.md §10, "Kinks").
   const auto scatter_all = [&](const SecondDerivatives& sd, auto&& terms) {
-    sd.eval(hin_, hout_);
+    hout_.resize(sd.pattern().size());
+    analysis_detail::eval_off_kink(hin_.data() + cm_->q_offset(), nx_, hout_.data(),
+                                   hout_.data() + hout_.size(), [&] { sd.eval(hin_, hout_); });
     for (size_t e = 0; e < sd.pattern().size(); ++e) {
       const auto [a, b] = sd.pattern()[e];
       terms(a, A);
@@ -215,8 +219,8 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       if (free_T_) {
         // x' = (1/h) Σ_l D_jl X_l is not linear in T: with g = Σ μ ∂r/∂x' (μ_q for q', Mμ_v + Gᵀμ_λ
         // for v'), ∂²x'/∂T² = 2x'/T² and ∂²x'/∂T∂X_l = −D_jl/(hT).
-        const ImplicitJacobian J =
-            jac_.implicit(dyn_, time(x, k, j), X, X + nq_, xp_.data() + nq_, multipliers(x, k, j));
+        const ImplicitJacobian J = analysis_detail::implicit_off_kink(
+            jac_, dyn_, time(x, k, j), X, xp_.data() + nq_, multipliers(x, k, j));
         std::copy(y + p * nr, y + p * nr + nq_, g.begin());
         std::fill(g.begin() + static_cast<long>(nq_), g.end(), 0.0);
         for (int o = 0; o < J.K.outerSize(); ++o)

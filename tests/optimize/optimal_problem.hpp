@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagrange/compiled_model.hpp"
@@ -43,7 +44,9 @@ struct OptimalProblem {
   std::unique_ptr<Dynamics> dyn;
 
   explicit OptimalProblem(const std::string& example, const ParameterOverrides& sets = {})
-      : model(std::make_unique<Model>(read_model_file(path(example), sets))),
+      : OptimalProblem(read_model_file(path(example), sets)) {}
+  explicit OptimalProblem(Model m)
+      : model(std::make_unique<Model>(std::move(m))),
         eq(derive(*model)),
         cm(compile(eq)),
         dyn(std::make_unique<Dynamics>(cm, cm->parameter_defaults)) {

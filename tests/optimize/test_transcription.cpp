@@ -68,8 +68,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "cart_pole_swing_up.yaml", "pendulum_swing_up_polar.yaml",
                       "pendulum_swing_up_cartesian.yaml", "van_der_pol_limit_cycle.yaml",
                       "data/everything.yaml", "data/everything_fixed_horizon.yaml",
-                      "attitude_slew.yaml", "data/spin_orbit.yaml", "power_cycle_pointmass.yaml",
-                      "power_cycle_ap2.yaml"),
+                      "data/spring_damper_to_speed.yaml", "attitude_slew.yaml",
+                      "data/spin_orbit.yaml", "power_cycle_pointmass.yaml", "power_cycle_ap2.yaml"),
     [](const auto& info) {
       std::string s = info.param.substr(0, info.param.size() - 5);
       for (char& c : s)
