@@ -97,18 +97,20 @@ TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
 
 // awebox's AP2 case (examples/optimal/power_cycle_ap2.yaml): from the model's own flown loop,
 // through the file's six homotopy stages (a fictitious force and moment priced out, then power),
-// every stage and the problem converge on MUMPS; the fictitious force ends at 0 and the orbit
-// closes when its controls are flown open loop. The power is not awebox's 4.4 kW: this tether has
-// no drag (the main loss) and the loop is the law's 19.4 s, not a free period (the file's header);
-// measured here 8128.6 W, held to 2 %.
+// every stage and the problem converge on MUMPS with the line's drag, z ≥ 100 m and the period
+// free in awebox's [20, 70] s; the fictitious force ends at 0, the drag dissipates, the energy
+// balances over the cycle, and the orbit closes when its controls are flown open loop. The power
+// is not awebox's 4.4 kW over 39.6 s: the surfaces are the figure-eight law plus offsets, which
+// holds the period near the law's loop, and the reel's acceleration is not bounded (the file's
+// header); measured here 6221.6 W over 22.35 s, each held to 2 %.
 TEST(PowerCycle, RigidAp2ConvergesThroughItsHomotopyOnMumps) {
   testing::OptimalProblem kite("power_cycle_ap2.yaml");
   const OptimizeResult r = kite.solve();
   ASSERT_EQ(r.stages.size(), 6u);
   for (const StageResult& s : r.stages) EXPECT_TRUE(s.optimal) << s.name << ": " << s.status;
   ASSERT_TRUE(r.optimal) << r.status;
-  EXPECT_NEAR(r.objective, 8128.6, 0.02 * 8128.6);
-  EXPECT_NEAR(r.horizon, 19.4, 1e-12);
+  EXPECT_NEAR(r.objective, 6221.6, 0.02 * 6221.6);
+  EXPECT_NEAR(r.horizon, 22.35, 0.02 * 22.35);
   for (const char* fictitious : {"Fx", "Fy", "Fz", "Ma", "Mb", "Mc"}) {
     const std::vector<double> f = column(r.trajectory, fictitious);
     EXPECT_EQ(*std::max_element(f.begin(), f.end(),
@@ -116,16 +118,35 @@ TEST(PowerCycle, RigidAp2ConvergesThroughItsHomotopyOnMumps) {
               0.0)
         << fictitious;
   }
-  // Bounds of awebox's that the collocation points keep: tether length and reel speed.
-  const std::vector<double> l = column(r.trajectory, "l"), ld = column(r.trajectory, "l_dot");
+  // Bounds of awebox's that the collocation points keep: tether length, reel speed, height.
+  const std::vector<double> l = column(r.trajectory, "l"), ld = column(r.trajectory, "l_dot"),
+                            z = column(r.trajectory, "plane.z");
   EXPECT_GE(*std::min_element(l.begin(), l.end()), 10 - 1e-6);
   EXPECT_LE(*std::max_element(ld.begin(), ld.end()), 20 + 1e-6);
+  EXPECT_GE(*std::min_element(z.begin(), z.end()), 100 - 1e-6);
+  // The energy over the cycle (docs/theory.md §10, "Checks"): the winch takes T times the mean
+  // power, the line's drag only dissipates, and the works add up to H(T) − H(0) = 0.
+  const EnergyBalance& e = r.energy_balance;
+  ASSERT_TRUE(e.unsuitable.empty()) << e.unsuitable;
+  double winch = NAN,
+         drag = 0.0;  // the drag: the bridle's most negative work (its weight is small)
+  for (const auto& [name, work] : e.work) {
+    if (name == "generalised force on 'l'") winch = work;
+    if (name.rfind("force at 'plane.bridle'", 0) == 0) drag = std::min(drag, work);
+  }
+  EXPECT_NEAR(-winch / r.horizon, r.objective, 1e-9 * r.objective);
+  EXPECT_LT(drag, -0.1 * r.objective * r.horizon);
+  // H(T) = H(0) to the drift of the components the invariants fix (measured 1.1e-6 of the scale)
+  EXPECT_NEAR(e.change, 0.0, 1e-5 * e.scale);
+  EXPECT_LT(e.relative_residual(), 1e-3);
   SimulationOptions tight;
   tight.integrator.rtol = 1e-10;
   tight.integrator.atol = 1e-12;
   const VerifyResult closure = verify(*kite.dyn, kite.spec(), r, tight);
   EXPECT_TRUE(closure.message.empty()) << closure.message;
-  EXPECT_LT(closure.final_gap, 0.1);  // measured 0.034 (metres and m/s on a 290 m tether)
+  // Measured 1.15 (metres and m/s on a 250 m line): the collocation's error on this orbit at 40
+  // intervals (0.067 at 80); a wrong orbit misses by tens to hundreds.
+  EXPECT_LT(closure.final_gap, 2.0);
 }
 
 // Periodicity of a constrained model: x(T) = x(0) only on the components the invariants C = 0,
