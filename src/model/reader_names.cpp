@@ -208,7 +208,11 @@ std::optional<Value> ModelReader::body_member(const std::string& name, size_t of
   auto it = names_.find(owner);
   if (it == names_.end() || it->second.kind != NameKind::Body) return std::nullopt;
   const size_t index = it->second.index;
-  const bool pose = member == "r" || member == "R";
+  // The state's columns as the CSV and the bounds name them: plane.x … plane.z, plane.R11 … R33.
+  const bool component = member == "x" || member == "y" || member == "z";
+  const bool entry = member.size() == 3 && member[0] == 'R' && member[1] >= '1' &&
+                     member[1] <= '3' && member[2] >= '1' && member[2] <= '3';
+  const bool pose = member == "r" || member == "R" || component || entry;
   if (pose && !(allowed & kCoords))
     throw ExprError{
         offset, fmt::format("expected {}, got '{}' (a body's pose)", allowed_words(allowed), name)};
@@ -219,14 +223,18 @@ std::optional<Value> ModelReader::body_member(const std::string& name, size_t of
   const Body& body = m_.bodies.at(index);
   if (pose) {
     if (member == "r") return Value::of(body.origin());
+    if (component) return Value::of(body.origin()[static_cast<size_t>(member[0] - 'x')]);
+    if (entry)
+      return Value::of(
+          body.rot()[static_cast<size_t>(member[1] - '1')][static_cast<size_t>(member[2] - '1')]);
     return Value::of(body.rot());
   }
   std::string points;
   for (const auto& p : body_points_)
     if (p.name.compare(0, dot + 1, owner + ".") == 0)
       points += (points.empty() ? "" : ", ") + p.name.substr(dot + 1);
-  throw ExprError{offset, fmt::format("expected r, R or a point of body '{}' after '.', got '{}' "
-                                      "(points: {})",
+  throw ExprError{offset, fmt::format("expected r, R, x, y, z, R11 … R33 or a point of body '{}' "
+                                      "after '.', got '{}' (points: {})",
                                       owner, clip(member), points.empty() ? "none" : points)};
 }
 

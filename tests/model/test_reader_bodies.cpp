@@ -199,6 +199,20 @@ struct BadBody {
 const std::string kBody = "bodies:\n  b:\n    mass: 1\n";
 const std::string kFreeBody = kBody + "    inertia: [1, 1, 1]\n    frame: free\n    initial: {}\n";
 
+// A body's state columns as the CSV and the bounds name them (b.x … b.z, b.R11 … b.R33) are the
+// components of b.r and the entries of b.R in expressions too.
+TEST(ReaderBodies, StateColumnNamesAreTheirComponents) {
+  const Model m = read_model_string(kFreeBody +
+                                        "outputs:\n  height: b.z - b.r.z\n  across: b.x*b.y\n"
+                                        "  entry: b.R31 - (b.R*[1, 0, 0]).z\n  top: b.R12\n",
+                                    "m.yaml");
+  ASSERT_EQ(m.outputs.size(), 4u);
+  EXPECT_TRUE(m.outputs[0].expr.is_zero()) << m.outputs[0].expr;
+  EXPECT_TRUE((m.outputs[1].expr - m.bodies[0].origin()[0] * m.bodies[0].origin()[1]).is_zero());
+  EXPECT_TRUE(GiNaC::expand(m.outputs[2].expr).is_zero()) << m.outputs[2].expr;
+  EXPECT_TRUE((m.outputs[3].expr - m.bodies[0].rot()[0][1]).is_zero());
+}
+
 // `coordinates: {}` reads as an absent key: the free body's model, nothing else; and with
 // neither coordinates nor bodies, the model is refused as when the key is absent.
 TEST(ReaderBodies, EmptyCoordinatesMapIsAnAbsentKey) {
@@ -272,7 +286,8 @@ std::vector<BadBody> bad_bodies() {
                "{orientation: {axis_angle: {axis: [0, 0, 0], angle: 1}}}\n",
        "6:48", "non-zero rotation axis"},
       {"unknown member", kFreeBody + "outputs:\n  o: b.foo.x\n", "8:6",
-       "expected r, R or a point of body 'b' after '.', got 'foo' (points: none)"},
+       "expected r, R, x, y, z, R11 … R33 or a point of body 'b' after '.', got 'foo' (points: "
+       "none)"},
       {"bare body", kFreeBody + "outputs:\n  o: b\n", "8:6", "expected b.r, b.R or a point"},
       {"point named R", kFreeBody + "    points: {R: [0, 0, 0]}\n", "7:14",
        "point name other than r and R"},
