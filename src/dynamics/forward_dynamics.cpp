@@ -203,6 +203,21 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   const CompiledModel& cm = *model_;
   eval_dynamics(t, q, v);
   const double* out = out_.data();
+  // A non-finite acceleration: named at the generalised forces or the constraint terms when an
+  // expression of the model is not finite there (x^(5/2) at x < 0), else at the acceleration.
+  const auto not_finite = [&](size_t i) {
+    for (size_t j = 0; j < cm.nv; ++j)
+      if (!std::isfinite(out[cm.rhs_out() + j]))
+        fail_singular(t, fmt::format("the generalised forces on '{}' are not finite (an "
+                                     "expression of the model has no finite value here)",
+                                     acceleration_name(cm, j)));
+    for (size_t r = 0; r < cm.m; ++r)
+      if (!std::isfinite(gamma_[static_cast<long>(r)]))
+        fail_singular(
+            t, fmt::format("the terms of constraint '{}' are not finite", cm.constraint_names[r]));
+    fail_singular(t,
+                  fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
+  };
   for (size_t i = 0; i < cm.nq; ++i) {
     qdot[i] = out[cm.qdot_out() + i];
     if (!std::isfinite(qdot[i]))
@@ -215,9 +230,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   if (sparse_) {
     if (sparse_->solve(out, out + cm.G_out(), out + cm.rhs_out(), gamma_.data(), a, lambda)) {
       for (size_t i = 0; i < cm.nv; ++i)
-        if (!std::isfinite(a[i]))
-          fail_singular(
-              t, fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
+        if (!std::isfinite(a[i])) not_finite(i);
       return;
     }  // otherwise the dense path below diagnoses the failure
   }
@@ -232,9 +245,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
       const double d = M_(static_cast<long>(i), static_cast<long>(i));
       if (!(d > 1e-13 * scale)) fail_singular(t, "the mass matrix is singular or indefinite");
       a[i] = rhs_[static_cast<long>(i)] / d;
-      if (!std::isfinite(a[i]))
-        fail_singular(
-            t, fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
+      if (!std::isfinite(a[i])) not_finite(i);
     }
     return;
   }
@@ -260,9 +271,7 @@ void Dynamics::forward(double t, const double* q, const double* v, double* qdot,
   for (size_t r = 0; r < cm.m; ++r) lambda[r] = lambda_[static_cast<long>(r)];
   for (size_t i = 0; i < cm.nv; ++i) {
     a[i] = a_[static_cast<long>(i)];
-    if (!std::isfinite(a[i]))
-      fail_singular(
-          t, fmt::format("the acceleration of '{}' is not finite", acceleration_name(cm, i)));
+    if (!std::isfinite(a[i])) not_finite(i);
   }
 }
 
