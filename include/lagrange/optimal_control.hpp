@@ -79,6 +79,8 @@ struct StageSpec {
   std::vector<std::pair<size_t, Bounds>> control_bounds;  ///< (index into controls, bounds)
   double track = 0.0;
   std::vector<std::pair<std::string, std::string>> ipopt;  ///< after the command line's
+  /// A free horizon's bounds in this stage (lower = upper: T held there); unset: the problem's.
+  std::optional<Bounds> horizon;
   SourceLoc loc;
 };
 

@@ -12,10 +12,12 @@
 namespace lagrange::model {
 
 void ModelReader::read_stages(const YAML::Node& node, OptimalControlSpec& spec) const {
-  expect_seq(node, "stages (a list of {name, minimize or maximize, controls, track, ipopt})");
+  expect_seq(node,
+             "stages (a list of {name, minimize or maximize, controls, horizon, track, ipopt})");
   for (const YAML::Node& item : node) {
-    expect_map(item, "a stage ({name, minimize or maximize, controls, track, ipopt})");
-    check_keys(item, {"name", "minimize", "maximize", "controls", "track", "ipopt"}, "a stage");
+    expect_map(item, "a stage ({name, minimize or maximize, controls, horizon, track, ipopt})");
+    check_keys(item, {"name", "minimize", "maximize", "controls", "horizon", "track", "ipopt"},
+               "a stage");
     StageSpec stage;
     stage.loc = src_.at(item);
     if (!item["name"]) fail(item, "expected 'name' in a stage, got none");
@@ -66,6 +68,23 @@ void ModelReader::read_stages(const YAML::Node& node, OptimalControlSpec& spec) 
         stage.control_bounds.emplace_back(static_cast<size_t>(control - spec.controls.begin()), b);
       }
     }
+    if (const YAML::Node h = item["horizon"]; h && !h.IsNull()) {
+      if (!spec.free_horizon)
+        fail(h, fmt::format("expected the horizon of {} only with a free horizon in the problem "
+                            "(horizon: {{lower, upper}}), got a fixed T = {:g}",
+                            what, spec.horizon));
+      Bounds b;
+      if (h.IsMap()) {
+        b = read_bounds(h, "the horizon of " + what);
+      } else {
+        b.lower = b.upper = number(h, kParams, "the horizon of " + what);
+      }
+      if (!(b.lower > 0) || !std::isfinite(b.upper))
+        fail(h, fmt::format("expected the horizon of {} with 0 < lower <= upper < inf, got "
+                            "[{:g}, {:g}]",
+                            what, b.lower, b.upper));
+      stage.horizon = b;
+    }
     if (item["track"]) {
       stage.track = number(item["track"], kParams, "track of " + what);
       if (!(stage.track >= 0) || !std::isfinite(stage.track))
@@ -80,9 +99,9 @@ void ModelReader::read_stages(const YAML::Node& node, OptimalControlSpec& spec) 
                                  scalar(kv.second, "the value of an Ipopt option of " + what));
     }
     if (!stage.replaces_objective && stage.control_bounds.empty() && stage.track == 0 &&
-        stage.ipopt.empty())
+        stage.ipopt.empty() && !stage.horizon)
       fail(item, fmt::format("expected {} to change the problem (minimize or maximize, controls, "
-                             "track or ipopt), got only its name",
+                             "horizon, track or ipopt), got only its name",
                              what));
     spec.stages.push_back(std::move(stage));
   }

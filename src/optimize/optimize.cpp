@@ -69,6 +69,10 @@ OptimalControlSpec staged(const OptimalControlSpec& spec, const StageSpec& stage
     s.objective_text = stage.objective_text;
   }
   for (const auto& [c, bounds] : stage.control_bounds) s.controls.at(c).bounds = bounds;
+  if (stage.horizon) {  // the NLP keeps T as its variable 0: only its bounds change
+    s.free_horizon = stage.horizon;
+    s.horizon = std::clamp(s.horizon, stage.horizon->lower, stage.horizon->upper);
+  }
   return s;
 }
 

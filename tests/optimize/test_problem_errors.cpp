@@ -112,6 +112,11 @@ TEST(OptimalControlErrors, HomotopyStagesAreCheckedWhereWritten) {
       << idle;
   const std::string key = error_of(ok + "    - {name: a, trak: 1}\n");
   EXPECT_NE(key.find("track"), std::string::npos) << key;
+  const std::string held = error_of(ok + "    - {name: a, horizon: 2}\n");
+  EXPECT_NE(held.find("di.yaml:13:26: error: expected the horizon of stage 'a' only with a free "
+                      "horizon in the problem (horizon: {lower, upper}), got a fixed T = 1"),
+            std::string::npos)
+      << held;
   const std::string nameless = error_of(ok + "    - {track: 1}\n");
   EXPECT_NE(nameless.find("expected 'name' in a stage"), std::string::npos) << nameless;
 }

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
+#include "lagrange/reader.hpp"
 #include "optimize/nlp_derivative_check.hpp"
 #include "optimize/optimal_problem.hpp"
 
@@ -31,6 +34,29 @@ TEST(HomotopyStages, FictitiousForceStageAndProblemMeetTheirClosedForms) {
     EXPECT_NEAR(r.controls[2 * k], (6 - 12 * (k + 0.5) * h) / (1 - h * h), 1e-5) << k;
     EXPECT_NEAR(r.controls[2 * k + 1], 0.0, 1e-12) << k;  // F, fixed at 0 by its bounds
   }
+}
+
+// A stage can hold or bound a free horizon: minimum energy with T held at 3 costs
+// 12 d²/T³/(1 − 1/N²) (the closed form of the double integrator scaled to T); minimum time with
+// T ≥ 2.5 ends on that bound; the problem then reaches its own T = 2√d = 2 from there.
+TEST(HomotopyStages, AStageHoldsOrBoundsAFreeHorizon) {
+  std::ifstream in(testing::path("double_integrator_min_time.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string model = text.str();
+  const std::string last = "  degree: 3\n";  // the problem's last key
+  ASSERT_NE(model.find(last), std::string::npos);
+  model.insert(model.find(last) + last.size(),
+               "  stages:\n    - {name: held, horizon: 3, minimize: integral(u^2)}\n"
+               "    - {name: bounded, horizon: {lower: 2.5, upper: 4}}\n");
+  testing::OptimalProblem p(read_model_string(model, "min_time.yaml"));
+  const OptimizeResult r = p.solve();
+  ASSERT_TRUE(r.optimal) << r.status;
+  ASSERT_EQ(r.stages.size(), 2U);
+  for (const StageResult& s : r.stages) EXPECT_TRUE(s.optimal) << s.name << ": " << s.status;
+  EXPECT_NEAR(r.stages[0].objective, 12.0 / 27 / (1 - 1.0 / 400), 1e-7);
+  EXPECT_NEAR(r.stages[1].objective, 2.5, 1e-7);
+  EXPECT_NEAR(r.horizon, 2.0, 1e-6);
 }
 
 // A stage that only tracks its start (no objective): the motion nearest the straight-line guess
