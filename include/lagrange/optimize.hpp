@@ -32,6 +32,11 @@ struct OptimizeOptions {
   std::vector<std::pair<std::string, std::string>> ipopt;
   bool verbose = false;  ///< Ipopt's iteration log on stdout
   HessianChoice hessian = HessianChoice::Auto;
+  /// How the exact Hessian's compiled second derivatives run (docs/theory.md §8): Background
+  /// interprets them until machine code from the cache or a compiler run beside the solve is
+  /// ready (the same bits, so the iterates do not change); MachineCode compiles before the solve.
+  Evaluation evaluation = Evaluation::Background;
+  MachineCodeOptions machine_code;
   /// Set asynchronously (Ctrl-C) to stop Ipopt after its current iteration: the result is then
   /// the last iterate, not optimal, its trajectory's status Interrupted.
   const std::atomic<bool>* interrupt = nullptr;
@@ -79,6 +84,9 @@ struct OptimizeResult {
   std::vector<std::string> warnings;
   /// Why the Hessian is not the exact one when it could have been (empty otherwise).
   std::string hessian_note;
+  /// How the exact Hessian's second derivatives ran at the end ("machine code (from the cache)",
+  /// "interpreter (…)"); empty without the exact Hessian.
+  std::string hessian_evaluation;
   /// The bounds the result lies on (docs/theory.md §10, "Checks"): per bounded quantity and
   /// side, "control 'tau' ≥ -360 at 28 of 40 values", in the order of the variables and rows.
   std::vector<std::string> active_bounds;

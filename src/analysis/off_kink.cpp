@@ -18,6 +18,7 @@ ImplicitJacobian implicit_off_kink(const DynamicsJacobian& jac, Dynamics& dyn, d
                                    const double* y, const double* a, const double* lambda) {
   const size_t nq = jac.model().nq, n = nq + jac.model().nv;
   ImplicitJacobian J = jac.implicit(dyn, t, y, y + nq, a, lambda);
+  if (finite(J)) return J;  // the common case: no generator to seed
   std::mt19937 random(5);
   for (int attempt = 0; attempt < 3 && !finite(J); ++attempt) {
     const std::vector<double> moved = off_kink(y, n, random);

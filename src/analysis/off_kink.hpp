@@ -30,6 +30,7 @@ inline bool all_finite(const double* begin, const double* end) {
 template <class Eval>
 void eval_off_kink(double* y, size_t n, const double* begin, const double* end, Eval&& eval) {
   eval();
+  if (all_finite(begin, end)) return;  // the common case: no generator to seed
   std::mt19937 random(5);
   for (int attempt = 0; attempt < 3 && !all_finite(begin, end); ++attempt) {
     const std::vector<double> moved = off_kink(y, n, random);

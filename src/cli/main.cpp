@@ -301,6 +301,10 @@ int main(int argc, char** argv) {
       ->add_option("--hessian", opt.hessian,
                    "exact, limited-memory, or auto (exact unless the equations are too large)")
       ->check(CLI::IsMember({"auto", "exact", "limited-memory"}));
+  optimize->add_option("--compile", opt.compile,
+                       "auto (default): the Hessian's second derivatives on machine code from the "
+                       "cache, or compiled beside the solve | on: compile before it | off: "
+                       "interpreter only");
   optimize->add_flag("-v,--verbose", opt.verbose, "print Ipopt's iteration log");
   optimize->add_flag("-q,--quiet", opt.quiet, "no summary");
   optimize->add_option("--package-path", package_paths, package_help);

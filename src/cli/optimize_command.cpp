@@ -1,5 +1,5 @@
 // `lagrange optimize MODEL [-o out.csv] [--report out.html] [--hessian H] [--intervals N] [--degree
-// d] [--set …] [--verify]
+// d] [--set …] [--verify] [--compile auto|on|off]
 // [--ipopt KEY=VALUE …]` (docs/model-language.md, "Optimal control"; docs/theory.md §10).
 // Exit codes: 0 optimal, 1 a mistake in the model file, 2 usage, 3 Ipopt failed or infeasible.
 
@@ -52,6 +52,9 @@ int run_optimize(const Options& opt) {
   OptimizeOptions o = optimize_options(opt);
   const SimulationOptions so = simulation_options(*p.model, RunSettings{});
   p.dynamics->set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));
+  if (!choose_evaluation(*p.dynamics, opt.compile, {}))
+    fmt::print(stderr, "warning: machine code: {}; the tape interpreter runs instead\n",
+               p.dynamics->machine_code_error());
   OptimizeResult r;
   try {
     r = optimize(p.equations, p.compiled, *p.dynamics, spec, p.q, p.v, o);
@@ -93,6 +96,8 @@ int run_optimize(const Options& opt) {
         "solve ({:.3f} s in our functions)\n",
         p.derive_seconds + p.compile_seconds + r.setup_seconds, r.solve_seconds,
         r.function_seconds);
+    if (!r.hessian_evaluation.empty())
+      fmt::print("  hessian            {}\n", r.hessian_evaluation);
   }
   if (opt.verify) {
     SimulationOptions tight = so;

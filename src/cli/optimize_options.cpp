@@ -12,6 +12,15 @@ OptimizeOptions optimize_options(const Options& opt) {
   o.hessian = opt.hessian == "exact"            ? HessianChoice::Exact
               : opt.hessian == "limited-memory" ? HessianChoice::LimitedMemory
                                                 : HessianChoice::Auto;
+  // docs/theory.md §8, machine code, as `simulate --compile` chooses it.
+  if (opt.compile == "off")
+    o.evaluation = Evaluation::Interpreter;
+  else if (opt.compile == "on")
+    o.evaluation = Evaluation::MachineCode;
+  else if (opt.compile == "auto")
+    o.evaluation = Evaluation::Background;
+  else
+    throw UsageError("compile: expected auto, on or off, got '" + opt.compile + "'");
   for (const std::string& a : opt.ipopt) {
     const size_t eq = a.find('=');
     if (eq == std::string::npos || eq == 0)

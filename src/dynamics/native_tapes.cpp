@@ -26,7 +26,7 @@ void NativeTapes::reset() {
 }
 
 void NativeTapes::publish(std::shared_ptr<const MachineCode> lib) {
-  for (size_t i = 0; i < 3; ++i) functions[i] = lib->function(i);
+  for (size_t i = 0; i < functions.size(); ++i) functions[i] = lib->function(i);
   {
     const std::lock_guard<std::mutex> lock(mutex);
     library = std::move(lib);
@@ -52,6 +52,7 @@ std::string NativeTapes::error() const {
 void NativeTapes::start(const std::vector<const Tape*>& tapes) {
   reset();
   if (mode == Evaluation::Interpreter) return;
+  functions.assign(tapes.size(), nullptr);
   MachineCodeOptions opts = options;
   opts.cancel = &cancel;
   try {
@@ -73,11 +74,9 @@ void NativeTapes::start(const std::vector<const Tape*>& tapes) {
     fail(e.what());
     return;
   }
-  if (tapes[kDynamicsTape]->num_instructions() < Dynamics::kBackgroundMinInstructions) {
-    skip(
-        fmt::format("the {}-instruction tape specialised to the parameter values interprets faster "
-                    "than it compiles",
-                    tapes[kDynamicsTape]->num_instructions()));
+  if (tapes[0]->num_instructions() < min_instructions) {
+    skip(fmt::format("the {}-instruction tape interprets faster than it compiles",
+                     tapes[0]->num_instructions()));
     return;
   }
   // The worker owns copies of the tapes: the Dynamics may re-specialise its own meanwhile
@@ -103,6 +102,7 @@ void NativeTapes::start_shared(const std::vector<const Tape*>& tapes,
     key += tapes[i]->to_shared_c(fmt::format("f{}", i), offsets[i]);
   if (key == shared_key) return;  // the loaded library reads the new constants
   reset();
+  functions.assign(tapes.size(), nullptr);
   shared_key = std::move(key);
   MachineCodeOptions opts = options;
   opts.cancel = &cancel;

@@ -1,7 +1,7 @@
 #pragma once
-// The machine code behind a Dynamics (docs/theory.md §8): the library of its three specialised
-// tapes, compiled at once or by a background thread, and published to the evaluating thread
-// through one atomic flag.
+// The machine code behind a set of tapes (docs/theory.md §8): a Dynamics' three specialised tapes,
+// or the optimiser's second derivatives; their library compiled at once or by a background
+// thread, and published to the evaluating thread through one atomic flag.
 
 #include <atomic>
 #include <memory>
@@ -15,15 +15,18 @@
 
 namespace lagrange::dynamics {
 
-/// Tape order in the library.
+/// Tape order in a Dynamics' library.
 enum TapeSlot : size_t { kDynamicsTape = 0, kObservablesTape = 1, kInputsTape = 2 };
 
 struct NativeTapes {
   Evaluation mode = Evaluation::Interpreter;
   MachineCodeOptions options;  ///< as given; `cancel` is replaced by ours
+  /// Background: a first tape shorter than this interprets faster than it compiles, and is not
+  /// compiled (a cached library is still used).
+  size_t min_instructions = Dynamics::kBackgroundMinInstructions;
 
-  /// The function of a tape when machine code is ready, else nullptr (the interpreter runs).
-  MachineCode::Function function(TapeSlot slot) const {
+  /// The function of tape `slot` when machine code is ready, else nullptr (the interpreter runs).
+  MachineCode::Function function(size_t slot) const {
     return ready.load(std::memory_order_acquire) ? functions[slot] : nullptr;
   }
 
@@ -47,7 +50,7 @@ struct NativeTapes {
 
   std::atomic<bool> ready{false};
   std::atomic<bool> cancel{false};
-  MachineCode::Function functions[3] = {nullptr, nullptr, nullptr};
+  std::vector<MachineCode::Function> functions;  ///< one per tape, set before `ready`
   std::shared_ptr<const MachineCode> library;
   std::thread worker;
   mutable std::mutex mutex;  // guards `why` and `library` between the worker and note()

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace lagrange::collocation {
 
@@ -194,6 +197,24 @@ class Adapter : public Ipopt::TNLP {
   const std::atomic<bool>* interrupt_;
 };
 
+/// MUMPS allocates its factorisation's workspace (with Ipopt's mumps_mem_percent, ten times its
+/// estimate) and frees it again at every factorisation. glibc serves such large blocks by fresh
+/// mappings (over its mmap threshold) or returns them to the system (over its trim threshold),
+/// so each factorisation page-faults and zeroes the workspace anew: 15 % of the AP2 power
+/// cycle's solve time (docs/benchmarks.md). Both thresholds raised once for the process keep the
+/// blocks in the heap for reuse; the process keeps the largest workspace until it ends.
+void keep_large_blocks() {
+#ifdef __GLIBC__
+  static const bool once = [] {
+    constexpr int kBytes = 1 << 30;
+    mallopt(M_MMAP_THRESHOLD, kBytes);
+    mallopt(M_TRIM_THRESHOLD, kBytes);
+    return true;
+  }();
+  (void)once;
+#endif
+}
+
 /// Sets one option by the form of its value: an integer, a number, else a word.
 bool set_option(Ipopt::OptionsList& list, const std::string& key, const std::string& value) {
   char* end = nullptr;
@@ -210,6 +231,7 @@ IpoptOutcome solve_with_ipopt(Transcription& nlp,
                               const std::vector<std::pair<std::string, std::string>>& options,
                               bool verbose, const std::atomic<bool>* interrupt) {
   IpoptOutcome out;
+  keep_large_blocks();
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   Ipopt::OptionsList& list = *app->Options();
   list.SetStringValue("sb", "yes");

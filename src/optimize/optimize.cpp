@@ -181,8 +181,9 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   const auto solve = [&](const OptimalControlSpec& s, const IpoptOptions& ipopt,
                          std::chrono::steady_clock::time_point setup_from) {
     std::pair<std::unique_ptr<collocation::Transcription>, collocation::IpoptOutcome> done;
-    done.first = std::make_unique<collocation::Transcription>(eq, cm, dyn, s, r.intervals, r.degree,
-                                                              q0, v0, options.hessian, &from);
+    done.first = std::make_unique<collocation::Transcription>(
+        eq, cm, dyn, s, r.intervals, r.degree, q0, v0, options.hessian, &from, options.evaluation,
+        options.machine_code);
     r.setup_seconds += seconds_since(setup_from);
     const auto solve_start = std::chrono::steady_clock::now();
     done.second =
@@ -210,6 +211,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
       solve(spec, options.ipopt, spec.stages.empty() ? start : std::chrono::steady_clock::now());
   collocation::Transcription& nlp = *final_nlp;
   r.hessian_note = nlp.hessian_note();
+  r.hessian_evaluation = nlp.hessian_evaluation();
   r.optimal = out.optimal;
   r.status = out.status;
   r.iterations = out.iterations;

@@ -2,7 +2,14 @@
 
 #include <algorithm>
 
+#include "dynamics/native_tapes.hpp"
+
 namespace lagrange::collocation {
+
+SecondDerivatives::SecondDerivatives() = default;
+SecondDerivatives::SecondDerivatives(SecondDerivatives&&) noexcept = default;
+SecondDerivatives& SecondDerivatives::operator=(SecondDerivatives&&) noexcept = default;
+SecondDerivatives::~SecondDerivatives() = default;
 
 SecondDerivatives::SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
                                      const std::vector<size_t>& columns) {
@@ -24,8 +31,24 @@ SecondDerivatives::SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC
   work_.resize(std::max<size_t>(tape_.work_size(), 1));
 }
 
+void SecondDerivatives::use_machine_code(Evaluation mode, const MachineCodeOptions& options) {
+  if (!native_) native_ = std::make_unique<dynamics::NativeTapes>();
+  native_->mode = mode;
+  native_->options = options;
+  native_->start({&tape_});
+}
+
+std::string SecondDerivatives::evaluation_note() const {
+  return native_ ? native_->note() : "interpreter";
+}
+
 void SecondDerivatives::eval(const std::vector<double>& in, std::vector<double>& out) const {
   out.resize(tape_.num_outputs());
+  if (native_)
+    if (const MachineCode::Function f = native_->function(0)) {
+      f(in.data(), out.data(), work_.data());
+      return;
+    }
   tape_.eval(in.data(), out.data(), work_.data());
 }
 

@@ -1,24 +1,43 @@
 #pragma once
 // The second derivatives of one scalar expression along chosen tape inputs, the structural
-// non-zeros of its lower triangle only, compiled onto one tape (docs/theory.md §10, "Hessian").
+// non-zeros of its lower triangle only, compiled onto one tape (docs/theory.md §10, "Hessian"),
+// evaluated on machine code when it is had (docs/theory.md §8).
 
 #include <ginac/ginac.h>
 
+#include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "lagrange/dynamics.hpp"
+#include "lagrange/machine_code.hpp"
 #include "lagrange/tape.hpp"
 
-namespace lagrange::collocation {
+namespace lagrange {
+namespace dynamics {
+struct NativeTapes;
+}
+
+namespace collocation {
 
 /// ∂²s/∂c_a∂c_b for columns a ≥ b, where column a is input `columns[a]` of `inputs`.
 class SecondDerivatives {
  public:
-  SecondDerivatives() = default;
+  SecondDerivatives();
   SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
                     const std::vector<size_t>& columns);
+  SecondDerivatives(SecondDerivatives&&) noexcept;
+  SecondDerivatives& operator=(SecondDerivatives&&) noexcept;
+  ~SecondDerivatives();
   /// (a, b), a ≥ b, of each output, in output order.
   const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
+  const Tape& tape() const { return tape_; }
+  /// Machine code for the tape per `mode`: eval uses it once it is ready, computing the same
+  /// bits as the interpreter, so the switch changes no result.
+  void use_machine_code(Evaluation mode, const MachineCodeOptions& options);
+  /// Which evaluation runs, in words ("machine code (from the cache)", "interpreter (…)").
+  std::string evaluation_note() const;
   /// The derivatives at the tape input vector `in` into `out` (pattern().size() values).
   void eval(const std::vector<double>& in, std::vector<double>& out) const;
 
@@ -26,6 +45,8 @@ class SecondDerivatives {
   std::vector<std::pair<size_t, size_t>> pattern_;
   Tape tape_;
   mutable std::vector<double> work_;
+  std::unique_ptr<dynamics::NativeTapes> native_;
 };
 
-}  // namespace lagrange::collocation
+}  // namespace collocation
+}  // namespace lagrange

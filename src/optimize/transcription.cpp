@@ -57,7 +57,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
                              Dynamics& dyn, const OptimalControlSpec& spec, int intervals,
                              int degree, const std::vector<double>& q0,
                              const std::vector<double>& v0, HessianChoice hessian,
-                             const StageStart* stage)
+                             const StageStart* stage, Evaluation evaluation,
+                             const MachineCodeOptions& machine_code)
     : eq_(eq),
       cm_(cm),
       dyn_(dyn),
@@ -154,7 +155,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
     slot_.push_back(it->second);
   });
   if (hessian != HessianChoice::LimitedMemory)
-    prepare_hessian(hessian, stage != nullptr ? stage->dae_hessian : nullptr);
+    prepare_hessian(hessian, stage != nullptr ? stage->dae_hessian : nullptr, evaluation,
+                    machine_code);
 }
 
 size_t Transcription::xi(int k, int j) const {

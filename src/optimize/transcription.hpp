@@ -48,7 +48,9 @@ class Transcription {
   Transcription(const Equations& eq, std::shared_ptr<const CompiledModel> cm, Dynamics& dyn,
                 const OptimalControlSpec& spec, int intervals, int degree,
                 const std::vector<double>& q0, const std::vector<double>& v0,
-                HessianChoice hessian = HessianChoice::Auto, const StageStart* stage = nullptr);
+                HessianChoice hessian = HessianChoice::Auto, const StageStart* stage = nullptr,
+                Evaluation evaluation = Evaluation::Interpreter,
+                const MachineCodeOptions& machine_code = {});
 
   size_t variables() const { return n_; }
   size_t constraints() const { return rows_; }
@@ -75,6 +77,9 @@ class Transcription {
   bool has_hessian() const { return hessian_ready_; }
   /// Why the exact Hessian was not made (empty when it was, or when it was not asked for).
   const std::string& hessian_note() const { return hessian_note_; }
+  /// How the DAE's second derivatives run (SecondDerivatives::evaluation_note); empty without
+  /// the exact Hessian.
+  std::string hessian_evaluation() const { return h_dae_ ? h_dae_->evaluation_note() : ""; }
   /// (row, column), row ≥ column, of the Hessian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& hessian_pattern() const { return hnz_; }
   /// σ∇²J + Σ y_r ∇²g_r at x, in hessian_pattern() order (y: one multiplier per constraint).
@@ -176,7 +181,8 @@ class Transcription {
                         EmitB&& on_end) const;
   /// Compiles the second derivatives of the DAE, the point functions and the invariants, and
   /// finds the Hessian's pattern (docs/theory.md §10, "Hessian").
-  void prepare_hessian(HessianChoice choice, std::shared_ptr<const SecondDerivatives> dae);
+  void prepare_hessian(HessianChoice choice, std::shared_ptr<const SecondDerivatives> dae,
+                       Evaluation evaluation, const MachineCodeOptions& machine_code);
   /// Every Hessian entry as emit(row, column, value), row ≥ column, in a fixed order.
   template <class Emit>
   void walk_hessian(const double* x, double sigma, const double* y, Emit&& emit);

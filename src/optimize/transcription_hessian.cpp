@@ -60,7 +60,8 @@ size_t distinct_terms(const GiNaC::ex& e, size_t limit) {
 }  // namespace
 
 void Transcription::prepare_hessian(HessianChoice choice,
-                                    std::shared_ptr<const SecondDerivatives> dae) {
+                                    std::shared_ptr<const SecondDerivatives> dae,
+                                    Evaluation evaluation, const MachineCodeOptions& machine_code) {
   const Equations& eq = eq_;
   const CompiledModel& cm = *cm_;
   const std::vector<GiNaC::ex> out = dynamics_expressions(eq, cm);
@@ -111,7 +112,11 @@ void Transcription::prepare_hessian(HessianChoice choice,
       }
     in.push_back(alpha);
     in.insert(in.end(), mu.begin(), mu.end());
-    h_dae_ = std::make_shared<const SecondDerivatives>(s, in, columns);
+    // The costliest tape of the solve (docs/theory.md §10, "Hessian"): on machine code once it
+    // is had; later stages share it, and the compiler's run, with this one.
+    auto made = std::make_shared<SecondDerivatives>(s, in, columns);
+    made->use_machine_code(evaluation, machine_code);
+    h_dae_ = std::move(made);
   }
   // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p, over (q, v, u, λ) and, with T free, t = T (k + τ_j)/N.
   {

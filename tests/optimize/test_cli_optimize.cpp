@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 
 #include "cli/shell_run.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange {
 namespace {
@@ -132,6 +134,28 @@ TEST(OptimizeCommand, HessianChoiceReachesTheSameOptimum) {
   };
   EXPECT_NEAR(objective(exact.output), objective(lbfgs.output), 1e-6 * objective(exact.output));
   EXPECT_EQ(testing::run_shell("optimize " + model + " --hessian newton").code, 2);
+}
+
+// `--compile` as `simulate` has it (docs/theory.md §8): the Hessian's second derivatives on
+// machine code or the interpreter, the same iterates to the last digit, the summary saying which.
+TEST(OptimizeCommand, CompileChoiceSaysWhichRanAndChangesNoIterate) {
+  const std::string model = kDir + "cart_pole_swing_up.yaml --intervals 20";
+  ::setenv("LAGRANGE_CACHE_DIR", LAGRANGE_TEST_CACHE, 1);
+  const auto on = testing::run_shell("optimize " + model + " --compile on");
+  const auto off = testing::run_shell("optimize " + model + " --compile off");
+  const auto bad = testing::run_shell("optimize " + model + " --compile sometimes");
+  ::unsetenv("LAGRANGE_CACHE_DIR");
+  ASSERT_EQ(on.code, 0) << on.output;
+  ASSERT_EQ(off.code, 0) << off.output;
+  EXPECT_NE(on.output.find("  hessian            machine code ("), std::string::npos) << on.output;
+  EXPECT_NE(off.output.find("  hessian            interpreter\n"), std::string::npos) << off.output;
+  // Everything up to the timings is the same text: status, iterations, objective, violation.
+  const auto solved = [](const std::string& out) { return out.substr(0, out.find("  time  ")); };
+  EXPECT_EQ(solved(on.output), solved(off.output));
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("compile: expected auto, on or off, got 'sometimes'"),
+            std::string::npos)
+      << bad.output;
 }
 
 // A polynomial control (docs/theory.md §10, "Polynomial controls"): the summary names it, the

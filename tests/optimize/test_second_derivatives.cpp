@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "optimize/second_derivatives.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange {
 namespace {
@@ -25,12 +27,47 @@ TEST(SecondDerivatives, OfAbsAndOfAWindsLogarithmicProfileMatchTheirClosedForms)
     ASSERT_EQ(h.pattern().size(), out.size());
     for (size_t e = 0; e < out.size(); ++e) {
       const auto [a, b] = h.pattern()[e];
-      const double expected = a == 0 && b == 0 ? -0.7 / (at * at)
+      const double expected = a == 0 && b == 0   ? -0.7 / (at * at)
                               : a == 1 && b == 0 ? (at > 3 ? 1.0 : -1.0) + 1 / at
                                                  : 0.0;
       EXPECT_NEAR(out[e], expected, 1e-14) << "(" << a << ", " << b << ") at z = " << at;
     }
   }
+}
+
+// The optimiser's costliest tape runs on machine code (docs/theory.md §8): the library computes
+// the interpreter's bits, so switching to it in the middle of a solve changes no iterate; without
+// a compiler the interpreter runs and the note says why.
+TEST(SecondDerivatives, OnMachineCodeGiveTheInterpretersBitsAndSayWhichRan) {
+  const GiNaC::symbol x("x"), y("y"), w("w");
+  // Enough work for a compiled library to differ if it rounded differently (no contraction).
+  const GiNaC::ex s =
+      w * (GiNaC::sin(x * y) * GiNaC::exp(x - y) + GiNaC::pow(x, 3) * y / (1 + y * y) +
+           GiNaC::sqrt(1 + x * x) * GiNaC::atan2(y, x));
+  const collocation::SecondDerivatives interpreted(s, {x, y, w}, {0, 1});
+  collocation::SecondDerivatives compiled(s, {x, y, w}, {0, 1});
+  MachineCodeOptions options;
+  options.cache_dir = LAGRANGE_TEST_CACHE;
+  compiled.use_machine_code(Evaluation::MachineCode, options);
+  EXPECT_EQ(compiled.evaluation_note().rfind("machine code", 0), 0u) << compiled.evaluation_note();
+  EXPECT_EQ(interpreted.evaluation_note(), "interpreter");
+  std::vector<double> a, b;
+  for (const double at : {0.3, -1.7, 2.9}) {
+    interpreted.eval({at, 0.5 - at, 1.3}, a);
+    compiled.eval({at, 0.5 - at, 1.3}, b);
+    ASSERT_EQ(a.size(), 3u);  // xx, yx, yy
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << "at x = " << at;
+  }
+
+  collocation::SecondDerivatives without(s, {x, y, w}, {0, 1});
+  options.compiler = "/nonexistent/cc";
+  without.use_machine_code(Evaluation::MachineCode, options);
+  EXPECT_NE(without.evaluation_note().find("interpreter (machine code: "), std::string::npos)
+      << without.evaluation_note();
+  without.eval({0.3, 0.2, 1.3}, b);
+  interpreted.eval({0.3, 0.2, 1.3}, a);
+  EXPECT_EQ(a, b);
 }
 
 }  // namespace
