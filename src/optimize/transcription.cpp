@@ -23,6 +23,12 @@ std::vector<std::string> control_names(const Model& model, const OptimalControlS
   return names;
 }
 
+std::vector<size_t> control_input_indices(const OptimalControlSpec& spec) {
+  std::vector<size_t> c;
+  for (const ControlSpec& s : spec.controls) c.push_back(s.input);
+  return c;
+}
+
 std::vector<GiNaC::ex> guessed_paths(const OptimalControlSpec& spec) {
   std::vector<GiNaC::ex> fs;
   for (const auto& [state, path] : spec.guess_paths) fs.push_back(path);
@@ -64,14 +70,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       dyn_(dyn),
       spec_(spec),
       jac_(eq, cm, control_names(*eq.model, spec)),
-      fun_(
-          eq, *cm, problem_functions(spec),
-          [&] {
-            std::vector<size_t> c;
-            for (const ControlSpec& s : spec.controls) c.push_back(s.input);
-            return c;
-          }(),
-          spec.multipliers),
+      fun_(eq, *cm, problem_functions(spec), control_input_indices(spec), spec.multipliers),
+      dae_(eq, *cm, control_input_indices(spec)),
       rad_(radau(degree)),
       N_(intervals),
       d_(degree),
@@ -527,10 +527,10 @@ const std::vector<double>& Transcription::load(double t, const double* x, const 
   const std::vector<double>& p = dyn_.parameters();
   std::copy(p.begin(), p.end(), in_.begin() + static_cast<long>(c.p_offset()));
   if (c.k > 0) {  // the other inputs follow their expressions u(t), u̇, ü
-    std::vector<double> sig(c.inputs.num_outputs()),
-        work(std::max<size_t>(c.inputs.work_size(), 1));
-    c.inputs.eval(in_.data(), sig.data(), work.data());
-    std::copy(sig.begin(), sig.end(), in_.begin() + static_cast<long>(c.u_offset()));
+    sig_.resize(c.inputs.num_outputs());
+    sig_work_.resize(std::max<size_t>(c.inputs.work_size(), 1));
+    c.inputs.eval(in_.data(), sig_.data(), sig_work_.data());
+    std::copy(sig_.begin(), sig_.end(), in_.begin() + static_cast<long>(c.u_offset()));
   }
   for (size_t i = 0; i < nu_; ++i) {
     in_[c.u_offset() + controls_[i]] = u[i];
@@ -542,7 +542,7 @@ const std::vector<double>& Transcription::load(double t, const double* x, const 
 
 // docs/theory.md §10: x'(t_kj) = (1/h) Σ_l D_jl X_{k,l}, h = T/N; residual of the index-1 DAE
 // r = (q' − K(q) v, M v' + Gᵀλ − (h + Q), G v' + c + 2αĊ + α²C) (§4.3).
-void Transcription::residual(const double* x, int k, int j, double* r) {
+void Transcription::collocation_derivative(const double* x, int k, int j) {
   const double h = horizon(x) / N_;
   std::fill(xp_.begin(), xp_.end(), 0.0);
   for (int l = 0; l <= d_; ++l) {
@@ -550,11 +550,46 @@ void Transcription::residual(const double* x, int k, int j, double* r) {
     const double* X = state(x, k, l);
     for (size_t i = 0; i < nx_; ++i) xp_[i] += f * X[i];
   }
+}
+
+void Transcription::residual(const double* x, int k, int j, double* r) {
+  collocation_derivative(x, k, j);
   const double* u = control(x, k, j);
   for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
   const double* X = state(x, k, j);
   dyn_.dae_residual(time(x, k, j), X, X + nq_, xp_.data(), xp_.data() + nq_, multipliers(x, k, j),
                     r);
+}
+
+// docs/theory.md §10: ρ(q, v, u, a, λ) and its derivatives in one tape evaluation, a = v'.
+void Transcription::eval_residual(const double* x, int k, int j) {
+  collocation_derivative(x, k, j);
+  const double* X = state(x, k, j);
+  rin_ = load(time(x, k, j), X, control(x, k, j));
+  rin_.insert(rin_.end(), xp_.begin() + static_cast<long>(nq_), xp_.end());
+  rin_.insert(rin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
+  rin_.push_back(dyn_.baumgarte());
+  rout_.resize(dae_.num_outputs());
+  analysis_detail::eval_off_kink(rin_.data() + cm_->q_offset(), nx_, rout_.data() + dae_.rows(),
+                                 rout_.data() + rout_.size(),
+                                 [&] { dae_.eval(rin_.data(), rout_.data()); });
+}
+
+void Transcription::residual_terms(const double* x, int k, int j, size_t col,
+                                   std::vector<Term>& t) const {
+  t.clear();
+  if (col < nx_) {
+    t.push_back({xi(k, j) + col, 1.0});
+  } else if (col < nx_ + nu_) {
+    t.push_back({ui(k, j, col - nx_), 1.0});
+  } else if (col < nx_ + nu_ + nv_) {
+    const double T = horizon(x), h = T / N_;
+    const size_t i = col - nx_ - nu_;
+    for (int l = 0; l <= d_; ++l) t.push_back({xi(k, l) + nq_ + i, rad_.derivative(j, l) / h});
+    if (free_T_) t.push_back({0, -xp_[nq_ + i] / T});  // ∂x'/∂T = −x'/T
+  } else {
+    t.push_back({li(k, j) + col - nx_ - nu_ - nv_, 1.0});
+  }
 }
 
 // docs/theory.md §10, "Homotopy": the tracking term.
@@ -702,45 +737,23 @@ template <class Emit>
 void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   const double T = horizon(x), h = T / N_;
   const size_t nr = nx_ + m_;
-  std::vector<double> r(nr);
   const size_t nf = fun_.count();
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       const size_t row = static_cast<size_t>(k * d_ + j - 1) * nr;
-      residual(x, k, j, r.data());  // x'/h in xp_, the controls held
-      const double* X = state(x, k, j);
-      const ImplicitJacobian J = analysis_detail::implicit_off_kink(
-          jac_, dyn_, time(x, k, j), X, xp_.data() + nq_, multipliers(x, k, j));
-      // r_q = q' − q̇(q, v): ∂/∂q' through the collocation derivative, −∂q̇/∂(q, v) at X_{k,j}.
+      eval_residual(x, k, j);
+      // r_q = q' − q̇(q, v): ∂/∂q' through the collocation derivative, the rest from ρ.
       for (int l = 0; l <= d_; ++l) {
         const double f = rad_.derivative(j, l) / h;
         for (size_t i = 0; i < nq_; ++i) emit(row + i, xi(k, l) + i, f);
       }
-      for (int o = 0; o < J.qdot_x.outerSize(); ++o)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(J.qdot_x, o); it; ++it)
-          emit(row + static_cast<size_t>(it.row()), xi(k, j) + static_cast<size_t>(it.col()),
-               -it.value());
       if (free_T_)  // ∂x'/∂T = −x'/T
         for (size_t i = 0; i < nq_; ++i) emit(row + i, 0, -xp_[i] / T);
-      // (r_v, r_λ) = Φ(q, v, v', λ, u): K = ∂Φ/∂(v', λ), Phi_x = ∂Φ/∂(q, v, u).
-      for (int o = 0; o < J.K.outerSize(); ++o)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, o); it; ++it) {
-          const size_t rr = row + nq_ + static_cast<size_t>(it.row());
-          const size_t c = static_cast<size_t>(it.col());
-          if (c < nv_) {
-            for (int l = 0; l <= d_; ++l)
-              emit(rr, xi(k, l) + nq_ + c, it.value() * rad_.derivative(j, l) / h);
-            if (free_T_) emit(rr, 0, -it.value() * xp_[nq_ + c] / T);
-          } else {
-            emit(rr, li(k, j) + c - nv_, it.value());
-          }
-        }
-      for (int o = 0; o < J.Phi_x.outerSize(); ++o)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(J.Phi_x, o); it; ++it) {
-          const size_t c = static_cast<size_t>(it.col());
-          emit(row + nq_ + static_cast<size_t>(it.row()),
-               c < nx_ ? xi(k, j) + c : ui(k, j, c - nx_), it.value());
-        }
+      for (size_t e = 0; e < dae_.pattern().size(); ++e) {
+        const auto [rr, col] = dae_.pattern()[e];
+        residual_terms(x, k, j, col, terms_);
+        for (const Term& t : terms_) emit(row + rr, t.variable, rout_[nr + e] * t.coefficient);
+      }
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).
       const size_t prow = path_rows_ + static_cast<size_t>(k * d_ + j - 1) * np_;

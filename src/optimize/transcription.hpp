@@ -13,6 +13,7 @@
 #include "lagrange/optimal_control.hpp"
 #include "lagrange/optimize.hpp"
 #include "optimize/point_functions.hpp"
+#include "optimize/point_residual.hpp"
 #include "optimize/radau.hpp"
 #include "optimize/second_derivatives.hpp"
 
@@ -41,6 +42,12 @@ struct StageStart {
   std::vector<double> x;
   double track = 0.0;
   std::shared_ptr<const SecondDerivatives> dae_hessian;
+};
+
+/// One NLP variable and its coefficient in a local column of a point's functions.
+struct Term {
+  size_t variable;
+  double coefficient;
 };
 
 class Transcription {
@@ -144,9 +151,19 @@ class Transcription {
   size_t point_variable(size_t column, int k, int j) const;
   /// The point functions at collocation point (k, j ≥ 1) into out_.
   void eval_point(const double* x, int k, int j);
-  /// x'(τ_j)/h of interval k into qp_, and the residual's dynamics at (k, j) with the controls
-  /// held: values into r (nq + nv + m).
+  /// x'(τ_j) of interval k, (1/h) Σ_l D_jl X_{k,l}, into xp_.
+  void collocation_derivative(const double* x, int k, int j);
+  /// xp_, and the residual's dynamics at (k, j) with the controls held: values into r
+  /// (nq + nv + m).
   void residual(const double* x, int k, int j, double* r);
+  /// xp_, and ρ with its derivatives (PointResidual) at (k, j) into rout_; at a kink, those at the
+  /// state moved off it (docs/theory.md §10, "Kinks").
+  void eval_residual(const double* x, int k, int j);
+  /// The NLP variables of the DAE's local column `col` (q, v, the controls, a = v', λ) at point
+  /// (k, j) into `t`: a reaches the interval's states through the collocation derivative, and T
+  /// (when free) through x' = (1/h) Σ D X with h = T/N (docs/theory.md §10, "Hessian"). Reads
+  /// xp_ for T.
+  void residual_terms(const double* x, int k, int j, size_t col, std::vector<Term>& t) const;
   std::vector<double> make_guess();
   /// Calls f(offset of X) for each state node X_{k,j} (k < N, j < d) and X_{N,0}.
   template <class F>
@@ -199,6 +216,7 @@ class Transcription {
   const OptimalControlSpec& spec_;
   DynamicsJacobian jac_;
   PointFunctions fun_;  ///< L, Φ, then the path constraints
+  PointResidual dae_;   ///< the DAE's rows at a point and their derivatives
   Radau rad_;
   int N_, d_;
   size_t nq_, nv_, nx_, m_, nu_, np_;
@@ -226,8 +244,11 @@ class Transcription {
   std::vector<std::pair<size_t, size_t>> nz_;
   std::vector<size_t> slot_;  ///< per emitted entry, its index in nz_
   std::vector<double> in_, out_, xp_, guess_;
-  double track_ = 0.0;               ///< the tracking term's weight over the node count
-  std::vector<double> track_scale_;  ///< per state component, 1/s_i²
+  std::vector<double> rin_, rout_;      ///< eval_residual's inputs and outputs
+  std::vector<double> sig_, sig_work_;  ///< load()'s other inputs and their tape's scratch
+  std::vector<Term> terms_;             ///< residual_terms' list
+  double track_ = 0.0;                  ///< the tracking term's weight over the node count
+  std::vector<double> track_scale_;     ///< per state component, 1/s_i²
   // The Hessian: ∂² of Σ μ·(DAE residual) over (q, v, u, a, λ), of the weighted point
   // functions over (q, v, u), of the weighted invariants over (q, v).
   std::shared_ptr<const SecondDerivatives> h_dae_;

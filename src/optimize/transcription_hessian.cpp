@@ -22,12 +22,6 @@ std::vector<GiNaC::symbol> symbols(const std::string& name, size_t count) {
   return out;
 }
 
-/// One variable of the NLP and its coefficient in a local column.
-struct Term {
-  size_t variable;
-  double coefficient;
-};
-
 /// H·∂z_a·∂z_b scattered onto the lower triangle: a local diagonal entry (a = b) gives each
 /// variable pair once; an off-diagonal one (a > b) stands for both (a, b) and (b, a), so it
 /// counts twice where its two variables coincide.
@@ -74,24 +68,11 @@ void Transcription::prepare_hessian(HessianChoice choice,
   // r_v = M a + Gᵀλ − (h + Q), r_λ = G a + c + 2αĊ + α²C; an earlier stage's when given.
   h_dae_ = std::move(dae);
   if (!h_dae_) {
-    const std::vector<GiNaC::symbol> a = symbols("hess_a", nv_), lam = symbols("hess_l", m_),
-                                     mu = symbols("hess_mu", nx_ + m_);
-    const GiNaC::symbol alpha("hess_alpha");
+    const ResidualSymbols rs(nv_, m_);
+    const std::vector<GiNaC::symbol> mu = symbols("hess_mu", nx_ + m_);
+    const std::vector<GiNaC::ex> rho = residual_rows(eq, cm, rs);
     GiNaC::ex s = 0;
-    for (size_t i = 0; i < nq_; ++i) s -= mu[i] * out[cm.qdot_out() + i];
-    for (size_t i = 0; i < nv_; ++i) s -= mu[nq_ + i] * out[cm.rhs_out() + i];
-    for (size_t e = 0; e < cm.M_pattern.size(); ++e) {  // upper triangle of the symmetric M
-      const auto [i, j] = cm.M_pattern[e];
-      s += out[e] * mu[nq_ + i] * a[j];
-      if (i != j) s += out[e] * mu[nq_ + j] * a[i];
-    }
-    for (size_t k = 0; k < m_; ++k)
-      s += mu[nx_ + k] * (out[cm.c_out() + k] + 2 * alpha * out[cm.Cdot_out() + k] +
-                          alpha * alpha * out[cm.C_out() + k]);
-    for (size_t e = 0; e < cm.G_pattern.size(); ++e) {
-      const auto [k, j] = cm.G_pattern[e];
-      s += out[cm.G_out() + e] * (mu[nq_ + j] * lam[k] + mu[nx_ + k] * a[j]);
-    }
+    for (size_t r = 0; r < rho.size(); ++r) s += mu[r] * rho[r];
     if (choice == HessianChoice::Auto) {
       const size_t terms = distinct_terms(s, kHessianTerms);
       if (terms > kHessianTerms) {
@@ -105,12 +86,12 @@ void Transcription::prepare_hessian(HessianChoice choice,
     }
     std::vector<GiNaC::symbol> in = base;
     std::vector<size_t> columns = state_columns;
-    for (const std::vector<GiNaC::symbol>* group : {&a, &lam})
+    for (const std::vector<GiNaC::symbol>* group : {&rs.a, &rs.lambda})
       for (const GiNaC::symbol& x : *group) {
         columns.push_back(in.size());
         in.push_back(x);
       }
-    in.push_back(alpha);
+    in.push_back(rs.alpha);
     in.insert(in.end(), mu.begin(), mu.end());
     // The costliest tape of the solve (docs/theory.md §10, "Hessian"): on machine code once it
     // is had; later stages share it, and the compiler's run, with this one.
@@ -167,26 +148,11 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
   const double T = horizon(x), h = T / N_;
   const size_t nr = nx_ + m_, nf = fun_.count();
   std::vector<Term> A, B;
-  std::vector<double> r(nr), g(nx_);
+  std::vector<double> g(nx_);
   // With T free (variable 0) a = v' = (1/h) Σ_l D_jl V_{k,l} carries −a/T and t = T (k + τ_j)/N
   // carries (k + τ_j)/N (docs/theory.md §10, "Hessian", free horizon).
   const auto on_T = [&](std::vector<Term>& t, double coefficient) {
     if (free_T_) t.push_back({0, coefficient});
-  };
-  // The NLP variables of the DAE's local column `col` at point (k, j): q, v, u, a = v', λ.
-  const auto dae_terms = [&](int k, int j, size_t col, std::vector<Term>& t) {
-    t.clear();
-    if (col < nx_) {
-      t.push_back({xi(k, j) + col, 1.0});
-    } else if (col < nx_ + nu_) {
-      t.push_back({ui(k, j, col - nx_), 1.0});
-    } else if (col < nx_ + nu_ + nv_) {
-      for (int l = 0; l <= d_; ++l)
-        t.push_back({xi(k, l) + nq_ + col - nx_ - nu_, rad_.derivative(j, l) / h});
-      on_T(t, -xp_[nq_ + col - nx_ - nu_] / T);
-    } else {
-      t.push_back({li(k, j) + col - nx_ - nu_ - nv_, 1.0});
-    }
   };
   // The point functions' local columns: q, v, u, λ, then t when T is free; the terminal point
   // is (N − 1, d), where τ_d = 1.
@@ -213,26 +179,26 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
     for (int j = 1; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1);
       const double* X = state(x, k, j);
-      residual(x, k, j, r.data());  // x' into xp_, the controls held
+      collocation_derivative(x, k, j);
       // The DAE residual: inputs, a = v', λ, α, μ.
       hin_ = load(time(x, k, j), X, control(x, k, j));
       hin_.insert(hin_.end(), xp_.begin() + static_cast<long>(nq_), xp_.end());
       hin_.insert(hin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
       hin_.push_back(dyn_.baumgarte());
       hin_.insert(hin_.end(), y + p * nr, y + (p + 1) * nr);
-      scatter_all(*h_dae_, [&](size_t col, std::vector<Term>& t) { dae_terms(k, j, col, t); });
+      scatter_all(*h_dae_,
+                  [&](size_t col, std::vector<Term>& t) { residual_terms(x, k, j, col, t); });
       if (free_T_) {
         // x' = (1/h) Σ_l D_jl X_l is not linear in T: with g = Σ μ ∂r/∂x' (μ_q for q', Mμ_v + Gᵀμ_λ
         // for v'), ∂²x'/∂T² = 2x'/T² and ∂²x'/∂T∂X_l = −D_jl/(hT).
-        const ImplicitJacobian J = analysis_detail::implicit_off_kink(
-            jac_, dyn_, time(x, k, j), X, xp_.data() + nq_, multipliers(x, k, j));
+        eval_residual(x, k, j);
         std::copy(y + p * nr, y + p * nr + nq_, g.begin());
         std::fill(g.begin() + static_cast<long>(nq_), g.end(), 0.0);
-        for (int o = 0; o < J.K.outerSize(); ++o)
-          for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, o); it; ++it)
-            if (static_cast<size_t>(it.col()) < nv_)
-              g[nq_ + static_cast<size_t>(it.col())] +=
-                  y[p * nr + nq_ + static_cast<size_t>(it.row())] * it.value();
+        for (size_t e = 0; e < dae_.pattern().size(); ++e) {  // ∂ρ/∂a: M and G
+          const auto [row, col] = dae_.pattern()[e];
+          if (col >= nx_ + nu_ && col < nx_ + nu_ + nv_)
+            g[nq_ + col - nx_ - nu_] += y[p * nr + row] * rout_[nr + e];
+        }
         for (size_t i = 0; i < nx_; ++i) {
           emit(0, 0, g[i] * 2 * xp_[i] / (T * T));
           for (int l = 0; l <= d_; ++l)
@@ -306,7 +272,8 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
   for (size_t r = 0; r < start_rows_.size(); ++r)
     if (start_rows_[r] < 2 * m_) nu[start_rows_[r]] = y[at + r];
   hin_.insert(hin_.end(), nu.begin(), nu.end());
-  scatter_all(h_invariants_, [&](size_t col, std::vector<Term>& t) { dae_terms(0, 0, col, t); });
+  scatter_all(h_invariants_,
+              [&](size_t col, std::vector<Term>& t) { residual_terms(x, 0, 0, col, t); });
 }
 
 }  // namespace lagrange::collocation
