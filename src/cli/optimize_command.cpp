@@ -93,7 +93,7 @@ int run_optimize(const Options& opt) {
                r.worst_constraint.empty() ? "" : " (" + r.worst_constraint + ")");
     fmt::print(
         "  time               {:.3f} s set-up (derive, compile, transcribe), {:.3f} s "
-        "solve ({:.3f} s in our functions)\n",
+        "solve ({:.4f} s in our functions)\n",
         p.derive_seconds + p.compile_seconds + r.setup_seconds, r.solve_seconds,
         r.function_seconds);
     if (!r.hessian_evaluation.empty())

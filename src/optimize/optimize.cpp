@@ -200,6 +200,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     ipopt.insert(ipopt.end(), stage.ipopt.begin(), stage.ipopt.end());
     auto [nlp, out] = solve(s, ipopt, stage_start);
     from.dae_hessian = nlp->dae_hessian();
+    from.residual = nlp->residual();
     const double tracking = nlp->tracking(out.x.data());
     r.stages.push_back({stage.name, out.optimal, out.status, out.iterations,
                         (nlp->objective(out.x.data()) - tracking) * (nlp->maximize() ? -1.0 : 1.0),

@@ -28,6 +28,8 @@ class PointFunctions {
                  const std::vector<size_t>& controls,
                  const std::vector<GiNaC::symbol>& multipliers = {});
   size_t count() const { return count_; }
+  /// Values and derivatives: count() + pattern().size().
+  size_t num_outputs() const { return tape_.num_outputs(); }
   /// (function, column) of each derivative, in output order.
   const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
   /// Values (count()) then derivatives (pattern()) at the tape input vector `in` (the model's

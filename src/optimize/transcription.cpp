@@ -17,12 +17,6 @@ namespace lagrange::collocation {
 
 namespace {
 
-std::vector<std::string> control_names(const Model& model, const OptimalControlSpec& spec) {
-  std::vector<std::string> names;
-  for (const ControlSpec& c : spec.controls) names.push_back(model.inputs.at(c.input).name);
-  return names;
-}
-
 std::vector<size_t> control_input_indices(const OptimalControlSpec& spec) {
   std::vector<size_t> c;
   for (const ControlSpec& s : spec.controls) c.push_back(s.input);
@@ -69,9 +63,11 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       cm_(cm),
       dyn_(dyn),
       spec_(spec),
-      jac_(eq, cm, control_names(*eq.model, spec)),
       fun_(eq, *cm, problem_functions(spec), control_input_indices(spec), spec.multipliers),
-      dae_(eq, *cm, control_input_indices(spec)),
+      dae_(stage != nullptr && stage->residual
+               ? stage->residual
+               : std::make_shared<const PointResidual>(eq, *cm, control_input_indices(spec))),
+      invariant_jac_(eq, *cm),
       rad_(radau(degree)),
       N_(intervals),
       d_(degree),
@@ -552,15 +548,6 @@ void Transcription::collocation_derivative(const double* x, int k, int j) {
   }
 }
 
-void Transcription::residual(const double* x, int k, int j, double* r) {
-  collocation_derivative(x, k, j);
-  const double* u = control(x, k, j);
-  for (size_t c = 0; c < nu_; ++c) dyn_.hold_input(controls_[c], u[c]);
-  const double* X = state(x, k, j);
-  dyn_.dae_residual(time(x, k, j), X, X + nq_, xp_.data(), xp_.data() + nq_, multipliers(x, k, j),
-                    r);
-}
-
 // docs/theory.md §10: ρ(q, v, u, a, λ) and its derivatives in one tape evaluation, a = v'.
 void Transcription::eval_residual(const double* x, int k, int j) {
   collocation_derivative(x, k, j);
@@ -569,10 +556,34 @@ void Transcription::eval_residual(const double* x, int k, int j) {
   rin_.insert(rin_.end(), xp_.begin() + static_cast<long>(nq_), xp_.end());
   rin_.insert(rin_.end(), multipliers(x, k, j), multipliers(x, k, j) + m_);
   rin_.push_back(dyn_.baumgarte());
-  rout_.resize(dae_.num_outputs());
-  analysis_detail::eval_off_kink(rin_.data() + cm_->q_offset(), nx_, rout_.data() + dae_.rows(),
+  rout_.resize(dae_->num_outputs());
+  dae_->eval(rin_.data(), rout_.data());
+  const size_t nr = dae_->rows();
+  if (analysis_detail::all_finite(rout_.data() + nr, rout_.data() + rout_.size())) return;
+  const std::vector<double> values(rout_.begin(), rout_.begin() + static_cast<long>(nr));
+  analysis_detail::eval_off_kink(rin_.data() + cm_->q_offset(), nx_, rout_.data() + nr,
                                  rout_.data() + rout_.size(),
-                                 [&] { dae_.eval(rin_.data(), rout_.data()); });
+                                 [&] { dae_->eval(rin_.data(), rout_.data()); });
+  std::copy(values.begin(), values.end(), rout_.begin());
+}
+
+void Transcription::evaluate_points(const double* x) {
+  if (!x_at_.empty() && std::equal(x, x + n_, x_at_.begin())) return;
+  const size_t points = static_cast<size_t>(N_ * d_), nr = dae_->num_outputs(),
+               nf = fun_.num_outputs();
+  xp_at_.resize(points * nx_);
+  rho_at_.resize(points * nr);
+  fun_at_.resize(points * nf);
+  for (int k = 0; k < N_; ++k)
+    for (int j = 1; j <= d_; ++j) {
+      const size_t p = static_cast<size_t>(k * d_ + j - 1);
+      eval_residual(x, k, j);
+      std::copy(xp_.begin(), xp_.end(), xp_at_.begin() + static_cast<long>(p * nx_));
+      std::copy(rout_.begin(), rout_.end(), rho_at_.begin() + static_cast<long>(p * nr));
+      eval_point(x, k, j);
+      std::copy(out_.begin(), out_.end(), fun_at_.begin() + static_cast<long>(p * nf));
+    }
+  x_at_.assign(x, x + n_);
 }
 
 void Transcription::residual_terms(const double* x, int k, int j, size_t col,
@@ -606,20 +617,22 @@ double Transcription::tracking(const double* x) const {
 }
 
 double Transcription::objective(const double* x) {
+  evaluate_points(x);
   const double h = horizon(x) / N_;
   double J = 0.0;
-  for (int k = 0; k < N_; ++k)
-    for (int j = 1; j <= d_; ++j) {
-      // docs/theory.md §10: ∫ L ≈ h Σ b_j L_kj; mean(M) = (1/T) ∫ M ≈ (1/N) Σ b_j M_kj.
-      eval_point(x, k, j);
-      J += rad_.b[static_cast<size_t>(j - 1)] * (h * out_[kIntegrand] + out_[kMean] / N_);
-    }
-  eval_point(x, N_ - 1, d_);  // the terminal point (T, X_{N,0}), with the multipliers there
-  return sign_ * (J + out_[kTerminal]) + tracking(x);
+  const size_t points = static_cast<size_t>(N_ * d_);
+  for (size_t p = 0; p < points; ++p) {
+    // docs/theory.md §10: ∫ L ≈ h Σ b_j L_kj; mean(M) = (1/T) ∫ M ≈ (1/N) Σ b_j M_kj.
+    const double* f = point_fun(p);
+    J += rad_.b[p % static_cast<size_t>(d_)] * (h * f[kIntegrand] + f[kMean] / N_);
+  }
+  // The terminal point (T, X_{N,0}) is the last collocation point, with the multipliers there.
+  return sign_ * (J + point_fun(points - 1)[kTerminal]) + tracking(x);
 }
 
 void Transcription::gradient(const double* x, double* grad) {
   std::fill(grad, grad + n_, 0.0);
+  evaluate_points(x);
   const double T = horizon(x), h = T / N_;
   const size_t nf = fun_.count();
   for (int k = 0; k < N_; ++k)
@@ -627,23 +640,23 @@ void Transcription::gradient(const double* x, double* grad) {
       // The integrand's weight h b_j depends on T, the mean's b_j / N does not.
       const double w = sign_ * h * rad_.b[static_cast<size_t>(j - 1)],
                    wm = sign_ * rad_.b[static_cast<size_t>(j - 1)] / N_;
-      eval_point(x, k, j);
-      if (free_T_) grad[0] += w / T * out_[kIntegrand];
+      const double* out = point_fun(static_cast<size_t>(k * d_ + j - 1));
+      if (free_T_) grad[0] += w / T * out[kIntegrand];
       for (size_t e = 0; e < fun_.pattern().size(); ++e) {
         const auto [f, c] = fun_.pattern()[e];
         if (f != kIntegrand && f != kMean) continue;
-        const double d = (f == kMean ? wm : w) * out_[nf + e];
+        const double d = (f == kMean ? wm : w) * out[nf + e];
         if (c != 0)
           grad[point_variable(c, k, j)] += d;
         else if (free_T_)
           grad[0] += d * (k + rad_.tau[static_cast<size_t>(j)]) / N_;
       }
     }
-  eval_point(x, N_ - 1, d_);
+  const double* out = point_fun(static_cast<size_t>(N_ * d_ - 1));  // the terminal point
   for (size_t e = 0; e < fun_.pattern().size(); ++e) {
     const auto [f, c] = fun_.pattern()[e];
     if (f != kTerminal) continue;
-    const double d = sign_ * out_[nf + e];
+    const double d = sign_ * out[nf + e];
     if (c != 0)
       grad[point_variable(c, N_ - 1, d_)] += d;
     else if (free_T_)
@@ -657,16 +670,18 @@ void Transcription::gradient(const double* x, double* grad) {
 }
 
 void Transcription::constraint_values(const double* x, double* g) {
-  const size_t nr = nx_ + m_;
-  for (int k = 0; k < N_; ++k)
-    for (int j = 1; j <= d_; ++j) {
-      const size_t p = static_cast<size_t>(k * d_ + j - 1);
-      residual(x, k, j, g + p * nr);
-      if (np_ == 0) continue;
-      eval_point(x, k, j);
-      std::copy(out_.begin() + kFirstPath, out_.begin() + kFirstPath + static_cast<long>(np_),
+  // docs/theory.md §10: r = ρ + (q', 0, 0) at each collocation point, then the path constraints.
+  evaluate_points(x);
+  const size_t nr = nx_ + m_, points = static_cast<size_t>(N_ * d_);
+  for (size_t p = 0; p < points; ++p) {
+    const double *rho = point_rho(p), *xp = point_xp(p);
+    double* r = g + p * nr;
+    for (size_t i = 0; i < nq_; ++i) r[i] = xp[i] + rho[i];
+    std::copy(rho + nq_, rho + nr, r + nq_);
+    if (np_ > 0)
+      std::copy(point_fun(p) + kFirstPath, point_fun(p) + kFirstPath + np_,
                 g + path_rows_ + p * np_);
-    }
+  }
   const size_t periodic_at = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size();
   for (size_t r = 0; r < periodic_.size(); ++r)
     g[periodic_at + r] = state(x, N_, 0)[periodic_[r]] - state(x, 0, 0)[periodic_[r]];
@@ -738,10 +753,12 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   const double T = horizon(x), h = T / N_;
   const size_t nr = nx_ + m_;
   const size_t nf = fun_.count();
+  evaluate_points(x);
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
-      const size_t row = static_cast<size_t>(k * d_ + j - 1) * nr;
-      eval_residual(x, k, j);
+      const size_t p = static_cast<size_t>(k * d_ + j - 1), row = p * nr;
+      const double* rho = point_rho(p);
+      std::copy(point_xp(p), point_xp(p) + nx_, xp_.begin());  // residual_terms reads x
       // r_q = q' − q̇(q, v): ∂/∂q' through the collocation derivative, the rest from ρ.
       for (int l = 0; l <= d_; ++l) {
         const double f = rad_.derivative(j, l) / h;
@@ -749,19 +766,19 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       }
       if (free_T_)  // ∂x'/∂T = −x'/T
         for (size_t i = 0; i < nq_; ++i) emit(row + i, 0, -xp_[i] / T);
-      for (size_t e = 0; e < dae_.pattern().size(); ++e) {
-        const auto [rr, col] = dae_.pattern()[e];
+      for (size_t e = 0; e < dae_->pattern().size(); ++e) {
+        const auto [rr, col] = dae_->pattern()[e];
         residual_terms(x, k, j, col, terms_);
-        for (const Term& t : terms_) emit(row + rr, t.variable, rout_[nr + e] * t.coefficient);
+        for (const Term& t : terms_) emit(row + rr, t.variable, rho[nr + e] * t.coefficient);
       }
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).
-      const size_t prow = path_rows_ + static_cast<size_t>(k * d_ + j - 1) * np_;
-      eval_point(x, k, j);
+      const size_t prow = path_rows_ + p * np_;
+      const double* out = point_fun(p);
       for (size_t e = 0; e < fun_.pattern().size(); ++e) {
         const auto [f, c] = fun_.pattern()[e];
         if (f < kFirstPath) continue;
-        const double v = out_[nf + e];
+        const double v = out[nf + e];
         if (c != 0)
           emit(prow + f - kFirstPath, point_variable(c, k, j), v);
         else if (free_T_)
@@ -801,9 +818,8 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   });
 }
 
-// G = ∂Ċ/∂v is a value, ∂C/∂q and ∂Ċ/∂q are derivatives on the Jacobian tape (at the inputs
-// dyn.constraints loads); no KKT solve, so no singular-matrix stop. Constraints without explicit
-// t: no ∂/∂T term.
+// ∂C/∂q, ∂Ċ/∂q and ∂Ċ/∂v = G from their own tape (at the inputs dyn.constraints loads); no KKT
+// solve, so no singular-matrix stop. Constraints without explicit t: no ∂/∂T term.
 template <class Emit>
 void Transcription::invariant_gradients(double t, const double* X, Emit&& emit) {
   // ∂(RᵀR − 1)_ij/∂R_ab = δ_bi R_aj + δ_bj R_ai (docs/theory.md §10, "Free bodies").
@@ -817,19 +833,11 @@ void Transcription::invariant_gradients(double t, const double* X, Emit&& emit) 
   }
   if (m_ == 0) return;
   std::vector<double> C(m_), Cdot(m_);
-  dyn_.constraints(t, X, X + nq_, C.data(), Cdot.data());
-  const Tape& tape = jac_.tape();
-  out_.resize(tape.num_outputs());
-  std::vector<double> work(std::max<size_t>(tape.work_size(), 1));
-  tape.eval(dyn_.last_inputs().data(), out_.data(), work.data());
-  const CompiledModel& cm = *cm_;
-  for (size_t e = 0; e < cm.G_pattern.size(); ++e)
-    emit(m_ + cm.G_pattern[e].first, nq_ + cm.G_pattern[e].second, out_[cm.G_out() + e]);
-  for (size_t e = 0; e < jac_.pattern().size(); ++e) {
-    const auto [r, col] = jac_.pattern()[e];
-    if (r >= cm.Cdot_out() && r < cm.Cq_out() && col < nq_)  // ∂Ċ/∂q, then ∂C/∂q
-      emit(r < cm.C_out() ? m_ + r - cm.Cdot_out() : r - cm.C_out(), col,
-           out_[jac_.value_count() + e]);
+  dyn_.constraints(t, X, X + nq_, C.data(), Cdot.data());  // loads the tape inputs at (t, X)
+  invariant_jac_.eval(dyn_.last_inputs().data(), out_);
+  for (size_t e = 0; e < invariant_jac_.pattern().size(); ++e) {
+    const auto [i, col] = invariant_jac_.pattern()[e];
+    emit(i, col, out_[e]);
   }
 }
 

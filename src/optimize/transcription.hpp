@@ -12,6 +12,7 @@
 #include "lagrange/analysis.hpp"
 #include "lagrange/optimal_control.hpp"
 #include "lagrange/optimize.hpp"
+#include "optimize/invariant_jacobian.hpp"
 #include "optimize/point_functions.hpp"
 #include "optimize/point_residual.hpp"
 #include "optimize/radau.hpp"
@@ -36,12 +37,13 @@ inline constexpr std::array<std::pair<size_t, size_t>, 3> kSkewPairs{{{2, 1}, {0
 /// but checked (implied_final_gaps).
 /// Where a homotopy stage starts (docs/theory.md §10, "Homotopy"): the point `x` (an earlier
 /// solve's, the same layout; empty: the problem's guess), the tracking weight, and the DAE's
-/// compiled second derivatives when an earlier stage made them (the same model and controls: only
-/// the objective differs).
+/// compiled first and second derivatives when an earlier stage made them (the same model and
+/// controls: only the objective differs).
 struct StageStart {
   std::vector<double> x;
   double track = 0.0;
   std::shared_ptr<const SecondDerivatives> dae_hessian;
+  std::shared_ptr<const PointResidual> residual;  ///< an earlier stage's (the same DAE)
 };
 
 /// One NLP variable and its coefficient in a local column of a point's functions.
@@ -80,6 +82,8 @@ class Transcription {
   void jacobian(const double* x, double* values);
   /// The DAE's compiled second derivatives, for the next stage (null without the exact Hessian).
   std::shared_ptr<const SecondDerivatives> dae_hessian() const { return h_dae_; }
+  /// The DAE's compiled rows and first derivatives, for the next stage.
+  std::shared_ptr<const PointResidual> residual() const { return dae_; }
   /// Whether the exact Hessian of the Lagrangian is available (docs/theory.md §10, "Hessian").
   bool has_hessian() const { return hessian_ready_; }
   /// Why the exact Hessian was not made (empty when it was, or when it was not asked for).
@@ -153,12 +157,18 @@ class Transcription {
   void eval_point(const double* x, int k, int j);
   /// x'(τ_j) of interval k, (1/h) Σ_l D_jl X_{k,l}, into xp_.
   void collocation_derivative(const double* x, int k, int j);
-  /// xp_, and the residual's dynamics at (k, j) with the controls held: values into r
-  /// (nq + nv + m).
-  void residual(const double* x, int k, int j, double* r);
-  /// xp_, and ρ with its derivatives (PointResidual) at (k, j) into rout_; at a kink, those at the
-  /// state moved off it (docs/theory.md §10, "Kinks").
+  /// xp_, and ρ with its derivatives (PointResidual) at (k, j) into rout_; at a kink, the
+  /// derivatives at the state moved off it (docs/theory.md §10, "Kinks").
   void eval_residual(const double* x, int k, int j);
+  /// Every collocation point's x', ρ with its derivatives and the point functions with theirs
+  /// at the NLP's variables x, computed once per x: Ipopt asks for the objective, the
+  /// constraints and their derivatives at the same point, and each reads these.
+  void evaluate_points(const double* x);
+  /// At point p = k d + j − 1 of the x evaluate_points last had: x' (nx), ρ and its derivatives
+  /// (rout_'s layout), the point functions and their derivatives (out_'s layout).
+  const double* point_xp(size_t p) const { return xp_at_.data() + p * nx_; }
+  const double* point_rho(size_t p) const { return rho_at_.data() + p * dae_->num_outputs(); }
+  const double* point_fun(size_t p) const { return fun_at_.data() + p * fun_.num_outputs(); }
   /// The NLP variables of the DAE's local column `col` (q, v, the controls, a = v', λ) at point
   /// (k, j) into `t`: a reaches the interval's states through the collocation derivative, and T
   /// (when free) through x' = (1/h) Σ D X with h = T/N (docs/theory.md §10, "Hessian"). Reads
@@ -214,9 +224,9 @@ class Transcription {
   std::shared_ptr<const CompiledModel> cm_;
   Dynamics& dyn_;
   const OptimalControlSpec& spec_;
-  DynamicsJacobian jac_;
-  PointFunctions fun_;  ///< L, Φ, then the path constraints
-  PointResidual dae_;   ///< the DAE's rows at a point and their derivatives
+  PointFunctions fun_;                        ///< L, Φ, then the path constraints
+  std::shared_ptr<const PointResidual> dae_;  ///< the DAE's rows at a point and derivatives
+  InvariantJacobian invariant_jac_;  ///< ∂(C, Ċ)/∂(q, v) for the invariants imposed at t = 0
   Radau rad_;
   int N_, d_;
   size_t nq_, nv_, nx_, m_, nu_, np_;
@@ -247,8 +257,9 @@ class Transcription {
   std::vector<double> rin_, rout_;      ///< eval_residual's inputs and outputs
   std::vector<double> sig_, sig_work_;  ///< load()'s other inputs and their tape's scratch
   std::vector<Term> terms_;             ///< residual_terms' list
-  double track_ = 0.0;                  ///< the tracking term's weight over the node count
-  std::vector<double> track_scale_;     ///< per state component, 1/s_i²
+  std::vector<double> x_at_, xp_at_, rho_at_, fun_at_;  ///< evaluate_points' x and results
+  double track_ = 0.0;               ///< the tracking term's weight over the node count
+  std::vector<double> track_scale_;  ///< per state component, 1/s_i²
   // The Hessian: ∂² of Σ μ·(DAE residual) over (q, v, u, a, λ), of the weighted point
   // functions over (q, v, u), of the weighted invariants over (q, v).
   std::shared_ptr<const SecondDerivatives> h_dae_;

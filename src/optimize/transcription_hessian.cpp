@@ -175,6 +175,7 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       scatter(a == b, A, B, hout_[e], emit);
     }
   };
+  if (free_T_) evaluate_points(x);  // the T terms read ρ's and the integrand's derivatives
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1);
@@ -191,13 +192,13 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       if (free_T_) {
         // x' = (1/h) Σ_l D_jl X_l is not linear in T: with g = Σ μ ∂r/∂x' (μ_q for q', Mμ_v + Gᵀμ_λ
         // for v'), ∂²x'/∂T² = 2x'/T² and ∂²x'/∂T∂X_l = −D_jl/(hT).
-        eval_residual(x, k, j);
+        const double* rho = point_rho(p);
         std::copy(y + p * nr, y + p * nr + nq_, g.begin());
         std::fill(g.begin() + static_cast<long>(nq_), g.end(), 0.0);
-        for (size_t e = 0; e < dae_.pattern().size(); ++e) {  // ∂ρ/∂a: M and G
-          const auto [row, col] = dae_.pattern()[e];
+        for (size_t e = 0; e < dae_->pattern().size(); ++e) {  // ∂ρ/∂a: M and G
+          const auto [row, col] = dae_->pattern()[e];
           if (col >= nx_ + nu_ && col < nx_ + nu_ + nv_)
-            g[nq_ + col - nx_ - nu_] += y[p * nr + row] * rout_[nr + e];
+            g[nq_ + col - nx_ - nu_] += y[p * nr + row] * rho[nr + e];
         }
         for (size_t i = 0; i < nx_; ++i) {
           emit(0, 0, g[i] * 2 * xp_[i] / (T * T));
@@ -216,12 +217,12 @@ void Transcription::walk_hessian(const double* x, double sigma, const double* y,
       scatter_all(h_point_, [&](size_t col, std::vector<Term>& t) { point_terms(k, j, col, t); });
       if (free_T_) {
         // The integrand's weight h b_j = T b_j/N is linear in T: ∂²/∂T∂z of wL·L is (wL/T)·∂L/∂z.
-        eval_point(x, k, j);
+        const double* out = point_fun(p);
         const double dt = (k + rad_.tau[static_cast<size_t>(j)]) / N_;
         for (size_t e = 0; e < fun_.pattern().size(); ++e) {
           const auto [f, c] = fun_.pattern()[e];
           if (f != kIntegrand) continue;
-          const double v = wL / T * out_[nf + e];
+          const double v = wL / T * out[nf + e];
           if (c == 0)
             emit(0, 0, 2 * v * dt);
           else

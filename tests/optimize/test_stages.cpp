@@ -84,11 +84,12 @@ TEST(HomotopyStages, TrackingTermDerivativesMatchCentralDifferences) {
   testing::OptimalProblem p("cart_pole_swing_up.yaml");
   const collocation::Transcription plain(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
   const collocation::StageStart start{testing::perturbed_guess(plain, false, 5), 2.5,
-                                      plain.dae_hessian()};
+                                      plain.dae_hessian(), plain.residual()};
   collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0,
                                  HessianChoice::Exact, &start);
   EXPECT_EQ(nlp.guess(), start.x);
   EXPECT_EQ(nlp.dae_hessian(), plain.dae_hessian());  // shared, not compiled again
+  EXPECT_EQ(nlp.residual(), plain.residual());
   const std::vector<double> x = testing::perturbed_guess(nlp, false, 13);
   EXPECT_GT(nlp.tracking(x.data()), 0.0);
   testing::expect_first_derivatives_match(nlp, x);
