@@ -299,12 +299,15 @@ void bind_model(py::module_& m) {
           "optimize", &optimize_model, py::arg("intervals") = py::none(),
           py::arg("degree") = py::none(), py::arg("ipopt") = std::map<std::string, py::object>{},
           py::arg("verify") = false, py::arg("verbose") = false, py::arg("hessian") = "auto",
+          py::arg("compile") = "auto",
           "Solve the file's optimal_control problem as `lagrange optimize` does (intervals and "
           "degree override the file's; ipopt={'key': value} passes options through; verify "
-          "re-simulates the controls), with the GIL released: a namespace with optimal, status, "
+          "re-simulates the controls; compile='auto'|'on'|'off' as simulate's, for the Hessian's "
+          "second derivatives), with the GIL released: a namespace with optimal, status, "
           "objective, horizon, controls (intervals × controls), control_names, run (the "
           "collocated trajectory as a Run), violation, worst_constraint, active_bounds, "
-          "energy_balance (change, work by source, residual, scale, relative_residual, unsuitable), "
+          "energy_balance (change, work by source, residual, scale, relative_residual, "
+          "unsuitable), "
           "iterations, "
           "setup_seconds, solve_seconds, function_seconds, stages (the homotopy's, each with name, "
           "optimal, status, iterations, objective, tracking, seconds) and verify (final_gap, "

@@ -35,7 +35,7 @@ const OptimalControlSpec& optimal_control_of(const PyModel& m, const std::string
 // verify(), on a workspace of this call's own.
 py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::optional<int> degree,
                           const std::map<std::string, py::object>& ipopt, bool verify_result,
-                          bool verbose, const std::string& hessian) {
+                          bool verbose, const std::string& hessian, const std::string& compile) {
   const cli::Prepared& p = *m.prepared;
   optimal_control_of(m, "optimize", "lagrange optimize");
   if ((intervals && *intervals < 1) || (degree && (*degree < 1 || *degree > 5)))
@@ -53,6 +53,7 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
                                             : HessianChoice::Auto;
   for (const auto& [key, value] : ipopt)
     o.ipopt.emplace_back(key, py::str(value).cast<std::string>());
+  o.evaluation = cli::evaluation_mode(compile);
   const SimulationOptions so = cli::simulation_options(*p.model, cli::RunSettings{});
   Dynamics dynamics(p.compiled, p.dynamics->parameters());
   dynamics.set_baumgarte(baumgarte_rate(p.model->stabilization, so.integrator.method));

@@ -19,11 +19,13 @@ const OptimalControlSpec& optimal_control_of(const PyModel& m, const std::string
                                              const std::string& command);
 
 /// Solves the problem of the model's `optimal_control:` section (intervals and degree override the
-/// file's, ipopt options pass through, verify re-simulates the controls): a
+/// file's, ipopt options pass through, verify re-simulates the controls, compile chooses the
+/// Hessian's machine code as simulate's does): a
 /// types.SimpleNamespace with the status, objective, controls, the Run and Ipopt's statistics.
 pybind11::object optimize_model(const PyModel& m, std::optional<int> intervals,
                                 std::optional<int> degree,
                                 const std::map<std::string, pybind11::object>& ipopt, bool verify,
-                                bool verbose, const std::string& hessian);
+                                bool verbose, const std::string& hessian,
+                                const std::string& compile);
 
 }  // namespace lagrange::python

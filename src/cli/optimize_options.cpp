@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "cli/prepare.hpp"
+
 namespace lagrange::cli {
 
 OptimizeOptions optimize_options(const Options& opt) {
@@ -12,15 +14,7 @@ OptimizeOptions optimize_options(const Options& opt) {
   o.hessian = opt.hessian == "exact"            ? HessianChoice::Exact
               : opt.hessian == "limited-memory" ? HessianChoice::LimitedMemory
                                                 : HessianChoice::Auto;
-  // docs/theory.md §8, machine code, as `simulate --compile` chooses it.
-  if (opt.compile == "off")
-    o.evaluation = Evaluation::Interpreter;
-  else if (opt.compile == "on")
-    o.evaluation = Evaluation::MachineCode;
-  else if (opt.compile == "auto")
-    o.evaluation = Evaluation::Background;
-  else
-    throw UsageError("compile: expected auto, on or off, got '" + opt.compile + "'");
+  o.evaluation = evaluation_mode(opt.compile);  // docs/theory.md §8, as `simulate` chooses it
   for (const std::string& a : opt.ipopt) {
     const size_t eq = a.find('=');
     if (eq == std::string::npos || eq == 0)

@@ -304,15 +304,21 @@ SimulationOptions simulation_options(const Model& model, const RunSettings& give
 
 // docs/theory.md §8, machine code: `on` compiles before the run (and says at once when it cannot),
 // `auto` runs the interpreter while a large model compiles in the background.
+Evaluation evaluation_mode(const std::string& mode) {
+  if (mode == "off") return Evaluation::Interpreter;
+  if (mode == "on") return Evaluation::MachineCode;
+  if (mode == "auto") return Evaluation::Background;
+  throw UsageError("compile: expected auto, on or off, got '" + mode + "'");
+}
+
 bool choose_evaluation(Dynamics& dynamics, const std::string& mode,
                        std::function<bool()> interrupted) {
-  if (mode == "off") return true;
-  if (mode != "on" && mode != "auto")
-    throw UsageError("compile: expected auto, on or off, got '" + mode + "'");
+  const Evaluation evaluation = evaluation_mode(mode);
+  if (evaluation == Evaluation::Interpreter) return true;
   MachineCodeOptions options;
   options.interrupted = std::move(interrupted);
-  dynamics.set_evaluation(mode == "on" ? Evaluation::MachineCode : Evaluation::Background, options);
-  return mode != "on" || dynamics.uses_machine_code();
+  dynamics.set_evaluation(evaluation, options);
+  return evaluation != Evaluation::MachineCode || dynamics.uses_machine_code();
 }
 
 }  // namespace lagrange::cli

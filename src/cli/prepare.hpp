@@ -119,6 +119,10 @@ struct RunSettings {
 /// UsageError for a non-positive end time, output step or tolerance.
 SimulationOptions simulation_options(const Model& model, const RunSettings& given);
 
+/// The evaluation a `--compile` word names (docs/theory.md §8): "off" Interpreter, "on"
+/// MachineCode, "auto" Background; UsageError for another word.
+Evaluation evaluation_mode(const std::string& mode);
+
 /// What evaluates the tapes (docs/theory.md §8): "off" the interpreter, "on" machine code at once
 /// (false when it could not be had, evaluation_note() says why), "auto" machine code compiled in
 /// the background for large tapes; UsageError for another word. `interrupted`, polled while "on"

@@ -589,18 +589,7 @@ void Transcription::evaluate_points(const double* x) {
 void Transcription::residual_terms(const double* x, int k, int j, size_t col,
                                    std::vector<Term>& t) const {
   t.clear();
-  if (col < nx_) {
-    t.push_back({xi(k, j) + col, 1.0});
-  } else if (col < nx_ + nu_) {
-    t.push_back({ui(k, j, col - nx_), 1.0});
-  } else if (col < nx_ + nu_ + nv_) {
-    const double T = horizon(x), h = T / N_;
-    const size_t i = col - nx_ - nu_;
-    for (int l = 0; l <= d_; ++l) t.push_back({xi(k, l) + nq_ + i, rad_.derivative(j, l) / h});
-    if (free_T_) t.push_back({0, -xp_[nq_ + i] / T});  // ∂x'/∂T = −x'/T
-  } else {
-    t.push_back({li(k, j) + col - nx_ - nu_ - nv_, 1.0});
-  }
+  for_each_residual_term(x, k, j, col, [&](size_t v, double c) { t.push_back({v, c}); });
 }
 
 // docs/theory.md §10, "Homotopy": the tracking term.
@@ -758,7 +747,7 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
     for (int j = 1; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1), row = p * nr;
       const double* rho = point_rho(p);
-      std::copy(point_xp(p), point_xp(p) + nx_, xp_.begin());  // residual_terms reads x
+      std::copy(point_xp(p), point_xp(p) + nx_, xp_.begin());  // x' for T
       // r_q = q' − q̇(q, v): ∂/∂q' through the collocation derivative, the rest from ρ.
       for (int l = 0; l <= d_; ++l) {
         const double f = rad_.derivative(j, l) / h;
@@ -768,8 +757,8 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
         for (size_t i = 0; i < nq_; ++i) emit(row + i, 0, -xp_[i] / T);
       for (size_t e = 0; e < dae_->pattern().size(); ++e) {
         const auto [rr, col] = dae_->pattern()[e];
-        residual_terms(x, k, j, col, terms_);
-        for (const Term& t : terms_) emit(row + rr, t.variable, rho[nr + e] * t.coefficient);
+        const double d = rho[nr + e];
+        for_each_residual_term(x, k, j, col, [&](size_t v, double c) { emit(row + rr, v, d * c); });
       }
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).

@@ -169,10 +169,24 @@ class Transcription {
   const double* point_xp(size_t p) const { return xp_at_.data() + p * nx_; }
   const double* point_rho(size_t p) const { return rho_at_.data() + p * dae_->num_outputs(); }
   const double* point_fun(size_t p) const { return fun_at_.data() + p * fun_.num_outputs(); }
-  /// The NLP variables of the DAE's local column `col` (q, v, the controls, a = v', λ) at point
-  /// (k, j) into `t`: a reaches the interval's states through the collocation derivative, and T
-  /// (when free) through x' = (1/h) Σ D X with h = T/N (docs/theory.md §10, "Hessian"). Reads
-  /// xp_ for T.
+  /// Calls f(variable, coefficient) for each NLP variable of the DAE's local column `col` (q, v,
+  /// the controls, a = v', λ) at point (k, j): a reaches the interval's states through the
+  /// collocation derivative, and T (when free) through x' = (1/h) Σ D X with h = T/N
+  /// (docs/theory.md §10, "Hessian"). Reads xp_ for T.
+  template <class F>
+  void for_each_residual_term(const double* x, int k, int j, size_t col, F&& f) const {
+    if (col < nx_) return f(xi(k, j) + col, 1.0);
+    if (col < nx_ + nu_) return f(ui(k, j, col - nx_), 1.0);
+    if (col < nx_ + nu_ + nv_) {
+      const double T = horizon(x), h = T / N_;
+      const size_t i = col - nx_ - nu_;
+      for (int l = 0; l <= d_; ++l) f(xi(k, l) + nq_ + i, rad_.derivative(j, l) / h);
+      if (free_T_) f(size_t{0}, -xp_[nq_ + i] / T);  // ∂x'/∂T = −x'/T
+      return;
+    }
+    f(li(k, j) + col - nx_ - nu_ - nv_, 1.0);
+  }
+  /// The same as a list in `t`.
   void residual_terms(const double* x, int k, int j, size_t col, std::vector<Term>& t) const;
   std::vector<double> make_guess();
   /// Calls f(offset of X) for each state node X_{k,j} (k < N, j < d) and X_{N,0}.
@@ -256,7 +270,6 @@ class Transcription {
   std::vector<double> in_, out_, xp_, guess_;
   std::vector<double> rin_, rout_;      ///< eval_residual's inputs and outputs
   std::vector<double> sig_, sig_work_;  ///< load()'s other inputs and their tape's scratch
-  std::vector<Term> terms_;             ///< residual_terms' list
   std::vector<double> x_at_, xp_at_, rho_at_, fun_at_;  ///< evaluate_points' x and results
   double track_ = 0.0;               ///< the tracking term's weight over the node count
   std::vector<double> track_scale_;  ///< per state component, 1/s_i²

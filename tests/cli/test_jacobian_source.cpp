@@ -146,8 +146,9 @@ TEST(JacobianSource, SweepCommandCasesAreTheLoneRuns) {
         dir.path(), {"simulate", kElasticTether, "--set", c[0] == '0' ? "D=1000" : "D=3000",
                      "--integrator", "auto", "--t-end", "1", "-o", alone.string()});
     ASSERT_EQ(s.exit_code, 0) << s.err;
-    if (c[0] == '1')  // the example's damping: auto turns implicit (D = 1000 stays explicit)
+    if (c[0] == '1') {  // the example's damping: auto turns implicit (D = 1000 stays explicit)
       EXPECT_NE(s.out.find("dop853, stiff at t = "), std::string::npos) << s.out;
+    }
     EXPECT_EQ(slurp(study / (std::string("case_") + c + ".csv")), slurp(alone)) << "case " << c;
   }
 }

@@ -128,6 +128,15 @@ def test_the_hessian_choice_reaches_the_same_optimum():
     assert lbfgs.objective == pytest.approx(exact.objective, rel=1e-6)
 
 
+def test_the_compile_choice_changes_no_iterate_and_says_which_ran():
+    m = lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml"))
+    on, off = m.optimize(intervals=20, compile="on"), m.optimize(intervals=20, compile="off")
+    assert on.hessian_evaluation.startswith("machine code")
+    assert off.hessian_evaluation == "interpreter"
+    assert on.iterations == off.iterations
+    assert on.objective == off.objective  # the same bits: the library computes the interpreter's
+
+
 def test_bad_requests_say_what_is_wrong(examples_dir):
     with pytest.raises(ValueError, match="no optimal_control section"):
         lagrange.load(str(examples_dir / "pendulum.yaml")).optimize()
@@ -135,3 +144,5 @@ def test_bad_requests_say_what_is_wrong(examples_dir):
         lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(degree=7)
     with pytest.raises(ValueError, match="expected hessian"):
         lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(hessian="newton")
+    with pytest.raises(ValueError, match="compile: expected auto, on or off"):
+        lagrange.load(str(OPTIMAL / "cart_pole_swing_up.yaml")).optimize(compile="sometimes")
