@@ -5,18 +5,14 @@
 
 namespace lagrange::collocation {
 
-namespace {
-
-std::vector<GiNaC::symbol> named(const std::string& name, size_t count) {
+std::vector<GiNaC::symbol> numbered_symbols(const std::string& name, size_t count) {
   std::vector<GiNaC::symbol> out;
   for (size_t i = 0; i < count; ++i) out.emplace_back(name + std::to_string(i));
   return out;
 }
 
-}  // namespace
-
 ResidualSymbols::ResidualSymbols(size_t nv, size_t m)
-    : a(named("dae_a", nv)), lambda(named("dae_l", m)), alpha("dae_alpha") {}
+    : a(numbered_symbols("dae_a", nv)), lambda(numbered_symbols("dae_l", m)), alpha("dae_alpha") {}
 
 // docs/theory.md §4.3: M and G from their stored patterns (M's upper triangle), as
 // Dynamics::dae_residual evaluates them.

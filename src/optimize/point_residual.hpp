@@ -5,6 +5,7 @@
 
 #include <ginac/ginac.h>
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,9 @@
 #include "lagrange/tape.hpp"
 
 namespace lagrange::collocation {
+
+/// New symbols name0, name1, … (count of them).
+std::vector<GiNaC::symbol> numbered_symbols(const std::string& name, size_t count);
 
 /// The symbols the residual adds to the model's tape inputs: a (nv), λ (m) and α, in that order.
 struct ResidualSymbols {

@@ -15,13 +15,6 @@ namespace lagrange::collocation {
 
 namespace {
 
-/// New symbols name0, name1, … (count of them).
-std::vector<GiNaC::symbol> symbols(const std::string& name, size_t count) {
-  std::vector<GiNaC::symbol> out;
-  for (size_t i = 0; i < count; ++i) out.emplace_back(name + std::to_string(i));
-  return out;
-}
-
 /// H·∂z_a·∂z_b scattered onto the lower triangle: a local diagonal entry (a = b) gives each
 /// variable pair once; an off-diagonal one (a > b) stands for both (a, b) and (b, a), so it
 /// counts twice where its two variables coincide.
@@ -69,7 +62,7 @@ void Transcription::prepare_hessian(HessianChoice choice,
   h_dae_ = std::move(dae);
   if (!h_dae_) {
     const ResidualSymbols rs(nv_, m_);
-    const std::vector<GiNaC::symbol> mu = symbols("hess_mu", nx_ + m_);
+    const std::vector<GiNaC::symbol> mu = numbered_symbols("hess_mu", nx_ + m_);
     const std::vector<GiNaC::ex> rho = residual_rows(eq, cm, rs);
     GiNaC::ex s = 0;
     for (size_t r = 0; r < rho.size(); ++r) s += mu[r] * rho[r];
@@ -101,7 +94,7 @@ void Transcription::prepare_hessian(HessianChoice choice,
   }
   // w₀ L + w₁ Φ + w₂ M + Σ w_p g_p, over (q, v, u, λ) and, with T free, t = T (k + τ_j)/N.
   {
-    const std::vector<GiNaC::symbol> w = symbols("hess_w", fun_.count());
+    const std::vector<GiNaC::symbol> w = numbered_symbols("hess_w", fun_.count());
     const std::vector<GiNaC::ex> fs = problem_functions(spec_);
     GiNaC::ex s = 0;
     for (size_t f = 0; f < fs.size(); ++f) s += w[f] * fs[f];
@@ -117,7 +110,7 @@ void Transcription::prepare_hessian(HessianChoice choice,
   }
   // Σ ν_i C_i + Σ ν_{m+i} Ċ_i.
   if (m_ > 0 && !start_rows_.empty()) {
-    const std::vector<GiNaC::symbol> nu = symbols("hess_nu", 2 * m_);
+    const std::vector<GiNaC::symbol> nu = numbered_symbols("hess_nu", 2 * m_);
     GiNaC::ex s = 0;
     for (size_t k = 0; k < m_; ++k)
       s += nu[k] * out[cm.C_out() + k] + nu[m_ + k] * out[cm.Cdot_out() + k];
