@@ -756,9 +756,10 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
       if (free_T_)  // ∂x'/∂T = −x'/T
         for (size_t i = 0; i < nq_; ++i) emit(row + i, 0, -xp_[i] / T);
       for (size_t e = 0; e < dae_->pattern().size(); ++e) {
-        const auto [rr, col] = dae_->pattern()[e];
+        // (a lambda may not capture a structured binding before C++20: clang 14 refuses it)
+        const size_t at = row + dae_->pattern()[e].first, col = dae_->pattern()[e].second;
         const double d = rho[nr + e];
-        for_each_residual_term(x, k, j, col, [&](size_t v, double c) { emit(row + rr, v, d * c); });
+        for_each_residual_term(x, k, j, col, [&](size_t v, double c) { emit(at, v, d * c); });
       }
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).
