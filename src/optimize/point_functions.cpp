@@ -8,6 +8,23 @@ std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec) {
   return fs;
 }
 
+std::vector<std::pair<size_t, size_t>> append_derivatives(const std::vector<GiNaC::ex>& fs,
+                                                          const std::vector<GiNaC::symbol>& in,
+                                                          const std::vector<size_t>& columns,
+                                                          std::vector<GiNaC::ex>& outputs) {
+  std::vector<std::pair<size_t, size_t>> pattern;
+  for (size_t i = 0; i < fs.size(); ++i)
+    for (size_t c = 0; c < columns.size(); ++c) {
+      const GiNaC::symbol& x = in.at(columns[c]);
+      if (!fs[i].has(x)) continue;
+      const GiNaC::ex d = fs[i].diff(x);
+      if (d.is_zero()) continue;
+      pattern.emplace_back(i, c);
+      outputs.push_back(d);
+    }
+  return pattern;
+}
+
 PointFunctions::PointFunctions(const Equations& eq, const CompiledModel& cm,
                                const std::vector<GiNaC::ex>& fs,
                                const std::vector<size_t>& controls,
@@ -22,13 +39,7 @@ PointFunctions::PointFunctions(const Equations& eq, const CompiledModel& cm,
     in.push_back(l);
   }
   std::vector<GiNaC::ex> outputs(fs.begin(), fs.end());
-  for (size_t i = 0; i < fs.size(); ++i)
-    for (size_t c = 0; c < columns.size(); ++c) {
-      const GiNaC::ex d = fs[i].diff(in.at(columns[c]));
-      if (d.is_zero()) continue;
-      pattern_.emplace_back(i, c);
-      outputs.push_back(d);
-    }
+  pattern_ = append_derivatives(fs, in, columns, outputs);
   tape_ = Tape::compile(outputs, in);
   work_.resize(std::max<size_t>(tape_.work_size(), 1));
 }

@@ -17,6 +17,13 @@ namespace lagrange::collocation {
 constexpr size_t kIntegrand = 0, kTerminal = 1, kMean = 2, kFirstPath = 3;
 std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec);
 
+/// Appends to `outputs` each structurally non-zero ∂f_i/∂in[columns[c]], function by function and
+/// column by column, and returns their (i, c): the first derivatives every point tape carries.
+std::vector<std::pair<size_t, size_t>> append_derivatives(const std::vector<GiNaC::ex>& fs,
+                                                          const std::vector<GiNaC::symbol>& in,
+                                                          const std::vector<size_t>& columns,
+                                                          std::vector<GiNaC::ex>& outputs);
+
 /// f_i(t, q, v, u, λ) for i < count, and their non-zero derivatives along the columns
 /// (t, q₁…q_nq, v₁…v_nv, the controls, the multipliers), differentiated symbolically
 /// (docs/theory.md §10).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "optimize/point_functions.hpp"
+
 namespace lagrange::collocation {
 
 std::vector<GiNaC::symbol> numbered_symbols(const std::string& name, size_t count) {
@@ -42,8 +44,8 @@ std::vector<GiNaC::ex> residual_rows(const Equations& eq, const CompiledModel& c
 PointResidual::PointResidual(const Equations& eq, const CompiledModel& cm,
                              const std::vector<size_t>& controls) {
   const ResidualSymbols s(cm.nv, cm.m);
-  std::vector<GiNaC::ex> outputs = residual_rows(eq, cm, s);
-  rows_ = outputs.size();
+  const std::vector<GiNaC::ex> rho = residual_rows(eq, cm, s);
+  rows_ = rho.size();
   std::vector<GiNaC::symbol> in = eq.tape_inputs();
   std::vector<size_t> columns;  // tape input of each column: q, v, the controls, a, λ
   for (size_t i = 0; i < cm.nq + cm.nv; ++i) columns.push_back(cm.q_offset() + i);
@@ -54,15 +56,8 @@ PointResidual::PointResidual(const Equations& eq, const CompiledModel& cm,
       in.push_back(x);
     }
   in.push_back(s.alpha);
-  for (size_t r = 0; r < rows_; ++r)
-    for (size_t c = 0; c < columns.size(); ++c) {
-      const GiNaC::symbol& x = in[columns[c]];
-      if (!outputs[r].has(x)) continue;
-      const GiNaC::ex d = outputs[r].diff(x);
-      if (d.is_zero()) continue;
-      pattern_.emplace_back(r, c);
-      outputs.push_back(d);
-    }
+  std::vector<GiNaC::ex> outputs = rho;
+  pattern_ = append_derivatives(rho, in, columns, outputs);
   tape_ = Tape::compile(outputs, in);
   work_.resize(std::max<size_t>(tape_.work_size(), 1));
 }

@@ -229,11 +229,11 @@ size_t Transcription::point_variable(size_t column, int k, int j) const {
 // (docs/theory.md §10, "Kinks"); its values are those at the point.
 void Transcription::eval_point(const double* x, int k, int j) {
   const double* lambda = multipliers(x, k, j);
-  fun_.eval(load(time(x, k, j), state(x, k, j), control(x, k, j)), lambda, out_);
+  fun_.eval(in_, lambda, out_);
   const size_t nf = fun_.count();
   if (analysis_detail::all_finite(out_.data() + nf, out_.data() + out_.size())) return;
   const std::vector<double> values(out_.begin(), out_.begin() + static_cast<long>(nf));
-  std::vector<double> in = in_;  // load()'s inputs, to move off the kink
+  std::vector<double> in = in_;  // the inputs, to move off the kink
   analysis_detail::eval_off_kink(in.data() + cm_->q_offset(), nx_, out_.data() + nf,
                                  out_.data() + out_.size(), [&] { fun_.eval(in, lambda, out_); });
   std::copy(values.begin(), values.end(), out_.begin());
@@ -577,7 +577,7 @@ void Transcription::evaluate_points(const double* x) {
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1);
-      eval_residual(x, k, j);
+      eval_residual(x, k, j);  // loads the point's tape inputs, which eval_point reads too
       std::copy(xp_.begin(), xp_.end(), xp_at_.begin() + static_cast<long>(p * nx_));
       std::copy(rout_.begin(), rout_.end(), rho_at_.begin() + static_cast<long>(p * nr));
       eval_point(x, k, j);
@@ -589,7 +589,9 @@ void Transcription::evaluate_points(const double* x) {
 void Transcription::residual_terms(const double* x, int k, int j, size_t col,
                                    std::vector<Term>& t) const {
   t.clear();
-  for_each_residual_term(x, k, j, col, [&](size_t v, double c) { t.push_back({v, c}); });
+  for_each_residual_term(x, xp_.data(), k, j, col, [&](size_t v, double c) {
+    t.push_back({v, c});
+  });
 }
 
 // docs/theory.md §10, "Homotopy": the tracking term.
@@ -746,20 +748,19 @@ void Transcription::walk_jacobian(const double* x, Emit&& emit) {
   for (int k = 0; k < N_; ++k)
     for (int j = 1; j <= d_; ++j) {
       const size_t p = static_cast<size_t>(k * d_ + j - 1), row = p * nr;
-      const double* rho = point_rho(p);
-      std::copy(point_xp(p), point_xp(p) + nx_, xp_.begin());  // x' for T
+      const double *rho = point_rho(p), *xp = point_xp(p);
       // r_q = q' − q̇(q, v): ∂/∂q' through the collocation derivative, the rest from ρ.
       for (int l = 0; l <= d_; ++l) {
         const double f = rad_.derivative(j, l) / h;
         for (size_t i = 0; i < nq_; ++i) emit(row + i, xi(k, l) + i, f);
       }
       if (free_T_)  // ∂x'/∂T = −x'/T
-        for (size_t i = 0; i < nq_; ++i) emit(row + i, 0, -xp_[i] / T);
+        for (size_t i = 0; i < nq_; ++i) emit(row + i, 0, -xp[i] / T);
       for (size_t e = 0; e < dae_->pattern().size(); ++e) {
         // (a lambda may not capture a structured binding before C++20: clang 14 refuses it)
         const size_t at = row + dae_->pattern()[e].first, col = dae_->pattern()[e].second;
         const double d = rho[nr + e];
-        for_each_residual_term(x, k, j, col, [&](size_t v, double c) { emit(at, v, d * c); });
+        for_each_residual_term(x, xp, k, j, col, [&](size_t v, double c) { emit(at, v, d * c); });
       }
       if (np_ == 0) continue;
       // Path constraints at (t_kj, X_{k,j}, U_k).

@@ -153,7 +153,8 @@ class Transcription {
   /// The NLP variable of the point functions' column `column` ≥ 1 (q, v, the controls, λ) at
   /// collocation point (k, j ≥ 1); the terminal point is (N − 1, d).
   size_t point_variable(size_t column, int k, int j) const;
-  /// The point functions at collocation point (k, j ≥ 1) into out_.
+  /// The point functions at collocation point (k, j ≥ 1) into out_, at the tape inputs load()
+  /// last made for that point (eval_residual's).
   void eval_point(const double* x, int k, int j);
   /// x'(τ_j) of interval k, (1/h) Σ_l D_jl X_{k,l}, into xp_.
   void collocation_derivative(const double* x, int k, int j);
@@ -172,21 +173,22 @@ class Transcription {
   /// Calls f(variable, coefficient) for each NLP variable of the DAE's local column `col` (q, v,
   /// the controls, a = v', λ) at point (k, j): a reaches the interval's states through the
   /// collocation derivative, and T (when free) through x' = (1/h) Σ D X with h = T/N
-  /// (docs/theory.md §10, "Hessian"). Reads xp_ for T.
+  /// (docs/theory.md §10, "Hessian"), with x' at the point in `xp`.
   template <class F>
-  void for_each_residual_term(const double* x, int k, int j, size_t col, F&& f) const {
+  void for_each_residual_term(const double* x, const double* xp, int k, int j, size_t col,
+                              F&& f) const {
     if (col < nx_) return f(xi(k, j) + col, 1.0);
     if (col < nx_ + nu_) return f(ui(k, j, col - nx_), 1.0);
     if (col < nx_ + nu_ + nv_) {
       const double T = horizon(x), h = T / N_;
       const size_t i = col - nx_ - nu_;
       for (int l = 0; l <= d_; ++l) f(xi(k, l) + nq_ + i, rad_.derivative(j, l) / h);
-      if (free_T_) f(size_t{0}, -xp_[nq_ + i] / T);  // ∂x'/∂T = −x'/T
+      if (free_T_) f(size_t{0}, -xp[nq_ + i] / T);  // ∂x'/∂T = −x'/T
       return;
     }
     f(li(k, j) + col - nx_ - nu_ - nv_, 1.0);
   }
-  /// The same as a list in `t`.
+  /// The same as a list in `t`, with x' in xp_.
   void residual_terms(const double* x, int k, int j, size_t col, std::vector<Term>& t) const;
   std::vector<double> make_guess();
   /// Calls f(offset of X) for each state node X_{k,j} (k < N, j < d) and X_{N,0}.
