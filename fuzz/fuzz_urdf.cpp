@@ -18,7 +18,9 @@ namespace {
 constexpr size_t kMaxInput = 16384;  // the bundled robots are 6–8 KB
 
 // The reader takes URDF from a file: one per process in a directory of its own, rewritten for
-// each input and removed at exit.
+// each input and removed at exit. fuzz/run.sh names a fixed directory (FUZZ_URDF_DIR) for its
+// fixed-seed runs: mkdtemp's random name would reach the reader's messages and comparisons, and
+// with them the inputs libFuzzer derives, so no two runs would explore alike.
 std::string directory;
 
 void remove_directory() {
@@ -27,9 +29,14 @@ void remove_directory() {
 
 const std::string& input_path() {
   static const std::string path = [] {
-    directory =
-        std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/fuzz_urdf.XXXXXX";
-    if (mkdtemp(directory.data()) == nullptr) std::abort();
+    if (const char* fixed = std::getenv("FUZZ_URDF_DIR")) {
+      directory = fixed;
+      std::filesystem::create_directories(directory);
+    } else {
+      directory = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                  "/fuzz_urdf.XXXXXX";
+      if (mkdtemp(directory.data()) == nullptr) std::abort();
+    }
     std::atexit(remove_directory);
     return directory + "/robot.urdf";
   }();

@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
 # Runs each libFuzzer target on its corpus for a while: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]
 # Inputs that crash, hang (> 10 s) or use more than 2 GB are written to BUILD_DIR/fuzz/artifacts/;
-# the script fails if any target found one. New corpus entries stay in BUILD_DIR/fuzz/corpus/.
+# the script fails if any target found one. New corpus entries stay in BUILD_DIR/fuzz/corpus/
+# (in BUILD_DIR/fuzz/found/ for a fixed-seed run, below).
 # With FUZZ_RUNS=N each target instead executes exactly N inputs from seed 1 (FUZZ_RUNS_MODEL,
 # FUZZ_RUNS_EXPRESSION, FUZZ_RUNS_URDF, FUZZ_RUNS_SWEEP_SPEC and FUZZ_RUNS_METRIC set N per target: a model input costs ten times an
 # expression, a URDF input, written to a file and read back, more still) with address
-# randomisation off (GiNaC's term order, hence coverage, depends on load addresses): the same
-# build and corpus then explore the same inputs, so CI's short run is reproducible.
+# randomisation off (GiNaC's term order, hence coverage, depends on load addresses) and
+# everything the process sees the same from any clone: it runs in BUILD_DIR/fuzz with relative
+# paths and a fixed environment (libFuzzer's comparison tracing feeds stack and heap addresses
+# back into its mutations, and those move with the length of the environment and argv), reads
+# its seeds as a sorted list (-seed_inputs; a corpus directory lists equal-sized inputs in the
+# filesystem's order) and writes new inputs to a fresh BUILD_DIR/fuzz/found/TARGET, and does not
+# reload them on a timer (-reload=0). Stop 45: CI's clone found sqrt(-1) with fuzz_metric where
+# ours did not. The same build and corpus now explore the same inputs in any folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:?usage: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]}
@@ -19,25 +26,43 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 mkdir -p "$build/fuzz/artifacts"
 status=0
 for t in "${targets[@]}"; do
-  budget=(-max_total_time="$seconds")
   runner=()
   per_target="FUZZ_RUNS_${t^^}"
   runs=${!per_target:-${FUZZ_RUNS:-}}
   if [ -n "$runs" ]; then
-    budget=(-runs="$runs" -seed=1)
-    if setarch "$(uname -m)" -R true 2>/dev/null; then runner=(setarch "$(uname -m)" -R); fi
-    echo "fuzz: fuzz_$t for $runs inputs (seed 1) on $build/fuzz/corpus/$t"
+    work="$build/fuzz"
+    cp "fuzz/$t.dict" "$work/$t.dict"
+    cp .ci/lsan.supp "$work/lsan.supp"
+    (cd "$work" && find "corpus/$t" -type f | LC_ALL=C sort | paste -sd, - >"seeds-$t.txt")
+    rm -rf "$work/found/$t" "$work/urdf-input" && mkdir -p "$work/found/$t"
+    aslr="address randomisation on: setarch -R is refused here, so runs may differ"
+    if setarch "$(uname -m)" -R true 2>/dev/null; then
+      runner=(setarch "$(uname -m)" -R)
+      aslr="address randomisation off"
+    fi
+    echo "fuzz: fuzz_$t for $runs inputs (seed 1, $aslr) from the" \
+      "$(tr , '\n' <"$work/seeds-$t.txt" | wc -l) seeds of $work/corpus/$t in name order"
+    run=(env -i PATH=/usr/bin:/bin LSAN_OPTIONS="suppressions=lsan.supp:print_suppressions=0"
+      UBSAN_OPTIONS="$UBSAN_OPTIONS" FUZZ_URDF_DIR=urdf-input "${runner[@]}" "./fuzz_$t"
+      -runs="$runs" -seed=1 -reload=0 -seed_inputs="@seeds-$t.txt" -dict="$t.dict"
+      -artifact_prefix="artifacts/$t-" "found/$t")
+    work_dir="$work"
   else
     echo "fuzz: fuzz_$t for ${seconds} s on $build/fuzz/corpus/$t"
+    run=("$build/fuzz/fuzz_$t" -max_total_time="$seconds" -dict="fuzz/$t.dict"
+      -artifact_prefix="$build/fuzz/artifacts/$t-" "$build/fuzz/corpus/$t")
+    work_dir=.
   fi
-  if ! "${runner[@]}" "$build/fuzz/fuzz_$t" "${budget[@]}" -timeout=10 -rss_limit_mb=2048 \
-      -dict="fuzz/$t.dict" -print_final_stats=1 -artifact_prefix="$build/fuzz/artifacts/$t-" \
-      "$build/fuzz/corpus/$t" 2>"$build/fuzz/fuzz_$t.log"; then
+  log="$PWD/$build/fuzz/fuzz_$t.log"
+  [[ "$build" = /* ]] && log="$build/fuzz/fuzz_$t.log"
+  if ! (cd "$work_dir" && "${run[@]}" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      2>"$log"); then
     echo "fuzz: fuzz_$t found a failing input (see $build/fuzz/artifacts/ and $build/fuzz/fuzz_$t.log):"
     tail -n 40 "$build/fuzz/fuzz_$t.log"
     status=1
   else
-    grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$build/fuzz/fuzz_$t.log" || true
+    grep -E '^#[0-9]+[[:space:]]+DONE|^stat::(number_of_executed_units|peak_rss_mb)' \
+      "$build/fuzz/fuzz_$t.log" || true
   fi
 done
 exit $status

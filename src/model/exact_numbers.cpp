@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "model/expression_lexer.hpp"
 
@@ -105,6 +106,49 @@ void check_folded(const GiNaC::ex& result, size_t offset) {
   if (!GiNaC::is_a<GiNaC::numeric>(coefficient)) return;
   const double digits = digits_of(GiNaC::ex_to<GiNaC::numeric>(coefficient));
   if (!(digits <= kMaxDigits)) too_long(offset, digits);
+}
+
+namespace {
+
+/// True when `e` is a non-real number, or a power or function of numbers only whose value is not
+/// real (sqrt(-2), asin(2), log(-1) stay unevaluated when exact, and the tape would compute NaN).
+bool complex_constant(const GiNaC::ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) return !GiNaC::ex_to<GiNaC::numeric>(e).is_real();
+  if (!GiNaC::is_a<GiNaC::power>(e) && !GiNaC::is_a<GiNaC::function>(e)) return false;
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (!GiNaC::is_a<GiNaC::numeric>(e.op(i))) return false;
+  try {
+    const GiNaC::ex value = e.evalf();
+    return GiNaC::is_a<GiNaC::numeric>(value) && !GiNaC::ex_to<GiNaC::numeric>(value).is_real();
+  } catch (const std::exception&) {
+    return false;  // not evaluable here; the operation's own checks answer for it
+  }
+}
+
+/// complex_constant for `e` or, when `e` is a product, for any of its factors.
+bool has_complex_factor(const GiNaC::ex& e) {
+  if (!GiNaC::is_a<GiNaC::mul>(e)) return complex_constant(e);
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (complex_constant(e.op(i))) return true;
+  return false;
+}
+
+}  // namespace
+
+// Fuzz finding (tests/hardening/data/fuzz/metric/complex-sqrt.txt): sqrt(theta^0 + 0e30 - 2)
+// folded to the complex float 1.0*I, which reached the tape compiler as an uncaught exception.
+void check_real(const GiNaC::ex& result, size_t offset) {
+  bool complex = has_complex_factor(result);
+  if (GiNaC::is_a<GiNaC::add>(result))
+    for (size_t i = 0; i < result.nops() && !complex; ++i)
+      complex = has_complex_factor(result.op(i));
+  if (!complex) return;
+  std::ostringstream text;
+  text << result;
+  throw ExprError{offset, fmt::format("expected a real value, got {}, which is not real (a root, "
+                                      "logarithm, power or inverse function of a number outside "
+                                      "its real domain)",
+                                      clip(text.str()))};
 }
 
 }  // namespace lagrange::model

@@ -30,4 +30,10 @@ void check_power(const GiNaC::ex& base, const GiNaC::ex& exponent, size_t offset
 /// numeric coefficient of a sum or product) has more than kMaxDigits digits.
 void check_folded(const GiNaC::ex& result, size_t offset);
 
+/// Throws ExprError at `offset` when a function or power of real operands came out complex
+/// (sqrt(-1) = I, sqrt(-2), log(-1), asin(2)): a non-real number, or a power or function of
+/// numbers whose value is not real, as the result, a factor or a term. Model expressions are
+/// real; the tape has no complex type and would compute NaN.
+void check_real(const GiNaC::ex& result, size_t offset);
+
 }  // namespace lagrange::model

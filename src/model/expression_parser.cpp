@@ -119,6 +119,15 @@ class Parser {
     return v;
   }
 
+  /// `folded(v)` after checking that a function or power of real operands stayed real; sums and
+  /// products of real operands are real, so only these two check (check_real).
+  static Value real(const Value& v, size_t offset) {
+    if (!v.is_vector && !v.is_matrix) check_real(v.scalar, offset);
+    if (v.is_vector)
+      for (const GiNaC::ex& x : v.vec) check_real(x, offset);
+    return folded(v, offset);
+  }
+
   Value expr() {
     Value lhs = term();
     while (at("+") || at("-")) {
@@ -175,10 +184,10 @@ class Parser {
       const auto& b = GiNaC::ex_to<GiNaC::numeric>(base.scalar);
       const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent.scalar);
       if (e.is_integer() || !b.is_rational())
-        return folded(Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); })),
-                      op.offset);
+        return real(Value::of(guarded(op.offset, [&] { return GiNaC::ex(b.power(e)); })),
+                    op.offset);
     }
-    return folded(
+    return real(
         Value::of(guarded(op.offset,
                           [&] { return GiNaC::ex(GiNaC::pow(base.scalar, exponent.scalar)); })),
         op.offset);
@@ -291,7 +300,7 @@ class Parser {
                                       ? " (dot(a, b) is the scalar product; a time derivative "
                                         "is written der(x))"
                                       : "")};
-    return folded(guarded(name.offset, [&] { return apply(name, args); }), name.offset);
+    return real(guarded(name.offset, [&] { return apply(name, args); }), name.offset);
   }
 
   /// Argument `index` of `f` must be a vector (`vector`) or a scalar (otherwise).
