@@ -60,8 +60,9 @@ std::string words(Ipopt::SolverReturn s) {
 
 class Adapter : public Ipopt::TNLP {
  public:
-  Adapter(Transcription& nlp, IpoptOutcome& out, const std::atomic<bool>* interrupt)
-      : nlp_(nlp), out_(out), interrupt_(interrupt) {}
+  Adapter(Transcription& nlp, IpoptOutcome& out, const std::atomic<bool>* interrupt,
+          const IpoptOutcome* previous)
+      : nlp_(nlp), out_(out), interrupt_(interrupt), previous_(previous) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
                     IndexStyleEnum& style) override {
@@ -76,14 +77,28 @@ class Adapter : public Ipopt::TNLP {
     nlp_.bounds(xl, xu, gl, gu);
     return true;
   }
-  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number*, Number*, Index,
-                          bool init_lambda, Number*) override {
-    if (init_z || init_lambda) return false;
+  // The multipliers are asked for only under warm_start_init_point=yes: the previous solve's
+  // when there is one of this size, else Ipopt's own cold values (bounds' 1, constraints' 0).
+  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_lower,
+                          Number* z_upper, Index m, bool init_lambda, Number* lambda) override {
+    if (n != static_cast<Index>(nlp_.variables())) return false;
     if (init_x) {
       const std::vector<double>& g = nlp_.guess();
       std::copy(g.begin(), g.end(), x);
     }
-    return n == static_cast<Index>(nlp_.variables());
+    if (!init_z && !init_lambda) return true;
+    if (previous_ == nullptr || previous_->z_lower.size() != static_cast<size_t>(n) ||
+        previous_->lambda.size() != static_cast<size_t>(m)) {
+      if (init_z) std::fill(z_lower, z_lower + n, 1.0), std::fill(z_upper, z_upper + n, 1.0);
+      if (init_lambda) std::fill(lambda, lambda + m, 0.0);
+      return true;
+    }
+    if (init_z) {
+      std::copy(previous_->z_lower.begin(), previous_->z_lower.end(), z_lower);
+      std::copy(previous_->z_upper.begin(), previous_->z_upper.end(), z_upper);
+    }
+    if (init_lambda) std::copy(previous_->lambda.begin(), previous_->lambda.end(), lambda);
+    return true;
   }
   // The nominal magnitudes' scaling, used with --ipopt nlp_scaling_method=user-scaling
   // (docs/theory.md §10, "Scaling": measured, it does not beat Ipopt's gradient-based default).
@@ -160,15 +175,19 @@ class Adapter : public Ipopt::TNLP {
     if (interrupt_ != nullptr && interrupt_->load()) out_.interrupted = true;
     return !out_.interrupted;
   }
-  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x, const Number*,
-                         const Number*, Index, const Number*, const Number*, Number,
-                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+  void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x,
+                         const Number* z_lower, const Number* z_upper, Index m, const Number*,
+                         const Number* lambda, Number, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
     out_.optimal = status == Ipopt::SUCCESS;
     out_.status = words(status);
     // Where the last NaN or Inf was met: Ipopt stops on it (invalid number) or, when it is in a
     // derivative, fails to factorise and ends in restoration.
     if (!out_.optimal && !invalid_.empty()) out_.status += "; " + invalid_;
     out_.x.assign(x, x + n);
+    out_.z_lower.assign(z_lower, z_lower + n);
+    out_.z_upper.assign(z_upper, z_upper + n);
+    out_.lambda.assign(lambda, lambda + m);
   }
 
  private:
@@ -195,6 +214,7 @@ class Adapter : public Ipopt::TNLP {
   Transcription& nlp_;
   IpoptOutcome& out_;
   const std::atomic<bool>* interrupt_;
+  const IpoptOutcome* previous_;
 };
 
 /// MUMPS allocates its factorisation's workspace (with Ipopt's mumps_mem_percent, ten times its
@@ -229,7 +249,8 @@ bool set_option(Ipopt::OptionsList& list, const std::string& key, const std::str
 
 IpoptOutcome solve_with_ipopt(Transcription& nlp,
                               const std::vector<std::pair<std::string, std::string>>& options,
-                              bool verbose, const std::atomic<bool>* interrupt) {
+                              bool verbose, const std::atomic<bool>* interrupt,
+                              const IpoptOutcome* previous) {
   IpoptOutcome out;
   keep_large_blocks();
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
@@ -248,7 +269,7 @@ IpoptOutcome solve_with_ipopt(Transcription& nlp,
   out.exact_hessian = approximation == "exact";
   if (app->Initialize() != Ipopt::Solve_Succeeded)
     throw std::runtime_error("Ipopt could not be initialised");
-  Ipopt::SmartPtr<Ipopt::TNLP> tnlp = new Adapter(nlp, out, interrupt);
+  Ipopt::SmartPtr<Ipopt::TNLP> tnlp = new Adapter(nlp, out, interrupt, previous);
   app->OptimizeTNLP(tnlp);
   if (Ipopt::IsValid(app->Statistics())) out.iterations = app->Statistics()->IterationCount();
   if (out.x.empty()) {

@@ -176,6 +176,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   // docs/theory.md §10, "Homotopy": each stage starts where the last one ended, the problem
   // itself where the last stage ended.
   collocation::StageStart from;  // x empty: the problem's guess
+  collocation::IpoptOutcome previous;  // the last stage's solve: its multipliers
   using IpoptOptions = std::vector<std::pair<std::string, std::string>>;
   // Transcribes `s` from `from` and solves it, adding the times to r (set-up since `setup_from`).
   const auto solve = [&](const OptimalControlSpec& s, const IpoptOptions& ipopt,
@@ -186,8 +187,8 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
         options.machine_code);
     r.setup_seconds += seconds_since(setup_from);
     const auto solve_start = std::chrono::steady_clock::now();
-    done.second =
-        collocation::solve_with_ipopt(*done.first, ipopt, options.verbose, options.interrupt);
+    done.second = collocation::solve_with_ipopt(*done.first, ipopt, options.verbose,
+                                                options.interrupt, &previous);
     r.solve_seconds += seconds_since(solve_start);
     r.function_seconds += done.second.function_seconds;
     return done;
@@ -205,7 +206,8 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     r.stages.push_back({stage.name, out.optimal, out.status, out.iterations,
                         (nlp->objective(out.x.data()) - tracking) * (nlp->maximize() ? -1.0 : 1.0),
                         tracking, seconds_since(stage_start)});
-    from.x = std::move(out.x);
+    from.x = out.x;
+    previous = std::move(out);
   }
   from.track = 0.0;
   auto [final_nlp, out] =
