@@ -89,7 +89,10 @@ class Adapter : public Ipopt::TNLP {
     if (!init_z && !init_lambda) return true;
     if (previous_ == nullptr || previous_->z_lower.size() != static_cast<size_t>(n) ||
         previous_->lambda.size() != static_cast<size_t>(m)) {
-      if (init_z) std::fill(z_lower, z_lower + n, 1.0), std::fill(z_upper, z_upper + n, 1.0);
+      if (init_z) {
+        std::fill(z_lower, z_lower + n, 1.0);
+        std::fill(z_upper, z_upper + n, 1.0);
+      }
       if (init_lambda) std::fill(lambda, lambda + m, 0.0);
       return true;
     }
