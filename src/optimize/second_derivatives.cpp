@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "dynamics/native_tapes.hpp"
+#include "symbolic/memo_diff.hpp"
 
 namespace lagrange::collocation {
 
@@ -11,17 +12,22 @@ SecondDerivatives::SecondDerivatives(SecondDerivatives&&) noexcept = default;
 SecondDerivatives& SecondDerivatives::operator=(SecondDerivatives&&) noexcept = default;
 SecondDerivatives::~SecondDerivatives() = default;
 
+// Both differentiations memoised over the expression DAG (symbolic/memo_diff.hpp): GiNaC's own
+// diff walked the weighted residual's shared subtrees again for every column and pair, 3.5 s of
+// the AP2's 3.8 s set-up (docs/benchmarks.md).
 SecondDerivatives::SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
                                      const std::vector<size_t>& columns) {
+  std::vector<GiNaC::symbol> column_symbols;
+  for (size_t c : columns) column_symbols.push_back(inputs.at(c));
+  symbolic::MemoDiff d(column_symbols);
+  const std::vector<size_t> in_s = d.columns_in(s);
   std::vector<GiNaC::ex> outputs;
-  for (size_t a = 0; a < columns.size(); ++a) {
-    const GiNaC::symbol& x = inputs.at(columns[a]);
-    if (!s.has(x)) continue;
-    const GiNaC::ex first = s.diff(x);
-    for (size_t b = 0; b <= a; ++b) {
-      const GiNaC::symbol& y = inputs.at(columns[b]);
-      if (!first.has(y)) continue;
-      const GiNaC::ex second = first.diff(y);
+  for (size_t a : in_s) {
+    const GiNaC::ex first = d.diff(s, a);
+    const std::vector<size_t> in_first = d.columns_in(first);
+    for (size_t b : in_first) {
+      if (b > a) break;
+      const GiNaC::ex second = d.diff(first, b);
       if (second.is_zero()) continue;
       pattern_.emplace_back(a, b);
       outputs.push_back(second);
