@@ -96,7 +96,7 @@ TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
 }
 
 // awebox's AP2 case (examples/optimal/power_cycle_ap2.yaml): from the model's own flown loop,
-// through the file's six homotopy stages (a fictitious force and moment priced out, then power),
+// through the file's five homotopy stages (a fictitious force and moment priced out, then power),
 // every stage and the problem converge on MUMPS with the line's drag, z ≥ 100 m and the period
 // free in awebox's [20, 70] s; the fictitious force ends at 0, the drag dissipates, the energy
 // balances over the cycle, and the orbit closes when its controls are flown open loop. The power
@@ -106,7 +106,7 @@ TEST(PowerCycle, PointMassKiteStaysBelowLoydsBoundAndConvergesWithTheMesh) {
 TEST(PowerCycle, RigidAp2ConvergesThroughItsHomotopyOnMumps) {
   testing::OptimalProblem kite("power_cycle_ap2.yaml");
   const OptimizeResult r = kite.solve();
-  ASSERT_EQ(r.stages.size(), 6u);
+  ASSERT_EQ(r.stages.size(), 5u);
   for (const StageResult& s : r.stages) EXPECT_TRUE(s.optimal) << s.name << ": " << s.status;
   ASSERT_TRUE(r.optimal) << r.status;
   EXPECT_NEAR(r.objective, 6221.6, 0.02 * 6221.6);
