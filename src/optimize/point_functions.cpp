@@ -1,5 +1,7 @@
 #include "optimize/point_functions.hpp"
 
+#include "symbolic/memo_diff.hpp"
+
 namespace lagrange::collocation {
 
 std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec) {
@@ -8,19 +10,23 @@ std::vector<GiNaC::ex> problem_functions(const OptimalControlSpec& spec) {
   return fs;
 }
 
+// Memoised over the expressions' shared subtrees (symbolic/memo_diff.hpp): GiNaC's diff walked
+// them again per row and column, and threw and caught an exception at every function node it
+// met (its chain rule's fallback), which took the Panda's set-up to 22 s (docs/benchmarks.md).
 std::vector<std::pair<size_t, size_t>> append_derivatives(const std::vector<GiNaC::ex>& fs,
                                                           const std::vector<GiNaC::symbol>& in,
                                                           const std::vector<size_t>& columns,
                                                           std::vector<GiNaC::ex>& outputs) {
+  std::vector<GiNaC::symbol> column_symbols;
+  for (size_t c : columns) column_symbols.push_back(in.at(c));
+  symbolic::MemoDiff d(column_symbols);
   std::vector<std::pair<size_t, size_t>> pattern;
   for (size_t i = 0; i < fs.size(); ++i)
-    for (size_t c = 0; c < columns.size(); ++c) {
-      const GiNaC::symbol& x = in.at(columns[c]);
-      if (!fs[i].has(x)) continue;
-      const GiNaC::ex d = fs[i].diff(x);
-      if (d.is_zero()) continue;
+    for (size_t c : d.columns_in(fs[i])) {
+      const GiNaC::ex di = d.diff(fs[i], c);
+      if (di.is_zero()) continue;
       pattern.emplace_back(i, c);
-      outputs.push_back(d);
+      outputs.push_back(di);
     }
   return pattern;
 }
