@@ -87,6 +87,8 @@ struct OptimizeResult {
   /// How the exact Hessian's second derivatives ran at the end ("machine code (from the cache)",
   /// "interpreter (…)"); empty without the exact Hessian.
   std::string hessian_evaluation;
+  /// How the DAE residual and its first derivatives ran at the end, in the same words.
+  std::string residual_evaluation;
   /// The bounds the result lies on (docs/theory.md §10, "Checks"): per bounded quantity and
   /// side, "control 'tau' ≥ -360 at 28 of 40 values", in the order of the variables and rows.
   std::vector<std::string> active_bounds;

@@ -109,6 +109,7 @@ py::object optimize_model(const PyModel& m, std::optional<int> intervals, std::o
   fields["exact_hessian"] = r.exact_hessian;
   fields["hessian_note"] = r.hessian_note;
   fields["hessian_evaluation"] = r.hessian_evaluation;
+  fields["residual_evaluation"] = r.residual_evaluation;
   fields["violation"] = r.violation;
   fields["worst_constraint"] = r.worst_constraint;
   fields["active_bounds"] = r.active_bounds;

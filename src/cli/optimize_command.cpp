@@ -98,6 +98,7 @@ int run_optimize(const Options& opt) {
         r.function_seconds);
     if (!r.hessian_evaluation.empty())
       fmt::print("  hessian            {}\n", r.hessian_evaluation);
+    fmt::print("  residual           {}\n", r.residual_evaluation);
   }
   if (opt.verify) {
     SimulationOptions tight = so;

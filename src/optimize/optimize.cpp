@@ -215,6 +215,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
   collocation::Transcription& nlp = *final_nlp;
   r.hessian_note = nlp.hessian_note();
   r.hessian_evaluation = nlp.hessian_evaluation();
+  r.residual_evaluation = nlp.residual_evaluation();
   r.optimal = out.optimal;
   r.status = out.status;
   r.iterations = out.iterations;

@@ -42,7 +42,8 @@ std::vector<GiNaC::ex> residual_rows(const Equations& eq, const CompiledModel& c
 }
 
 PointResidual::PointResidual(const Equations& eq, const CompiledModel& cm,
-                             const std::vector<size_t>& controls) {
+                             const std::vector<size_t>& controls, Evaluation mode,
+                             const MachineCodeOptions& options) {
   const ResidualSymbols s(cm.nv, cm.m);
   const std::vector<GiNaC::ex> rho = residual_rows(eq, cm, s);
   rows_ = rho.size();
@@ -58,8 +59,10 @@ PointResidual::PointResidual(const Equations& eq, const CompiledModel& cm,
   in.push_back(s.alpha);
   std::vector<GiNaC::ex> outputs = rho;
   pattern_ = append_derivatives(rho, in, columns, outputs);
-  tape_ = Tape::compile(outputs, in);
-  work_.resize(std::max<size_t>(tape_.work_size(), 1));
+  tape_ = MachineTape(Tape::compile(outputs, in));
+  // Evaluated at every point for the constraints and the Jacobian: after the Hessian's, the
+  // costliest tape of the solve (docs/theory.md §10, "Evaluating the NLP").
+  if (mode != Evaluation::Interpreter) tape_.use_machine_code(mode, options);
 }
 
 }  // namespace lagrange::collocation

@@ -11,7 +11,7 @@
 
 #include "lagrange/compiled_model.hpp"
 #include "lagrange/equations.hpp"
-#include "lagrange/tape.hpp"
+#include "optimize/machine_tape.hpp"
 
 namespace lagrange::collocation {
 
@@ -33,21 +33,24 @@ std::vector<GiNaC::ex> residual_rows(const Equations& eq, const CompiledModel& c
 /// ρ and ∂ρ/∂(q, v, controls, a, λ), the structural non-zeros only.
 class PointResidual {
  public:
-  /// `controls`: the model inputs that are controls, in their column order.
-  PointResidual(const Equations& eq, const CompiledModel& cm, const std::vector<size_t>& controls);
+  /// `controls`: the model inputs that are controls, in their column order; machine code per
+  /// `mode` (MachineTape: the same bits as the interpreter).
+  PointResidual(const Equations& eq, const CompiledModel& cm, const std::vector<size_t>& controls,
+                Evaluation mode = Evaluation::Interpreter, const MachineCodeOptions& options = {});
   /// (row, column) of each derivative, in output order; columns q, v, the controls, a, λ.
   const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
   size_t rows() const { return rows_; }
   /// Inputs: the model's tape inputs, then a, λ, α. Outputs: ρ (rows()), then the derivatives.
-  size_t num_inputs() const { return tape_.num_inputs(); }
-  size_t num_outputs() const { return tape_.num_outputs(); }
-  void eval(const double* in, double* out) const { tape_.eval(in, out, work_.data()); }
+  size_t num_inputs() const { return tape_.tape().num_inputs(); }
+  size_t num_outputs() const { return tape_.tape().num_outputs(); }
+  void eval(const double* in, double* out) const { tape_.eval(in, out); }
+  /// Which evaluation runs, in words.
+  std::string evaluation_note() const { return tape_.evaluation_note(); }
 
  private:
   size_t rows_ = 0;
   std::vector<std::pair<size_t, size_t>> pattern_;
-  Tape tape_;
-  mutable std::vector<double> work_;
+  MachineTape tape_;
 };
 
 }  // namespace lagrange::collocation

@@ -2,15 +2,9 @@
 
 #include <algorithm>
 
-#include "dynamics/native_tapes.hpp"
 #include "symbolic/memo_diff.hpp"
 
 namespace lagrange::collocation {
-
-SecondDerivatives::SecondDerivatives() = default;
-SecondDerivatives::SecondDerivatives(SecondDerivatives&&) noexcept = default;
-SecondDerivatives& SecondDerivatives::operator=(SecondDerivatives&&) noexcept = default;
-SecondDerivatives::~SecondDerivatives() = default;
 
 // Both differentiations memoised over the expression DAG (symbolic/memo_diff.hpp): GiNaC's own
 // diff walked the weighted residual's shared subtrees again for every column and pair, 3.5 s of
@@ -33,29 +27,12 @@ SecondDerivatives::SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC
       outputs.push_back(second);
     }
   }
-  tape_ = Tape::compile(outputs, inputs);
-  work_.resize(std::max<size_t>(tape_.work_size(), 1));
-}
-
-void SecondDerivatives::use_machine_code(Evaluation mode, const MachineCodeOptions& options) {
-  if (!native_) native_ = std::make_unique<dynamics::NativeTapes>();
-  native_->mode = mode;
-  native_->options = options;
-  native_->start({&tape_});
-}
-
-std::string SecondDerivatives::evaluation_note() const {
-  return native_ ? native_->note() : "interpreter";
+  tape_ = MachineTape(Tape::compile(outputs, inputs));
 }
 
 void SecondDerivatives::eval(const std::vector<double>& in, std::vector<double>& out) const {
-  out.resize(tape_.num_outputs());
-  if (native_)
-    if (const MachineCode::Function f = native_->function(0)) {
-      f(in.data(), out.data(), work_.data());
-      return;
-    }
-  tape_.eval(in.data(), out.data(), work_.data());
+  out.resize(tape_.tape().num_outputs());
+  tape_.eval(in.data(), out.data());
 }
 
 }  // namespace lagrange::collocation

@@ -10,43 +10,31 @@
 #include <utility>
 #include <vector>
 
-#include "lagrange/dynamics.hpp"
-#include "lagrange/machine_code.hpp"
-#include "lagrange/tape.hpp"
+#include "optimize/machine_tape.hpp"
 
-namespace lagrange {
-namespace dynamics {
-struct NativeTapes;
-}
-
-namespace collocation {
+namespace lagrange::collocation {
 
 /// ∂²s/∂c_a∂c_b for columns a ≥ b, where column a is input `columns[a]` of `inputs`.
 class SecondDerivatives {
  public:
-  SecondDerivatives();
+  SecondDerivatives() = default;
   SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
                     const std::vector<size_t>& columns);
-  SecondDerivatives(SecondDerivatives&&) noexcept;
-  SecondDerivatives& operator=(SecondDerivatives&&) noexcept;
-  ~SecondDerivatives();
   /// (a, b), a ≥ b, of each output, in output order.
   const std::vector<std::pair<size_t, size_t>>& pattern() const { return pattern_; }
-  const Tape& tape() const { return tape_; }
-  /// Machine code for the tape per `mode`: eval uses it once it is ready, computing the same
-  /// bits as the interpreter, so the switch changes no result.
-  void use_machine_code(Evaluation mode, const MachineCodeOptions& options);
+  const Tape& tape() const { return tape_.tape(); }
+  /// Machine code for the tape per `mode` (MachineTape).
+  void use_machine_code(Evaluation mode, const MachineCodeOptions& options) {
+    tape_.use_machine_code(mode, options);
+  }
   /// Which evaluation runs, in words ("machine code (from the cache)", "interpreter (…)").
-  std::string evaluation_note() const;
+  std::string evaluation_note() const { return tape_.evaluation_note(); }
   /// The derivatives at the tape input vector `in` into `out` (pattern().size() values).
   void eval(const std::vector<double>& in, std::vector<double>& out) const;
 
  private:
   std::vector<std::pair<size_t, size_t>> pattern_;
-  Tape tape_;
-  mutable std::vector<double> work_;
-  std::unique_ptr<dynamics::NativeTapes> native_;
+  MachineTape tape_;
 };
 
-}  // namespace collocation
-}  // namespace lagrange
+}  // namespace lagrange::collocation

@@ -66,7 +66,8 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
       fun_(eq, *cm, problem_functions(spec), control_input_indices(spec), spec.multipliers),
       dae_(stage != nullptr && stage->residual
                ? stage->residual
-               : std::make_shared<const PointResidual>(eq, *cm, control_input_indices(spec))),
+               : std::make_shared<const PointResidual>(eq, *cm, control_input_indices(spec),
+                                                       evaluation, machine_code)),
       invariant_jac_(eq, *cm),
       rad_(radau(degree)),
       N_(intervals),

@@ -91,6 +91,7 @@ class Transcription {
   /// How the DAE's second derivatives run (SecondDerivatives::evaluation_note); empty without
   /// the exact Hessian.
   std::string hessian_evaluation() const { return h_dae_ ? h_dae_->evaluation_note() : ""; }
+  std::string residual_evaluation() const { return dae_->evaluation_note(); }
   /// (row, column), row ≥ column, of the Hessian's structural non-zeros, each once.
   const std::vector<std::pair<size_t, size_t>>& hessian_pattern() const { return hnz_; }
   /// σ∇²J + Σ y_r ∇²g_r at x, in hessian_pattern() order (y: one multiplier per constraint).

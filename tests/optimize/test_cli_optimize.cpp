@@ -136,8 +136,9 @@ TEST(OptimizeCommand, HessianChoiceReachesTheSameOptimum) {
   EXPECT_EQ(testing::run_shell("optimize " + model + " --hessian newton").code, 2);
 }
 
-// `--compile` as `simulate` has it (docs/theory.md §8): the Hessian's second derivatives on
-// machine code or the interpreter, the same iterates to the last digit, the summary saying which.
+// `--compile` as `simulate` has it (docs/theory.md §8): the Hessian's second derivatives and the
+// DAE residual with its first derivatives on machine code or the interpreter, the same iterates
+// to the last digit, the summary saying which.
 TEST(OptimizeCommand, CompileChoiceSaysWhichRanAndChangesNoIterate) {
   const std::string model = kDir + "cart_pole_swing_up.yaml --intervals 20";
   ::setenv("LAGRANGE_CACHE_DIR", LAGRANGE_TEST_CACHE, 1);
@@ -149,6 +150,8 @@ TEST(OptimizeCommand, CompileChoiceSaysWhichRanAndChangesNoIterate) {
   ASSERT_EQ(off.code, 0) << off.output;
   EXPECT_NE(on.output.find("  hessian            machine code ("), std::string::npos) << on.output;
   EXPECT_NE(off.output.find("  hessian            interpreter\n"), std::string::npos) << off.output;
+  EXPECT_NE(on.output.find("  residual           machine code ("), std::string::npos) << on.output;
+  EXPECT_NE(off.output.find("  residual           interpreter\n"), std::string::npos) << off.output;
   // Everything up to the timings is the same text: status, iterations, objective, violation.
   const auto solved = [](const std::string& out) { return out.substr(0, out.find("  time  ")); };
   EXPECT_EQ(solved(on.output), solved(off.output));

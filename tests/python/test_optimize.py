@@ -133,6 +133,8 @@ def test_the_compile_choice_changes_no_iterate_and_says_which_ran():
     on, off = m.optimize(intervals=20, compile="on"), m.optimize(intervals=20, compile="off")
     assert on.hessian_evaluation.startswith("machine code")
     assert off.hessian_evaluation == "interpreter"
+    assert on.residual_evaluation.startswith("machine code")
+    assert off.residual_evaluation == "interpreter"
     assert on.iterations == off.iterations
     assert on.objective == off.objective  # the same bits: the library computes the interpreter's
 
