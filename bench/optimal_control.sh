@@ -5,6 +5,9 @@
 # A B A B …, RUNS times each. Each run prints its own split; the table gives per figure the median
 # over the runs and the median of the pairwise ratios lagrange / CasADi.
 #   bench/optimal_control.sh BUILD_DIR [RUNS=7 [N=100]]
+# COMPILE=off|auto (default auto): lagrange's tapes on the interpreter, or on machine code from
+# the cache (one `--compile on` run before the timed ones fills it; the summary's `hessian` and
+# `residual` lines say which ran).
 # BUILD_DIR is lagrange's CMake build (target `lagrange` built); CasADi is built under
 # CASADI_DIR (default BUILD_DIR/casadi; see bench/casadi.sh).
 set -euo pipefail
@@ -25,7 +28,7 @@ now() { date +%s.%N; }
 run_lagrange() {
   local t0 out
   t0=$(now)
-  out=$("$build/lagrange" optimize "$model" --intervals "$N")
+  out=$("$build/lagrange" optimize "$model" --intervals "$N" --compile "$compile")
   # "… (13 iterations)", "objective  58.88…", "time  0.033 s set-up (…), 0.282 s solve (0.022 s
   # in our functions)"
   awk -v wall="$(echo "$(now) - $t0" | bc -l)" '
@@ -48,6 +51,8 @@ run_casadi() {
     END {sub(/,$/, "", J); print J, it, setup, solve, fn, wall}' <<<"$out"
 }
 
+compile=${COMPILE:-auto}
+[ "$compile" = off ] || "$build/lagrange" optimize "$model" --intervals "$N" --compile on >/dev/null
 for ((r = 0; r < runs; ++r)); do
   run_lagrange >>"$work/lagrange"
   run_casadi >>"$work/casadi"
@@ -59,6 +64,8 @@ paste -d' ' "$work/lagrange" "$work/casadi" | awk '
      printf "objectives differ: lagrange %s, CasADi %s\n", $1, $7 > "/dev/stderr"; exit 1}}'
 
 echo "cart-pole swing-up, N = $N, d = 3, exact Hessian, tol 1e-8; median of $runs runs each (A B A B)"
+echo "lagrange's tapes: --compile $compile ($("$build/lagrange" optimize "$model" --intervals "$N" \
+  --compile "$compile" | awk '$1 == "hessian" || $1 == "residual" {printf "%s%s", sep, $0; sep = ";"}'))"
 echo "load: $(uptime | sed 's/.*load average/load average/')"
 paste -d' ' "$work/lagrange" "$work/casadi" | awk -v runs="$runs" '
   function median(a, n,    i, j, t) {
