@@ -33,8 +33,8 @@ const std::string& input_path() {
       directory = fixed;
       std::filesystem::create_directories(directory);
     } else {
-      directory = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
-                  "/fuzz_urdf.XXXXXX";
+      directory =
+          std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/fuzz_urdf.XXXXXX";
       if (mkdtemp(directory.data()) == nullptr) std::abort();
     }
     std::atexit(remove_directory);

@@ -181,9 +181,9 @@ TEST(FuzzRegressions, AComplexNumberIsALocatedErrorNotAnEscapedException) {
   EXPECT_NE(metric.find("expected a real value, got I, which is not real"), std::string::npos)
       << metric;
   // Every way a real operand leaves the real line, exact or in floating point, at the call.
-  for (const char* text : {"sqrt(0-2)", "x + sqrt(-2.0)*y", "log(-1)", "log(-2.5)", "asin(2.0)",
-                           "acos(-3.0)", "(-2.0)^0.5", "(0-8)^(1/2)", "(-1)^(1/2)*x",
-                           "(-8)^(1/3)", "1e-300*sqrt(-3)"})
+  for (const char* text :
+       {"sqrt(0-2)", "x + sqrt(-2.0)*y", "log(-1)", "log(-2.5)", "asin(2.0)", "acos(-3.0)",
+        "(-2.0)^0.5", "(0-8)^(1/2)", "(-1)^(1/2)*x", "(-8)^(1/3)", "1e-300*sqrt(-3)"})
     EXPECT_NE(replay_expression(text).find("expected a real value"), std::string::npos)
         << text << ": " << replay_expression(text);
   // Real results of the same functions stay expressions; a sign the reader cannot know

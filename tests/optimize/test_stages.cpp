@@ -94,8 +94,10 @@ TEST(HomotopyStages, AWarmStartedStageStartsFromTheLastStagesMultipliers) {
     const std::string options = std::string(warm ? "warm_start_init_point: yes, " : "") +
                                 "mu_init: 1e-9, warm_start_bound_push: 1e-9, "
                                 "warm_start_mult_bound_push: 1e-9";
-    model.insert(model.find(last) + last.size(),
-                 "  stages:\n    - {name: first, ipopt: {tol: 1e-10}}\n    - {name: again, ipopt: {" + options + "}}\n");
+    model.insert(
+        model.find(last) + last.size(),
+        "  stages:\n    - {name: first, ipopt: {tol: 1e-10}}\n    - {name: again, ipopt: {" +
+            options + "}}\n");
     testing::OptimalProblem p(read_model_string(model, "warm.yaml"));
     return p.solve();
   };
