@@ -65,7 +65,7 @@ paste -d' ' "$work/lagrange" "$work/casadi" | awk '
 
 echo "cart-pole swing-up, N = $N, d = 3, exact Hessian, tol 1e-8; median of $runs runs each (A B A B)"
 echo "lagrange's tapes: --compile $compile ($("$build/lagrange" optimize "$model" --intervals "$N" \
-  --compile "$compile" | awk '$1 == "hessian" || $1 == "residual" {printf "%s%s", sep, $0; sep = ";"}'))"
+  --compile "$compile" | awk '/^  (hessian|residual) +(machine|interpreter)/ {$1 = $1; printf "%s%s", sep, $0; sep = "; "}'))"
 echo "load: $(uptime | sed 's/.*load average/load average/')"
 paste -d' ' "$work/lagrange" "$work/casadi" | awk -v runs="$runs" '
   function median(a, n,    i, j, t) {
