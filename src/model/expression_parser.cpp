@@ -106,25 +106,29 @@ class Parser {
     }
   }
 
-  /// `v` after checking the numbers its operation folded (check_folded on every component).
-  static Value folded(const Value& v, size_t offset) {
+  /// f(x) for every component x of v: a scalar's one, a vector's three, a matrix's nine.
+  template <class F>
+  static void each_component(const Value& v, F&& f) {
     if (v.is_matrix) {
       for (const Vec3& row : v.mat)
-        for (const GiNaC::ex& x : row) check_folded(x, offset);
+        for (const GiNaC::ex& x : row) f(x);
     } else if (v.is_vector) {
-      for (const GiNaC::ex& x : v.vec) check_folded(x, offset);
+      for (const GiNaC::ex& x : v.vec) f(x);
     } else {
-      check_folded(v.scalar, offset);
+      f(v.scalar);
     }
+  }
+
+  /// `v` after checking the numbers its operation folded (check_folded on every component).
+  static Value folded(const Value& v, size_t offset) {
+    each_component(v, [&](const GiNaC::ex& x) { check_folded(x, offset); });
     return v;
   }
 
   /// `folded(v)` after checking that a function or power of real operands stayed real; sums and
   /// products of real operands are real, so only these two check (check_real).
   static Value real(const Value& v, size_t offset) {
-    if (!v.is_vector && !v.is_matrix) check_real(v.scalar, offset);
-    if (v.is_vector)
-      for (const GiNaC::ex& x : v.vec) check_real(x, offset);
+    each_component(v, [&](const GiNaC::ex& x) { check_real(x, offset); });
     return folded(v, offset);
   }
 

@@ -175,7 +175,7 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     r.control_names.push_back(eq.model->inputs[c.input].name);
   // docs/theory.md §10, "Homotopy": each stage starts where the last one ended, the problem
   // itself where the last stage ended.
-  collocation::StageStart from;  // x empty: the problem's guess
+  collocation::StageStart from;        // x null: the problem's guess
   collocation::IpoptOutcome previous;  // the last stage's solve: its multipliers
   using IpoptOptions = std::vector<std::pair<std::string, std::string>>;
   // Transcribes `s` from `from` and solves it, adding the times to r (set-up since `setup_from`).
@@ -206,8 +206,8 @@ OptimizeResult optimize(const Equations& eq, std::shared_ptr<const CompiledModel
     r.stages.push_back({stage.name, out.optimal, out.status, out.iterations,
                         (nlp->objective(out.x.data()) - tracking) * (nlp->maximize() ? -1.0 : 1.0),
                         tracking, seconds_since(stage_start)});
-    from.x = out.x;
     previous = std::move(out);
+    from.x = &previous.x;
   }
   from.track = 0.0;
   auto [final_nlp, out] =

@@ -17,9 +17,7 @@ std::vector<std::pair<size_t, size_t>> append_derivatives(const std::vector<GiNa
                                                           const std::vector<GiNaC::symbol>& in,
                                                           const std::vector<size_t>& columns,
                                                           std::vector<GiNaC::ex>& outputs) {
-  std::vector<GiNaC::symbol> column_symbols;
-  for (size_t c : columns) column_symbols.push_back(in.at(c));
-  symbolic::MemoDiff d(column_symbols);
+  symbolic::MemoDiff d(in, columns);
   std::vector<std::pair<size_t, size_t>> pattern;
   for (size_t i = 0; i < fs.size(); ++i)
     for (size_t c : d.columns_in(fs[i])) {

@@ -11,9 +11,7 @@ namespace lagrange::collocation {
 // the AP2's 3.8 s set-up (docs/benchmarks.md).
 SecondDerivatives::SecondDerivatives(const GiNaC::ex& s, const std::vector<GiNaC::symbol>& inputs,
                                      const std::vector<size_t>& columns) {
-  std::vector<GiNaC::symbol> column_symbols;
-  for (size_t c : columns) column_symbols.push_back(inputs.at(c));
-  symbolic::MemoDiff d(column_symbols);
+  symbolic::MemoDiff d(inputs, columns);
   const std::vector<size_t> in_s = d.columns_in(s);
   std::vector<GiNaC::ex> outputs;
   for (size_t a : in_s) {

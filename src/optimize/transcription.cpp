@@ -129,11 +129,11 @@ Transcription::Transcription(const Equations& eq, std::shared_ptr<const Compiled
   rows_ = path_rows_ + static_cast<size_t>(N_ * d_) * np_ + start_rows_.size() + periodic_.size() +
           constant_.size() * static_cast<size_t>(N_ - 1) + turning_.size();
   // The Jacobian's pattern: one walk at the starting point, entries merged by position.
-  const bool warm = stage != nullptr && !stage->x.empty();
-  if (warm && stage->x.size() != n_)
+  const bool warm = stage != nullptr && stage->x != nullptr;
+  if (warm && stage->x->size() != n_)
     throw std::invalid_argument(fmt::format(
-        "a starting point of {} values for a problem of {} variables", stage->x.size(), n_));
-  guess_ = warm ? stage->x : make_guess();
+        "a starting point of {} values for a problem of {} variables", stage->x->size(), n_));
+  guess_ = warm ? *stage->x : make_guess();
   const double track = stage != nullptr ? stage->track : 0.0;
   if (track > 0) {
     track_scale_.assign(nx_, 1.0);

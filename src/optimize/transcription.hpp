@@ -36,11 +36,11 @@ inline constexpr std::array<std::pair<size_t, size_t>, 3> kSkewPairs{{{2, 1}, {0
 /// invariants imply (the dynamics keep them) are not imposed
 /// but checked (implied_final_gaps).
 /// Where a homotopy stage starts (docs/theory.md §10, "Homotopy"): the point `x` (an earlier
-/// solve's, the same layout; empty: the problem's guess), the tracking weight, and the DAE's
-/// compiled first and second derivatives when an earlier stage made them (the same model and
-/// controls: only the objective differs).
+/// solve's, the same layout, owned by the caller; null: the problem's guess), the tracking weight,
+/// and the DAE's compiled first and second derivatives when an earlier stage made them (the same
+/// model and controls: only the objective differs).
 struct StageStart {
-  std::vector<double> x;
+  const std::vector<double>* x = nullptr;
   double track = 0.0;
   std::shared_ptr<const SecondDerivatives> dae_hessian;
   std::shared_ptr<const PointResidual> residual;  ///< an earlier stage's (the same DAE)

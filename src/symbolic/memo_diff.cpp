@@ -9,6 +9,13 @@ MemoDiff::MemoDiff(const std::vector<GiNaC::symbol>& columns)
   for (size_t k = 0; k < columns.size(); ++k) column_of_.emplace(columns[k], k);
 }
 
+MemoDiff::MemoDiff(const std::vector<GiNaC::symbol>& inputs, const std::vector<size_t>& columns)
+    : MemoDiff([&] {
+        std::vector<GiNaC::symbol> chosen;
+        for (size_t c : columns) chosen.push_back(inputs.at(c));
+        return chosen;
+      }()) {}
+
 const std::vector<size_t>& MemoDiff::columns_in(const GiNaC::ex& e) {
   if (const auto it = deps_.find(e); it != deps_.end()) return it->second;
   std::vector<size_t> found;

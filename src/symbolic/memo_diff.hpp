@@ -16,6 +16,8 @@ namespace lagrange::symbolic {
 class MemoDiff {
  public:
   explicit MemoDiff(const std::vector<GiNaC::symbol>& columns);
+  /// The columns inputs[columns[k]]: column k is the k-th chosen input.
+  MemoDiff(const std::vector<GiNaC::symbol>& inputs, const std::vector<size_t>& columns);
 
   /// Columns that e contains, ascending.
   const std::vector<size_t>& columns_in(const GiNaC::ex& e);

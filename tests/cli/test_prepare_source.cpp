@@ -8,22 +8,16 @@
 #include <sstream>
 #include <string>
 
-#include "support/test_paths.hpp"
 #include "cli/commands.hpp"
 #include "cli/prepare.hpp"
 #include "lagrange/error.hpp"
+#include "support/file_text.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange::cli {
 namespace {
 
 const std::string kPendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml";
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 Trajectory run(Prepared& p, double t_end) {
   SimulationOptions so = simulation_options(*p.model, RunSettings{t_end, {}, {}, {}, {}, {}, {}});
@@ -33,7 +27,7 @@ Trajectory run(Prepared& p, double t_end) {
 TEST(PrepareSource, TextAndFileGiveTheSameRunAsPrepare) {
   Prepared cli = prepare(kPendulum, {"l=1.5"}, {}, "--initial", "auto");
   Prepared file = prepare_source(ModelSource{kPendulum, std::nullopt}, {{"l", 1.5}});
-  Prepared text = prepare_source(ModelSource{kPendulum, slurp(kPendulum)}, {{"l", 1.5}});
+  Prepared text = prepare_source(ModelSource{kPendulum, test::slurp(kPendulum)}, {{"l", 1.5}});
   EXPECT_EQ(text.model->file, kPendulum);
   const Trajectory a = run(cli, 1.0), b = run(file, 1.0), c = run(text, 1.0);
   ASSERT_EQ(a.rows(), 101u);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/file_text.hpp"
 #include "support/test_paths.hpp"
 
 namespace {
@@ -17,13 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kRoot = LAGRANGE_SOURCE_DIR;
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<fs::path> markdown_pages() {
   std::vector<fs::path> pages{kRoot / "README.md"};
@@ -50,7 +44,7 @@ TEST(Docs, RelativeLinksResolve) {
   const std::regex link(R"(\]\(([^)\s]+)\))");
   size_t checked = 0;
   for (const fs::path& page : markdown_pages()) {
-    const std::string text = read(page);
+    const std::string text = lagrange::test::slurp(page);
     for (auto it = std::sregex_iterator(text.begin(), text.end(), link);
          it != std::sregex_iterator(); ++it) {
       std::string target = (*it)[1].str();
@@ -82,7 +76,7 @@ TEST(Docs, NoCitationOutsideTheRepository) {
     }
     if (!it->is_regular_file()) continue;
     ++files;
-    const std::string text = read(it->path());
+    const std::string text = lagrange::test::slurp(it->path());
     for (const auto& name : forbidden)
       EXPECT_EQ(text.find(name), std::string::npos)
           << it->path().lexically_relative(kRoot).string() << " mentions " << name;

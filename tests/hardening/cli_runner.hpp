@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/file_text.hpp"
 #include "support/test_paths.hpp"
 
 extern char** environ;
@@ -29,13 +30,7 @@ namespace lagrange::hardening {
 
 namespace fs = std::filesystem;
 
-/// The whole content of a file ("" when it does not exist).
-inline std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using lagrange::test::slurp;
 
 /// Writes `text` to `path` byte for byte.
 inline void spit(const fs::path& path, const std::string& text) {

@@ -18,6 +18,7 @@
 #include "io/report_urdf.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/report.hpp"
+#include "support/file_text.hpp"
 #include "support/harness.hpp"
 #include "support/test_paths.hpp"
 
@@ -28,13 +29,6 @@ namespace fs = std::filesystem;
 
 fs::path arm_dir() {
   return fs::path(LAGRANGE_SOURCE_DIR) / "tests" / "io" / "urdf_visuals";
-}
-
-std::string bytes_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 nlohmann::json scene_of(const fs::path& urdf) {
@@ -77,8 +71,8 @@ TEST(ReportUrdf, EveryVisualOfTheArmIsInTheScene) {
   const ScopedEnv no_packages("ROS_PACKAGE_PATH", "");
   const nlohmann::json scene = scene_of(arm_dir() / "visual_arm.urdf");
   EXPECT_FALSE(scene.contains("notes")) << scene["notes"];
-  const std::string stl = bytes_of(arm_dir() / "meshes" / "tip.stl");
-  const std::string dae = bytes_of(arm_dir() / "meshes" / "plate.dae");
+  const std::string stl = test::slurp(arm_dir() / "meshes" / "tip.stl");
+  const std::string dae = test::slurp(arm_dir() / "meshes" / "plate.dae");
   EXPECT_EQ(scene["mesh_bytes"], stl.size() + dae.size());
 
   const auto& base = body(scene, "base")["visuals"];

@@ -5,12 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "lagrange/reader.hpp"
 #include "optimize/optimal_problem.hpp"
+#include "support/file_text.hpp"
 
 namespace lagrange {
 namespace {
@@ -26,11 +25,9 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 // The one-sided derivatives reach the optimum of the same problem with |x| written as
 // √(x² + 10⁻²⁰), differentiable everywhere.
 TEST(Kinks, AnEndStateOnTheKinkOfAbsSolvesAsItsSmoothedTwin) {
-  std::ifstream in(testing::path("data/periodic_through_a_kink.yaml"));
-  std::stringstream file;
-  file << in.rdbuf();
+  const std::string file = test::slurp(testing::path("data/periodic_through_a_kink.yaml"));
   for (const std::string objective : {"integral(u^2)", "integral(u^2 + abs(x))"}) {
-    const std::string kinked = replaced(file.str(), "integral(u^2)", objective);
+    const std::string kinked = replaced(file, "integral(u^2)", objective);
     testing::OptimalProblem kink(read_model_string(kinked, "kink.yaml"));
     const OptimizeResult r = kink.solve();
     ASSERT_TRUE(r.optimal) << objective << ": " << r.status;

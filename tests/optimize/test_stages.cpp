@@ -4,12 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "lagrange/reader.hpp"
 #include "optimize/nlp_derivative_check.hpp"
 #include "optimize/optimal_problem.hpp"
+#include "support/file_text.hpp"
 
 namespace lagrange {
 namespace {
@@ -40,10 +39,7 @@ TEST(HomotopyStages, FictitiousForceStageAndProblemMeetTheirClosedForms) {
 // 12 d²/T³/(1 − 1/N²) (the closed form of the double integrator scaled to T); minimum time with
 // T ≥ 2.5 ends on that bound; the problem then reaches its own T = 2√d = 2 from there.
 TEST(HomotopyStages, AStageHoldsOrBoundsAFreeHorizon) {
-  std::ifstream in(testing::path("double_integrator_min_time.yaml"));
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string model = text.str();
+  std::string model = test::slurp(testing::path("double_integrator_min_time.yaml"));
   const std::string last = "  degree: 3\n";  // the problem's last key
   ASSERT_NE(model.find(last), std::string::npos);
   model.insert(model.find(last) + last.size(),
@@ -84,10 +80,7 @@ TEST(HomotopyStages, TrackingStageLeadsToTheSameOptimum) {
 // many more. Both reach the first solve's optimum.
 TEST(HomotopyStages, AWarmStartedStageStartsFromTheLastStagesMultipliers) {
   const auto solve_twice = [](bool warm) {
-    std::ifstream in(testing::path("double_integrator_min_energy.yaml"));
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string model = text.str();
+    std::string model = test::slurp(testing::path("double_integrator_min_energy.yaml"));
     const std::string control = "    u: {}\n", last = "  degree: 3\n";
     EXPECT_NE(model.find(control), std::string::npos);
     model.replace(model.find(control), control.size(), "    u: {lower: -5, upper: 5}\n");
@@ -119,11 +112,11 @@ TEST(HomotopyStages, AWarmStartedStageStartsFromTheLastStagesMultipliers) {
 TEST(HomotopyStages, TrackingTermDerivativesMatchCentralDifferences) {
   testing::OptimalProblem p("cart_pole_swing_up.yaml");
   const collocation::Transcription plain(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0);
-  const collocation::StageStart start{testing::perturbed_guess(plain, false, 5), 2.5,
-                                      plain.dae_hessian(), plain.residual()};
+  const std::vector<double> from = testing::perturbed_guess(plain, false, 5);
+  const collocation::StageStart start{&from, 2.5, plain.dae_hessian(), plain.residual()};
   collocation::Transcription nlp(p.eq, p.cm, *p.dyn, p.spec(), 3, 2, p.cm->q0, p.cm->v0,
                                  HessianChoice::Exact, &start);
-  EXPECT_EQ(nlp.guess(), start.x);
+  EXPECT_EQ(nlp.guess(), from);
   EXPECT_EQ(nlp.dae_hessian(), plain.dae_hessian());  // shared, not compiled again
   EXPECT_EQ(nlp.residual(), plain.residual());
   const std::vector<double> x = testing::perturbed_guess(nlp, false, 13);

@@ -10,6 +10,7 @@
 #include "lagrange/dynamics.hpp"
 #include "lagrange/equations.hpp"
 #include "lagrange/sweep.hpp"
+#include "support/file_text.hpp"
 
 namespace lagrange::sweep {
 namespace {
@@ -179,10 +180,7 @@ TEST(StudyCases, SummaryKeepsWholeRowsAcrossAResume) {
     s.append(1, {"1", "0.375", "ok"});
     s.finish();
   }
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(text.str(), "case,k,status\n0,0.25,ok\n1,0.375,ok\n2,0.5,ok\n");
+  EXPECT_EQ(test::slurp(path), "case,k,status\n0,0.25,ok\n1,0.375,ok\n2,0.5,ok\n");
   std::filesystem::remove(path);
 }
 
@@ -205,10 +203,7 @@ TEST(StudyCases, ARepeatedRowReplacesTheFirstWhenAllowed) {
     EXPECT_EQ(s.done(), (std::set<size_t>{0, 1}));
     s.finish();
   }
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(text.str(), "case,P,status\n0,15,ok\n1,20,ok\n");
+  EXPECT_EQ(test::slurp(path), "case,P,status\n0,15,ok\n1,20,ok\n");
   std::filesystem::remove(path);
 }
 
