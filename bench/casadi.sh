@@ -35,12 +35,16 @@ if [[ ! -f $tree/lib/libcasadi_nlpsol_ipopt.so ]]; then
     -DWITH_LAPACK=OFF -DWITH_PYTHON=OFF -DWITH_MATLAB=OFF >/dev/null
   (cd "$tree" && nice -n 10 make -j1 casadi_nlpsol_ipopt)
 fi
-exe=$build/bench/optimal_control_casadi
+# The peers: the cart-pole (bench/optimal_control_casadi.cpp, run below) and the Panda
+# (bench/optimal_control_casadi_panda.cpp, run by bench/optimal_control.sh with CASE=panda).
 mkdir -p "$build/bench"
-if [[ ! -x $exe || $here/optimal_control_casadi.cpp -nt $exe ]]; then
-  # CasADi's generated headers (casadi/core/casadi_export.h, config.h) are in its build tree.
-  g++ -std=c++17 -O3 -DNDEBUG -I "$src" -I "$tree" "$here/optimal_control_casadi.cpp" \
-    -L "$tree/lib" -Wl,-rpath,"$tree/lib" -lcasadi -o "$exe"
-fi
+for peer in optimal_control_casadi optimal_control_casadi_panda; do
+  exe=$build/bench/$peer
+  if [[ ! -x $exe || $here/$peer.cpp -nt $exe ]]; then
+    # CasADi's generated headers (casadi/core/casadi_export.h, config.h) are in its build tree.
+    g++ -std=c++17 -O3 -DNDEBUG -I "$src" -I "$tree" "$here/$peer.cpp" \
+      -L "$tree/lib" -Wl,-rpath,"$tree/lib" -lcasadi -o "$exe"
+  fi
+done
 # The Ipopt plugin is loaded at run time from CASADIPATH.
-CASADIPATH=$tree/lib "$exe" "$@"
+CASADIPATH=$tree/lib "$build/bench/optimal_control_casadi" "$@"

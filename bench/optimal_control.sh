@@ -5,6 +5,9 @@
 # A B A B …, RUNS times each. Each run prints its own split; the table gives per figure the median
 # over the runs and the median of the pairwise ratios lagrange / CasADi.
 #   bench/optimal_control.sh BUILD_DIR [RUNS=7 [N=100]]
+# CASE=panda: the Panda's point-to-point motion instead (N default 50), CasADi reading the arm's
+# equations as `lagrange derive --format json` prints them (bench/optimal_control_casadi_panda.cpp);
+# HESSIAN=exact|limited-memory (default exact) for both, GRAPH=mx|sx (default mx) for CasADi.
 # COMPILE=off|auto (default auto): lagrange's tapes on the interpreter, or on machine code from
 # the cache (one `--compile on` run before the timed ones fills it; the summary's `hessian` and
 # `residual` lines say which ran).
@@ -14,13 +17,28 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:?usage: $0 BUILD_DIR [RUNS [N]]}" && pwd)
 runs=${2:-7}
-N=${3:-100}
+case=${CASE:-cartpole}
 casadi=${CASADI_DIR:-$build/casadi}
-model=$root/examples/optimal/cart_pole_swing_up.yaml
-peer=$casadi/bench/optimal_control_casadi
-"$root/bench/casadi.sh" "$casadi" "$N" >/dev/null  # builds the peer (and CasADi) if needed
+"$root/bench/casadi.sh" "$casadi" 10 >/dev/null  # builds the peers (and CasADi) if needed
 work=$(mktemp -d /tmp/optimal-control-bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
+if [ "$case" = panda ]; then
+  N=${3:-50}
+  hessian=${HESSIAN:-exact}
+  model=$root/examples/optimal/panda_point_to_point.yaml
+  title="Panda point-to-point, N = $N, d = 3, $hessian Hessian (CasADi: ${GRAPH:-mx} graph), tol 1e-8"
+  "$build/lagrange" derive "$model" --format json >"$work/panda.json"
+  lagrange_args=(--hessian "$hessian")
+  peer_args=("$work/panda.json" "$N" 3 "$hessian" "${GRAPH:-mx}")
+  peer=$casadi/bench/optimal_control_casadi_panda
+else
+  N=${3:-100}
+  model=$root/examples/optimal/cart_pole_swing_up.yaml
+  title="cart-pole swing-up, N = $N, d = 3, exact Hessian, tol 1e-8"
+  lagrange_args=()
+  peer_args=("$N")
+  peer=$casadi/bench/optimal_control_casadi
+fi
 
 now() { date +%s.%N; }
 
@@ -28,7 +46,7 @@ now() { date +%s.%N; }
 run_lagrange() {
   local t0 out
   t0=$(now)
-  out=$("$build/lagrange" optimize "$model" --intervals "$N" --compile "$compile")
+  out=$("$build/lagrange" optimize "$model" --intervals "$N" --compile "$compile" "${lagrange_args[@]}")
   # "… (13 iterations)", "objective  58.88…", "time  0.033 s set-up (…), 0.282 s solve (0.022 s
   # in our functions)"
   awk -v wall="$(echo "$(now) - $t0" | bc -l)" '
@@ -41,7 +59,7 @@ run_lagrange() {
 run_casadi() {
   local t0 out
   t0=$(now)
-  out=$(CASADIPATH=$casadi/build/lib "$peer" "$N")
+  out=$(CASADIPATH=$casadi/build/lib "$peer" "${peer_args[@]}")
   # "casadi: J = …, status …, 13 iterations, set-up … s, solve … s, functions … s, …"
   awk -v wall="$(echo "$(now) - $t0" | bc -l)" '
     $1 == "casadi:" {for (i = 1; i <= NF; ++i) {
@@ -52,7 +70,8 @@ run_casadi() {
 }
 
 compile=${COMPILE:-auto}
-[ "$compile" = off ] || "$build/lagrange" optimize "$model" --intervals "$N" --compile on >/dev/null
+[ "$compile" = off ] ||
+  "$build/lagrange" optimize "$model" --intervals "$N" --compile on "${lagrange_args[@]}" >/dev/null
 for ((r = 0; r < runs; ++r)); do
   run_lagrange >>"$work/lagrange"
   run_casadi >>"$work/casadi"
@@ -63,9 +82,9 @@ paste -d' ' "$work/lagrange" "$work/casadi" | awk '
   {d = $1 - $7; if (d < 0) d = -d; if (d > 1e-6 * $7) {
      printf "objectives differ: lagrange %s, CasADi %s\n", $1, $7 > "/dev/stderr"; exit 1}}'
 
-echo "cart-pole swing-up, N = $N, d = 3, exact Hessian, tol 1e-8; median of $runs runs each (A B A B)"
+echo "$title; median of $runs runs each (A B A B)"
 echo "lagrange's tapes: --compile $compile ($("$build/lagrange" optimize "$model" --intervals "$N" \
-  --compile "$compile" | awk '/^  (hessian|residual) +(machine|interpreter)/ {$1 = $1; printf "%s%s", sep, $0; sep = "; "}'))"
+  --compile "$compile" "${lagrange_args[@]}" | awk '/^  (hessian|residual) +(machine|interpreter)/ {$1 = $1; printf "%s%s", sep, $0; sep = "; "}'))"
 echo "load: $(uptime | sed 's/.*load average/load average/')"
 paste -d' ' "$work/lagrange" "$work/casadi" | awk -v runs="$runs" '
   function median(a, n,    i, j, t) {

@@ -1,0 +1,337 @@
+// CasADi's C++ API as the same-run peer of `lagrange optimize` on the Panda's point-to-point motion
+// (examples/optimal/panda_point_to_point.yaml; docs/benchmarks.md, "Optimal control: the Panda
+// against CasADi"). The arm's equations are lagrange's own, as `lagrange derive --format json`
+// prints them for a large model (the dynamics tape's common subexpressions x1 …, then M(q)'s lower
+// triangle and h + Q), read into CasADi's SX: both tools then differentiate and evaluate the same
+// expressions, and only the NLP functions, their derivatives and the set-up differ. The
+// transcription is lagrange's (docs/theory.md §10; as bench/optimal_control_casadi.cpp for the
+// cart-pole): Radau IIA of degree d on N intervals, the states at each interval's start and its
+// collocation points, one torque vector per interval, the residual (q' − v, M(q) v' − (h + Q))
+// at every collocation point, 0.01 ∫|τ|² by the Radau weights, the URDF's angle, rate and torque
+// limits at every point, both ends fixed by equal bounds, the example's quintic guess (zero
+// torques), and lagrange's Ipopt options (MUMPS, tol 1e-8, max_iter 1000).
+//   optimal_control_casadi_panda EQUATIONS.json [N=50] [d=3] [exact|limited-memory] [sx|mx]
+// sx writes the whole NLP as one SX graph (the per-point function inlined at every point), mx
+// calls the per-point SX function from an MX graph (CasADi's advice for large models: each
+// derivative is then a call of the function's own derivative). Prints the same two lines as the
+// cart-pole peer.
+#include <casadi/casadi.hpp>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using casadi::DM;
+using casadi::MX;
+using casadi::SX;
+
+// examples/optimal/panda_point_to_point.yaml
+constexpr int kJoints = 7;
+constexpr double kHorizon = 1.0;
+const double kStart[kJoints] = {0, -0.785, 0, -2.356, 0, 1.571, 0.785};
+const double kEnd[kJoints] = {M_PI / 3, -0.35, 0, -1.95, 0, 1.8, -0.262};
+const bool kQuintic[kJoints] = {true, true, false, true, false, true, true};
+const double kAngleLower[kJoints] = {-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973};
+const double kAngleUpper[kJoints] = {2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973};
+const double kRate[kJoints] = {2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61};
+const double kTorque[kJoints] = {87, 87, 87, 87, 12, 12, 12};
+constexpr double kEffortWeight = 0.01;
+
+/// The tape's text (src/compile/tape_emit_text.cpp): numbers, names, + − * / ^, unary minus,
+/// parentheses, one-argument functions and atan2(a, b), read into SX by recursive descent.
+class Reader {
+ public:
+  explicit Reader(std::map<std::string, SX>& names) : names_(names) {}
+
+  SX read(const std::string& text) {
+    s_ = &text;
+    at_ = 0;
+    SX e = sum();
+    skip();
+    if (at_ != text.size()) fail("unexpected text");
+    return e;
+  }
+
+ private:
+  void skip() {
+    while (at_ < s_->size() && std::isspace(static_cast<unsigned char>((*s_)[at_]))) ++at_;
+  }
+  bool eat(char c) {
+    skip();
+    if (at_ < s_->size() && (*s_)[at_] == c) {
+      ++at_;
+      return true;
+    }
+    return false;
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error(what + " at column " + std::to_string(at_ + 1) + " of '" +
+                             s_->substr(0, 200) + "'");
+  }
+  SX sum() {
+    SX e = product();
+    for (;;) {
+      if (eat('+'))
+        e += product();
+      else if (eat('-'))
+        e -= product();
+      else
+        return e;
+    }
+  }
+  SX product() {
+    SX e = unary();
+    for (;;) {
+      if (eat('*'))
+        e *= unary();
+      else if (eat('/'))
+        e /= unary();
+      else
+        return e;
+    }
+  }
+  SX unary() { return eat('-') ? SX(-unary()) : power(); }
+  SX power() {
+    SX base = primary();
+    if (!eat('^')) return base;
+    skip();
+    const size_t mark = at_;
+    char* end = nullptr;
+    const double n = std::strtod(s_->c_str() + at_, &end);
+    const bool integer = end != s_->c_str() + at_ && n == std::floor(n) && (*s_)[at_] != '(';
+    if (integer) {
+      at_ = static_cast<size_t>(end - s_->c_str());
+      return n == 2 ? SX::sq(base) : SX::constpow(base, n);
+    }
+    at_ = mark;
+    return pow(base, unary());
+  }
+  SX primary() {
+    skip();
+    if (eat('(')) {
+      SX e = sum();
+      if (!eat(')')) fail("expected ')'");
+      return e;
+    }
+    if (at_ < s_->size() &&
+        (std::isdigit(static_cast<unsigned char>((*s_)[at_])) || (*s_)[at_] == '.')) {
+      char* end = nullptr;
+      const double v = std::strtod(s_->c_str() + at_, &end);
+      at_ = static_cast<size_t>(end - s_->c_str());
+      return v;
+    }
+    const size_t from = at_;
+    while (at_ < s_->size() &&
+           (std::isalnum(static_cast<unsigned char>((*s_)[at_])) || (*s_)[at_] == '_'))
+      ++at_;
+    if (at_ == from) fail("expected a number, a name or '('");
+    const std::string name = s_->substr(from, at_ - from);
+    if (!eat('(')) {
+      const auto found = names_.find(name);
+      if (found == names_.end()) fail("unknown name '" + name + "'");
+      return found->second;
+    }
+    const SX a = sum();
+    if (name == "atan2") {
+      if (!eat(',')) fail("expected ',' in atan2");
+      const SX b = sum();
+      if (!eat(')')) fail("expected ')'");
+      return atan2(a, b);
+    }
+    if (!eat(')')) fail("expected ')'");
+    static const std::map<std::string, SX (*)(const SX&)> functions{{"sin", [](const SX& x) { return sin(x); }},
+                                                                    {"cos", [](const SX& x) { return cos(x); }},
+                                                                    {"tan", [](const SX& x) { return tan(x); }},
+                                                                    {"asin", [](const SX& x) { return asin(x); }},
+                                                                    {"acos", [](const SX& x) { return acos(x); }},
+                                                                    {"atan", [](const SX& x) { return atan(x); }},
+                                                                    {"sinh", [](const SX& x) { return sinh(x); }},
+                                                                    {"cosh", [](const SX& x) { return cosh(x); }},
+                                                                    {"tanh", [](const SX& x) { return tanh(x); }},
+                                                                    {"exp", [](const SX& x) { return exp(x); }},
+                                                                    {"log", [](const SX& x) { return log(x); }},
+                                                                    {"sqrt", [](const SX& x) { return sqrt(x); }},
+                                                                    {"fabs", [](const SX& x) { return fabs(x); }},
+                                                                    {"abs", [](const SX& x) { return fabs(x); }}};
+    const auto f = functions.find(name);
+    if (f == functions.end()) fail("unknown function '" + name + "'");
+    return f->second(a);
+  }
+
+  std::map<std::string, SX>& names_;
+  const std::string* s_ = nullptr;
+  size_t at_ = 0;
+};
+
+/// docs/theory.md §10: the residual M(q) a − (h(q, v) + Q(q, v, τ)) as an SX function of
+/// (q, v, a, τ), from lagrange's printed equations.
+casadi::Function dynamics_residual(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  if (j.value("form", "") != "common_subexpressions")
+    throw std::runtime_error(path + ": expected `lagrange derive --format json` of a large model");
+  const std::vector<std::string> qn = j.at("coordinates"), vn = j.at("velocities");
+  if (qn.size() != kJoints || vn.size() != kJoints)
+    throw std::runtime_error(path + ": expected the Panda's 7 joints");
+  const SX q = SX::sym("q", kJoints), v = SX::sym("v", kJoints), a = SX::sym("a", kJoints),
+           tau = SX::sym("tau", kJoints);
+  std::map<std::string, SX> names{{"t", SX(0)}};
+  for (int i = 0; i < kJoints; ++i) {
+    names[qn[static_cast<size_t>(i)]] = q(i);
+    names[vn[static_cast<size_t>(i)]] = v(i);
+    names["tau" + std::to_string(i + 1)] = tau(i);
+  }
+  Reader reader(names);
+  for (const auto& definition : j.at("subexpressions"))
+    names[definition.at(0).get<std::string>()] = reader.read(definition.at(1).get<std::string>());
+  const auto& eqs = j.at("equations");
+  SX M = SX::zeros(kJoints, kJoints), rhs = SX::zeros(kJoints);
+  for (int r = 0; r < kJoints; ++r) {
+    for (int c = 0; c <= r; ++c) {
+      const std::string key = "M_{" + std::to_string(r + 1) + "," + std::to_string(c + 1) + "}";
+      if (eqs.contains(key)) M(r, c) = M(c, r) = reader.read(eqs.at(key).get<std::string>());
+    }
+    rhs(r) = reader.read(eqs.at("(h+Q)_{" + qn[static_cast<size_t>(r)] + "}").get<std::string>());
+  }
+  return casadi::Function("panda_residual", {q, v, a, tau}, {SX::mtimes(M, a) - rhs});
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The NLP on lagrange's transcription in CasADi's symbolic type T (SX or MX).
+template <class T>
+casadi::Function transcribe(const casadi::Function& residual, int N, int d,
+                            const casadi::Dict& opts, std::vector<double>& lbx,
+                            std::vector<double>& ubx, std::vector<double>& x0) {
+  const std::vector<double> tau = casadi::collocation_points(d, "radau");
+  DM C, D, B;
+  casadi::collocation_coeff(tau, C, D, B);
+  const double h = kHorizon / N;
+  std::vector<T> w, g;
+  auto add_state = [&](double t, const double* fixed) {
+    const T X = T::sym("X", 2 * kJoints);
+    w.push_back(X);
+    // lagrange's guess: the quintic path (its rate) on joints 1, 2, 4, 6 and 7, the straight
+    // line (here constant) on 3 and 5; clipped to the bounds.
+    const double s = t / kHorizon, blend = s * s * s * (10 - 15 * s + 6 * s * s),
+                 rate = 30 * s * s * (1 - 2 * s + s * s) / kHorizon;
+    for (int i = 0; i < 2 * kJoints; ++i) {
+      const int joint = i % kJoints;
+      const bool angle = i < kJoints;
+      const double lo = angle ? kAngleLower[joint] : -kRate[joint],
+                   up = angle ? kAngleUpper[joint] : kRate[joint];
+      const double end = angle ? kEnd[joint] : 0.0, start = angle ? kStart[joint] : 0.0;
+      lbx.push_back(fixed ? fixed[i] : lo);
+      ubx.push_back(fixed ? fixed[i] : up);
+      const double guess = kQuintic[joint] ? (angle ? start + (end - start) * blend
+                                                    : (kEnd[joint] - kStart[joint]) * rate)
+                                           : (1 - s) * start + s * end;
+      x0.push_back(std::min(std::max(guess, lbx.back()), ubx.back()));
+    }
+    return X;
+  };
+  double start[2 * kJoints] = {}, end[2 * kJoints] = {};
+  std::copy(kStart, kStart + kJoints, start);
+  std::copy(kEnd, kEnd + kJoints, end);
+  std::vector<std::vector<T>> X(static_cast<size_t>(N) + 1);
+  std::vector<T> U(static_cast<size_t>(N));
+  for (int k = 0; k < N; ++k) {
+    for (int j = 0; j < d; ++j)
+      X[k].push_back(
+          add_state(h * (k + (j == 0 ? 0.0 : tau[j - 1])), k == 0 && j == 0 ? start : nullptr));
+    U[k] = T::sym("U", kJoints);
+    w.push_back(U[k]);
+    for (int i = 0; i < kJoints; ++i) {
+      lbx.push_back(-kTorque[i]);
+      ubx.push_back(kTorque[i]);
+      x0.push_back(0.0);
+    }
+  }
+  X[N].push_back(add_state(kHorizon, end));
+  T J = 0;
+  for (int k = 0; k < N; ++k) {
+    X[k].push_back(X[k + 1][0]);  // X_{k,d} ≡ X_{k+1,0}
+    for (int j = 1; j <= d; ++j) {
+      T xp = 0;
+      for (int l = 0; l <= d; ++l) xp += static_cast<double>(C(l, j - 1)) / h * X[k][l];
+      const T q = X[k][j](casadi::Slice(0, kJoints)),
+              v = X[k][j](casadi::Slice(kJoints, 2 * kJoints));
+      g.push_back(xp(casadi::Slice(0, kJoints)) - v);
+      g.push_back(residual(std::vector<T>{q, v, xp(casadi::Slice(kJoints, 2 * kJoints)), U[k]})[0]);
+      J += kEffortWeight * h * static_cast<double>(B(j - 1)) * T::dot(U[k], U[k]);
+    }
+  }
+  return casadi::nlpsol("panda", "ipopt", {{"x", T::vertcat(w)}, {"f", J}, {"g", T::vertcat(g)}},
+                        opts);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s EQUATIONS.json [N] [d] [exact|limited-memory] [sx|mx]\n",
+                 argv[0]);
+    return 2;
+  }
+  const int N = argc > 2 ? std::atoi(argv[2]) : 50, d = argc > 3 ? std::atoi(argv[3]) : 3;
+  const std::string hessian = argc > 4 ? argv[4] : "exact", graph = argc > 5 ? argv[5] : "mx";
+  if (N < 1 || d < 1 || (hessian != "exact" && hessian != "limited-memory") ||
+      (graph != "sx" && graph != "mx")) {
+    std::fprintf(stderr,
+                 "usage: %s EQUATIONS.json [N >= 1] [d >= 1] [exact|limited-memory] [sx|mx]\n",
+                 argv[0]);
+    return 2;
+  }
+  const auto setup_start = std::chrono::steady_clock::now();
+  const casadi::Function residual = dynamics_residual(argv[1]);
+  const double read = seconds_since(setup_start);
+  casadi::Dict opts{{"ipopt.sb", "yes"},
+                    {"ipopt.print_level", 0},
+                    {"ipopt.hessian_approximation", hessian},
+                    {"ipopt.linear_solver", "mumps"},
+                    {"ipopt.tol", 1e-8},
+                    {"ipopt.max_iter", 1000},
+                    {"print_time", false},
+                    {"record_time", true},
+                    {"calc_lam_p", false}};
+  std::vector<double> lbx, ubx, x0;
+  const casadi::Function solver = graph == "sx"
+                                      ? transcribe<SX>(residual, N, d, opts, lbx, ubx, x0)
+                                      : transcribe<MX>(residual, N, d, opts, lbx, ubx, x0);
+  const double setup = seconds_since(setup_start);
+
+  const auto solve_start = std::chrono::steady_clock::now();
+  const casadi::DMDict result =
+      solver(casadi::DMDict{{"x0", x0}, {"lbx", lbx}, {"ubx", ubx}, {"lbg", 0}, {"ubg", 0}});
+  const double solve = seconds_since(solve_start);
+  const casadi::Dict stats = solver.stats();
+  double functions = 0.0;
+  for (const auto& [key, value] : stats)
+    if (key.rfind("t_wall_nlp_", 0) == 0) functions += value.to_double();
+  std::printf(
+      "casadi: J = %.9f, status %s, %d iterations, set-up %.4f s, solve %.4f s, functions %.4f "
+      "s, rest (Ipopt) %.4f s, n = %d, m = %d, reading the equations %.4f s, %s Hessian, %s\n",
+      static_cast<double>(result.at("f")), stats.at("return_status").to_string().c_str(),
+      static_cast<int>(stats.at("iter_count").to_int()), setup, solve, functions, solve - functions,
+      static_cast<int>(lbx.size()), 2 * kJoints * N * d, read, hessian.c_str(), graph.c_str());
+  std::printf("casadi functions (calls, wall s):");
+  for (const auto& [key, value] : stats)
+    if (key.rfind("t_wall_nlp_", 0) == 0)
+      std::printf(" %s %d %.4f", key.substr(7).c_str(),
+                  static_cast<int>(stats.at("n_call_" + key.substr(7)).to_int()),
+                  value.to_double());
+  std::printf("\n");
+  return stats.at("success").to_bool() ? 0 : 1;
+}
