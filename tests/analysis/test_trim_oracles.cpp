@@ -13,7 +13,7 @@
 namespace lagrange {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kDegree = M_PI / 180.0;
 
 size_t coordinate(const CompiledModel& cm, const std::string& name) {
   const auto it = std::find(cm.coordinate_names.begin(), cm.coordinate_names.end(), name);
@@ -35,9 +35,9 @@ TEST(TrimOracle, PointMassKiteOnAFixedLineBalancesLiftDragWeightAndTether) {
   const double beta = std::atan2(lift - mass * 9.81, drag);  // ≈ 27.2°
   const CompiledModel& cm = *s.cm;
   const size_t x = coordinate(cm, "x"), y = coordinate(cm, "y"), z = coordinate(cm, "z");
-  s.q[x] = L * std::cos(beta + 20 * kDeg);  // 20° above the balance
+  s.q[x] = L * std::cos(beta + 20 * kDegree);  // 20° above the balance
   s.q[y] = 0.0;
-  s.q[z] = L * std::sin(beta + 20 * kDeg);
+  s.q[z] = L * std::sin(beta + 20 * kDegree);
   s.v.assign(cm.nv, 0.0);
   const TrimResult r = trim(*s.jac, *s.dyn, 0.0, s.q);
   EXPECT_LE(r.residual, 1e-10);

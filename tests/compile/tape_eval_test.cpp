@@ -7,6 +7,7 @@
 
 #include "compile/pendulum_expressions.hpp"
 #include "lagrange/tape.hpp"
+#include "compile/run_tape.hpp"
 
 namespace lagrange {
 namespace {
@@ -26,11 +27,6 @@ double reference(const ex& e, const std::vector<symbol>& inputs, const std::vect
 }
 
 /// Evaluates every output of t at x.
-std::vector<double> run(const Tape& t, const std::vector<double>& x) {
-  std::vector<double> out(t.num_outputs()), work(t.work_size());
-  t.eval(x.data(), out.data(), work.data());
-  return out;
-}
 
 /// Number of instructions of t calling C function `fn` (counted in the emitted C, which has
 /// one statement per instruction; the instruction list itself is private).

@@ -6,16 +6,12 @@
 
 #include "compile/pendulum_expressions.hpp"
 #include "lagrange/tape.hpp"
+#include "compile/run_tape.hpp"
 
 namespace lagrange {
 namespace {
 
 /// Evaluates every output of t at x.
-std::vector<double> run(const Tape& t, const std::vector<double>& x) {
-  std::vector<double> out(t.num_outputs()), work(t.work_size());
-  t.eval(x.data(), out.data(), work.data());
-  return out;
-}
 
 TEST(TapeSpecialize, PendulumParametersFoldAway) {
   const int n = 8;

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "support/harness.hpp"
+#include "support/ginac_values.hpp"
 
 namespace lagrange {
 namespace {
@@ -37,10 +38,6 @@ links:
 gravity: [0, -g, 0]
 )",
                      convention, a1, a2, com1, com2);
-}
-
-double value(const GiNaC::ex& e, const GiNaC::exmap& at) {
-  return GiNaC::ex_to<GiNaC::numeric>(e.subs(at).evalf()).to_double();
 }
 
 /// Values of the parameters (their defaults) and of q, q̇ (random) of a model.

@@ -11,6 +11,7 @@
 #include "hardening/cli_runner.hpp"
 #include "lagrange/manipulator.hpp"
 #include "support/harness.hpp"
+#include "support/ginac_values.hpp"
 
 namespace lagrange {
 namespace {
@@ -28,10 +29,6 @@ GiNaC::exmap random_state(const Equations& eq, unsigned seed) {
     v[eq.kin.v[i]] = u(rng);
   }
   return v;
-}
-
-double value(const GiNaC::ex& e, const GiNaC::exmap& at) {
-  return GiNaC::ex_to<GiNaC::numeric>(e.subs(at).evalf()).to_double();
 }
 
 // The inertial frame of l1 is rotated by rpy (0.3, 0.2, 0.1); here its tensor is written already

@@ -31,7 +31,7 @@ fs::path arm_dir() {
   return fs::path(LAGRANGE_SOURCE_DIR) / "tests" / "io" / "urdf_visuals";
 }
 
-nlohmann::json scene_of(const fs::path& urdf) {
+nlohmann::json urdf_scene(const fs::path& urdf) {
   auto sys = testing::load_model(std::make_unique<Model>(read_model_file(urdf.string())));
   SimulationOptions so = sys.options();
   so.t_end = 0.2;
@@ -69,7 +69,7 @@ class ScopedEnv {
 
 TEST(ReportUrdf, EveryVisualOfTheArmIsInTheScene) {
   const ScopedEnv no_packages("ROS_PACKAGE_PATH", "");
-  const nlohmann::json scene = scene_of(arm_dir() / "visual_arm.urdf");
+  const nlohmann::json scene = urdf_scene(arm_dir() / "visual_arm.urdf");
   EXPECT_FALSE(scene.contains("notes")) << scene["notes"];
   const std::string stl = test::slurp(arm_dir() / "meshes" / "tip.stl");
   const std::string dae = test::slurp(arm_dir() / "meshes" / "plate.dae");
@@ -121,7 +121,7 @@ TEST(ReportUrdf, AMissingMeshKeepsTheInertiaDrawingWithANote) {
   fs::create_directories(dir);
   fs::copy_file(arm_dir() / "visual_arm.urdf", dir / "visual_arm.urdf",
                 fs::copy_options::overwrite_existing);
-  const nlohmann::json scene = scene_of(dir / "visual_arm.urdf");
+  const nlohmann::json scene = urdf_scene(dir / "visual_arm.urdf");
   fs::remove_all(dir);
   ASSERT_EQ(scene["notes"].size(), 2u);  // the plate of 'base', the tip of 'tool'
   EXPECT_NE(scene["notes"][0].get<std::string>().find("link 'base': mesh 'meshes/plate.dae'"),

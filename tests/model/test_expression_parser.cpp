@@ -5,6 +5,7 @@
 #include <map>
 
 #include "model/expression_parser.hpp"
+#include "support/ginac_values.hpp"
 
 namespace lagrange::model {
 namespace {
@@ -37,10 +38,6 @@ struct Names {
     return v.vec;
   }
 };
-
-bool same(const GiNaC::ex& x, const GiNaC::ex& y) {
-  return (x - y).expand().normal().is_zero();
-}
 
 /// The ExprError thrown for `text`, or a failure.
 ExprError error_of(const Names& n, const std::string& text) {

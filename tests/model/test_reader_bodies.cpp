@@ -7,13 +7,10 @@
 
 #include "lagrange/reader.hpp"
 #include "lagrange/rigid_body.hpp"
+#include "support/ginac_values.hpp"
 
 namespace lagrange {
 namespace {
-
-bool same(const GiNaC::ex& x, const GiNaC::ex& y) {
-  return (x - y).expand().normal().is_zero();
-}
 
 double value(const Model& m, const GiNaC::ex& e) {
   GiNaC::exmap values;

@@ -8,13 +8,10 @@
 
 #include "lagrange/reader.hpp"
 #include "model/latex_names.hpp"
+#include "support/ginac_values.hpp"
 
 namespace lagrange {
 namespace {
-
-bool same(const GiNaC::ex& x, const GiNaC::ex& y) {
-  return (x - y).expand().normal().is_zero();
-}
 
 /// `e` with sin(x)² replaced by 1 − cos(x)² for every x, expanded.
 GiNaC::ex pythagoras(const GiNaC::ex& e) {

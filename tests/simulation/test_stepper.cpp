@@ -19,7 +19,7 @@ namespace {
 using testing::Loaded;
 
 // A mass on a linear spring pushed by an external force F: m ẍ = −k x + F.
-const char* kOscillator = R"(
+const char* kForcedOscillator = R"(
 name: forced oscillator
 parameters: {m: 2.0, k: 8.0}
 coordinates:
@@ -105,7 +105,7 @@ TEST(Stepper, RestartingMethodAgreesWithOneRun) {
 
 // m ẍ = −k x + F with F held: from (x0, v0), x(t) = F/k + (x0 − F/k) cos ωt + (v0/ω) sin ωt.
 TEST(Stepper, HeldInputsFollowTheClosedForm) {
-  Loaded sys = testing::load_string(kOscillator);
+  Loaded sys = testing::load_string(kForcedOscillator);
   const SimulationOptions so = sys.options();
   Stepper s = make_stepper(sys, so);
   ASSERT_EQ(s.external_inputs(), std::vector<std::string>{"F"});
@@ -134,7 +134,7 @@ TEST(Stepper, HeldInputsFollowTheClosedForm) {
 TEST(Stepper, InputLawEqualsTheLawInTheFile) {
   Loaded file = testing::load_string(kOscillatorPd);
   const Trajectory one = file.run(file.options());
-  Loaded sys = testing::load_string(kOscillator);
+  Loaded sys = testing::load_string(kForcedOscillator);
   Stepper s = make_stepper(sys, sys.options());
   s.set_input_law([](double, const double* q, const double* v, double* u) {
     u[0] = -5.0 * (q[0] - 1.0) - 1.5 * v[0];
@@ -147,7 +147,7 @@ TEST(Stepper, InputLawEqualsTheLawInTheFile) {
 }
 
 TEST(Stepper, FailedStepKeepsTheState) {
-  Loaded sys = testing::load_string(kOscillator);
+  Loaded sys = testing::load_string(kForcedOscillator);
   Stepper s = make_stepper(sys, sys.options());
   s.step(0.1);
   const std::vector<double> before = s.state();
