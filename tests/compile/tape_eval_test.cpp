@@ -6,8 +6,8 @@
 #include <random>
 
 #include "compile/pendulum_expressions.hpp"
-#include "lagrange/tape.hpp"
 #include "compile/run_tape.hpp"
+#include "lagrange/tape.hpp"
 
 namespace lagrange {
 namespace {

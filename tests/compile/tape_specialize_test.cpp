@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "compile/pendulum_expressions.hpp"
-#include "lagrange/tape.hpp"
 #include "compile/run_tape.hpp"
+#include "lagrange/tape.hpp"
 
 namespace lagrange {
 namespace {

@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "support/harness.hpp"
 #include "support/ginac_values.hpp"
+#include "support/harness.hpp"
 
 namespace lagrange {
 namespace {

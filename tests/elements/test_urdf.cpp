@@ -7,11 +7,11 @@
 #include <cmath>
 #include <random>
 
-#include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
 #include "lagrange/manipulator.hpp"
-#include "support/harness.hpp"
 #include "support/ginac_values.hpp"
+#include "support/harness.hpp"
+#include "support/test_paths.hpp"
 
 namespace lagrange {
 namespace {

@@ -36,7 +36,8 @@ TEST(OptimalFormulations, CartesianSwingUpHasThePolarCost) {
   // The collocation drifts off the rod between the imposed start and the end, by its
   // discretisation error: about 16 times less as N doubles (4.1e-3 at N = 15, 2.4e-4 at 30).
   const auto drift = [](const Trajectory& traj) {
-    const size_t x = column_index(traj, "x"), y = column_index(traj, "y"), cols = traj.columns.size();
+    const size_t x = column_index(traj, "x"), y = column_index(traj, "y"),
+                 cols = traj.columns.size();
     double most = 0.0;
     for (size_t r = 0; r < traj.rows(); ++r) {
       const double* row = traj.data.data() + r * cols;
