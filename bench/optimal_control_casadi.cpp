@@ -18,10 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "casadi_peer.hpp"
+
 namespace {
 
 using casadi::DM;
 using casadi::SX;
+using casadi_peer::seconds_since;
 
 // examples/optimal/cart_pole_swing_up.yaml
 constexpr double kCart = 1.0, kBob = 0.3, kRod = 0.5, kGravity = 9.81, kDistance = 1.0;
@@ -34,10 +37,6 @@ SX dynamics_residual(const SX& q, const SX& v, const SX& a, const SX& u) {
   const SX M00 = kCart + kBob, M01 = kBob * kRod * c, M11 = kBob * kRod * kRod;
   const SX h0 = u + kBob * kRod * s * v(1) * v(1), h1 = -kBob * kGravity * kRod * s;
   return SX::vertcat({M00 * a(0) + M01 * a(1) - h0, M01 * a(0) + M11 * a(1) - h1});
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -99,41 +98,8 @@ int main(int argc, char** argv) {
       J += h * static_cast<double>(B(j - 1)) * U[k] * U[k];
     }
   }
-  // src/optimize/ipopt_adapter.cpp's options; CasADi's own printing off, its timers on, and no
-  // parameter multipliers after the solve (lagrange computes none).
-  casadi::Dict opts{{"ipopt.sb", "yes"},
-                    {"ipopt.print_level", 0},
-                    {"ipopt.hessian_approximation", "exact"},
-                    {"ipopt.linear_solver", "mumps"},
-                    {"ipopt.tol", 1e-8},
-                    {"ipopt.max_iter", 1000},
-                    {"print_time", false},
-                    {"record_time", true},
-                    {"calc_lam_p", false}};
-  const casadi::Function solver = casadi::nlpsol(
-      "cart_pole", "ipopt", {{"x", SX::vertcat(w)}, {"f", J}, {"g", SX::vertcat(g)}}, opts);
-  const double setup = seconds_since(setup_start);
-
-  const auto solve_start = std::chrono::steady_clock::now();
-  const casadi::DMDict result =
-      solver(casadi::DMDict{{"x0", x0}, {"lbx", lbx}, {"ubx", ubx}, {"lbg", 0}, {"ubg", 0}});
-  const double solve = seconds_since(solve_start);
-  const casadi::Dict stats = solver.stats();
-  double functions = 0.0;
-  for (const auto& [key, value] : stats)
-    if (key.rfind("t_wall_nlp_", 0) == 0) functions += value.to_double();
-  std::printf(
-      "casadi: J = %.9f, status %s, %d iterations, set-up %.4f s, solve %.4f s, functions %.4f "
-      "s, rest (Ipopt) %.4f s, n = %d, m = %d\n",
-      static_cast<double>(result.at("f")), stats.at("return_status").to_string().c_str(),
-      static_cast<int>(stats.at("iter_count").to_int()), setup, solve, functions, solve - functions,
-      static_cast<int>(lbx.size()), static_cast<int>(4 * N * d));
-  std::printf("casadi functions (calls, wall s):");
-  for (const auto& [key, value] : stats)
-    if (key.rfind("t_wall_nlp_", 0) == 0)
-      std::printf(" %s %d %.4f", key.substr(7).c_str(),
-                  static_cast<int>(stats.at("n_call_" + key.substr(7)).to_int()),
-                  value.to_double());
-  std::printf("\n");
-  return stats.at("success").to_bool() ? 0 : 1;
+  const casadi::Function solver =
+      casadi::nlpsol("cart_pole", "ipopt", {{"x", SX::vertcat(w)}, {"f", J}, {"g", SX::vertcat(g)}},
+                     casadi_peer::ipopt_options());
+  return casadi_peer::solve_and_report(solver, x0, lbx, ubx, seconds_since(setup_start), 4 * N * d);
 }

@@ -28,11 +28,14 @@
 #include <string>
 #include <vector>
 
+#include "casadi_peer.hpp"
+
 namespace {
 
 using casadi::DM;
 using casadi::MX;
 using casadi::SX;
+using casadi_peer::seconds_since;
 
 // examples/optimal/panda_point_to_point.yaml
 constexpr int kJoints = 7;
@@ -206,10 +209,6 @@ casadi::Function dynamics_residual(const std::string& path) {
   return casadi::Function("panda_residual", {q, v, a, tau}, {SX::mtimes(M, a) - rhs});
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// The NLP on lagrange's transcription in CasADi's symbolic type T (SX or MX).
 template <class T>
 casadi::Function transcribe(const casadi::Function& residual, int N, int d,
@@ -297,41 +296,14 @@ int main(int argc, char** argv) {
   const auto setup_start = std::chrono::steady_clock::now();
   const casadi::Function residual = dynamics_residual(argv[1]);
   const double read = seconds_since(setup_start);
-  casadi::Dict opts{{"ipopt.sb", "yes"},
-                    {"ipopt.print_level", 0},
-                    {"ipopt.hessian_approximation", hessian},
-                    {"ipopt.linear_solver", "mumps"},
-                    {"ipopt.tol", 1e-8},
-                    {"ipopt.max_iter", 1000},
-                    {"print_time", false},
-                    {"record_time", true},
-                    {"calc_lam_p", false}};
+  const casadi::Dict opts = casadi_peer::ipopt_options(hessian);
   std::vector<double> lbx, ubx, x0;
   const casadi::Function solver = graph == "sx"
                                       ? transcribe<SX>(residual, N, d, opts, lbx, ubx, x0)
                                       : transcribe<MX>(residual, N, d, opts, lbx, ubx, x0);
-  const double setup = seconds_since(setup_start);
-
-  const auto solve_start = std::chrono::steady_clock::now();
-  const casadi::DMDict result =
-      solver(casadi::DMDict{{"x0", x0}, {"lbx", lbx}, {"ubx", ubx}, {"lbg", 0}, {"ubg", 0}});
-  const double solve = seconds_since(solve_start);
-  const casadi::Dict stats = solver.stats();
-  double functions = 0.0;
-  for (const auto& [key, value] : stats)
-    if (key.rfind("t_wall_nlp_", 0) == 0) functions += value.to_double();
-  std::printf(
-      "casadi: J = %.9f, status %s, %d iterations, set-up %.4f s, solve %.4f s, functions %.4f "
-      "s, rest (Ipopt) %.4f s, n = %d, m = %d, reading the equations %.4f s, %s Hessian, %s\n",
-      static_cast<double>(result.at("f")), stats.at("return_status").to_string().c_str(),
-      static_cast<int>(stats.at("iter_count").to_int()), setup, solve, functions, solve - functions,
-      static_cast<int>(lbx.size()), 2 * kJoints * N * d, read, hessian.c_str(), graph.c_str());
-  std::printf("casadi functions (calls, wall s):");
-  for (const auto& [key, value] : stats)
-    if (key.rfind("t_wall_nlp_", 0) == 0)
-      std::printf(" %s %d %.4f", key.substr(7).c_str(),
-                  static_cast<int>(stats.at("n_call_" + key.substr(7)).to_int()),
-                  value.to_double());
-  std::printf("\n");
-  return stats.at("success").to_bool() ? 0 : 1;
+  char extra[128];
+  std::snprintf(extra, sizeof extra, ", reading the equations %.4f s, %s Hessian, %s", read,
+                hessian.c_str(), graph.c_str());
+  return casadi_peer::solve_and_report(solver, x0, lbx, ubx, seconds_since(setup_start),
+                                       2 * kJoints * N * d, extra);
 }
