@@ -151,23 +151,16 @@ class Reader {
       return atan2(a, b);
     }
     if (!eat(')')) fail("expected ')'");
-    static const std::map<std::string, SX (*)(const SX&)> functions{{"sin", [](const SX& x) { return sin(x); }},
-                                                                    {"cos", [](const SX& x) { return cos(x); }},
-                                                                    {"tan", [](const SX& x) { return tan(x); }},
-                                                                    {"asin", [](const SX& x) { return asin(x); }},
-                                                                    {"acos", [](const SX& x) { return acos(x); }},
-                                                                    {"atan", [](const SX& x) { return atan(x); }},
-                                                                    {"sinh", [](const SX& x) { return sinh(x); }},
-                                                                    {"cosh", [](const SX& x) { return cosh(x); }},
-                                                                    {"tanh", [](const SX& x) { return tanh(x); }},
-                                                                    {"exp", [](const SX& x) { return exp(x); }},
-                                                                    {"log", [](const SX& x) { return log(x); }},
-                                                                    {"sqrt", [](const SX& x) { return sqrt(x); }},
-                                                                    {"fabs", [](const SX& x) { return fabs(x); }},
-                                                                    {"abs", [](const SX& x) { return fabs(x); }}};
+    // CasADi's operation codes for the tape's one-argument functions (casadi/core/calculus.hpp).
+    static const std::map<std::string, casadi_int> functions{
+        {"sin", casadi::OP_SIN},   {"cos", casadi::OP_COS},   {"tan", casadi::OP_TAN},
+        {"asin", casadi::OP_ASIN}, {"acos", casadi::OP_ACOS}, {"atan", casadi::OP_ATAN},
+        {"sinh", casadi::OP_SINH}, {"cosh", casadi::OP_COSH}, {"tanh", casadi::OP_TANH},
+        {"exp", casadi::OP_EXP},   {"log", casadi::OP_LOG},   {"sqrt", casadi::OP_SQRT},
+        {"fabs", casadi::OP_FABS}, {"abs", casadi::OP_FABS}};
     const auto f = functions.find(name);
     if (f == functions.end()) fail("unknown function '" + name + "'");
-    return f->second(a);
+    return SX::unary(f->second, a);
   }
 
   std::map<std::string, SX>& names_;

@@ -16,13 +16,6 @@
 namespace lagrange {
 namespace {
 
-size_t column_index(const Trajectory& traj, const std::string& name) {
-  for (size_t c = 0; c < traj.columns.size(); ++c)
-    if (traj.columns[c] == name) return c;
-  ADD_FAILURE() << "no column " << name;
-  return 0;
-}
-
 // The same swing-up in two formulations (examples/optimal/pendulum_swing_up_{polar,cartesian}):
 // the same optimal cost at the same N and degree, the Cartesian one on its rod along the whole
 // trajectory, and its final y = 1, y_dot = 0 reached though they were implied, not imposed.
@@ -36,8 +29,7 @@ TEST(OptimalFormulations, CartesianSwingUpHasThePolarCost) {
   // The collocation drifts off the rod between the imposed start and the end, by its
   // discretisation error: about 16 times less as N doubles (4.1e-3 at N = 15, 2.4e-4 at 30).
   const auto drift = [](const Trajectory& traj) {
-    const size_t x = column_index(traj, "x"), y = column_index(traj, "y"),
-                 cols = traj.columns.size();
+    const size_t x = traj.column_index("x"), y = traj.column_index("y"), cols = traj.columns.size();
     double most = 0.0;
     for (size_t r = 0; r < traj.rows(); ++r) {
       const double* row = traj.data.data() + r * cols;
@@ -52,7 +44,7 @@ TEST(OptimalFormulations, CartesianSwingUpHasThePolarCost) {
   // y(T) = 1 was implied, not imposed: reached to the drift.
   const Trajectory& traj = c.trajectory;
   const double* last = traj.data.data() + (traj.rows() - 1) * traj.columns.size();
-  EXPECT_NEAR(last[column_index(traj, "y")], 1.0, 1e-4);
+  EXPECT_NEAR(last[traj.column_index("y")], 1.0, 1e-4);
   EXPECT_NE(c.worst_constraint.find("implied"), std::string::npos) << c.worst_constraint;
   // The polar optimum's force at the mesh points is the Cartesian one's (the same problem).
   ASSERT_EQ(p.controls.size(), c.controls.size());
@@ -187,7 +179,7 @@ TEST(OptimalFormulations, CartesianPendulumPeriodIsTheEllipticIntegral) {
   EXPECT_LT(std::fabs(fine.horizon - period), std::fabs(coarse.horizon - period) / 16);
   // The orbit closes: x(T) = x(0) imposed, y(T) = y(0) on the rod.
   const Trajectory& traj = fine.trajectory;
-  const size_t y = column_index(traj, "y"), cols = traj.columns.size();
+  const size_t y = traj.column_index("y"), cols = traj.columns.size();
   EXPECT_NEAR(traj.data[(traj.rows() - 1) * cols + y], traj.data[y], 1e-6);
 }
 
