@@ -35,12 +35,14 @@ if [[ ! -f $tree/lib/libcasadi_nlpsol_ipopt.so ]]; then
     -DWITH_LAPACK=OFF -DWITH_PYTHON=OFF -DWITH_MATLAB=OFF >/dev/null
   (cd "$tree" && nice -n 10 make -j1 casadi_nlpsol_ipopt)
 fi
-# The peers: the cart-pole (bench/optimal_control_casadi.cpp, run below) and the Panda
-# (bench/optimal_control_casadi_panda.cpp, run by bench/optimal_control.sh with CASE=panda).
+# The peers: the cart-pole (bench/optimal_control_casadi.cpp, run below), the Panda
+# (bench/optimal_control_casadi_panda.cpp, run by bench/optimal_control.sh with CASE=panda) and
+# the kite's power cycle (bench/optimal_control_casadi_kite.cpp, CASE=kite).
 mkdir -p "$build/bench"
-for peer in optimal_control_casadi optimal_control_casadi_panda; do
+for peer in optimal_control_casadi optimal_control_casadi_panda optimal_control_casadi_kite; do
   exe=$build/bench/$peer
-  if [[ ! -x $exe || $here/$peer.cpp -nt $exe ]]; then
+  if [[ ! -x $exe || $here/$peer.cpp -nt $exe || $here/casadi_peer.hpp -nt $exe ||
+    $here/casadi_expression_reader.hpp -nt $exe ]]; then
     # CasADi's generated headers (casadi/core/casadi_export.h, config.h) are in its build tree.
     g++ -std=c++17 -O3 -DNDEBUG -I "$src" -I "$tree" "$here/$peer.cpp" \
       -L "$tree/lib" -Wl,-rpath,"$tree/lib" -lcasadi -o "$exe"

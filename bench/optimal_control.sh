@@ -7,7 +7,12 @@
 #   bench/optimal_control.sh BUILD_DIR [RUNS=7 [N=100]]
 # CASE=panda: the Panda's point-to-point motion instead (N default 50), CasADi reading the arm's
 # equations as `lagrange derive --format json` prints them (bench/optimal_control_casadi_panda.cpp);
-# HESSIAN=exact|limited-memory (default exact) for both, GRAPH=mx|sx (default mx) for CasADi.
+# CASE=kite: the point-mass kite's power cycle (examples/optimal/power_cycle_pointmass.yaml, N
+# default 40, DEGREE default 3), CasADi reading the kite's equations from `lagrange derive --format
+# json` and lagrange's starting point from `lagrange optimize --ipopt max_iter=0 -o`
+# (bench/optimal_control_casadi_kite.cpp).
+# HESSIAN=exact|limited-memory (default exact) for both, GRAPH=mx|sx (default mx for the Panda,
+# sx for the kite) for CasADi.
 # COMPILE=off|auto (default auto): lagrange's tapes on the interpreter, or on machine code from
 # the cache (one `--compile on` run before the timed ones fills it; the summary's `hessian` and
 # `residual` lines say which ran).
@@ -31,6 +36,20 @@ if [ "$case" = panda ]; then
   lagrange_args=(--hessian "$hessian")
   peer_args=("$work/panda.json" "$N" 3 "$hessian" "${GRAPH:-mx}")
   peer=$casadi/bench/optimal_control_casadi_panda
+elif [ "$case" = kite ]; then
+  N=${3:-40}
+  degree=${DEGREE:-3}
+  hessian=${HESSIAN:-exact}
+  model=$root/examples/optimal/power_cycle_pointmass.yaml
+  title="point-mass kite power cycle, N = $N, d = $degree, $hessian Hessian (CasADi: ${GRAPH:-sx} graph), tol 1e-8"
+  "$build/lagrange" derive "$model" --format json >"$work/kite.json"
+  # lagrange's starting point, as Ipopt receives it (stopped before its first iteration).
+  "$build/lagrange" optimize "$model" --intervals "$N" --degree "$degree" --ipopt max_iter=0 \
+    -o "$work/start.csv" >/dev/null 2>&1 || [ -s "$work/start.csv" ]
+  lagrange_args=(--hessian "$hessian" --degree "$degree")
+  # Baumgarte rate 0: the model's own (it sets none, and dop853 projects instead).
+  peer_args=("$work/kite.json" "$work/start.csv" "$N" "$degree" "$hessian" "${GRAPH:-sx}" 0)
+  peer=$casadi/bench/optimal_control_casadi_kite
 else
   N=${3:-100}
   model=$root/examples/optimal/cart_pole_swing_up.yaml
