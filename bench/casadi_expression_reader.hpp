@@ -99,9 +99,8 @@ class ExpressionReader {
       return v;
     }
     const size_t from = at_;
-    while (at_ < s_->size() &&
-           (std::isalnum(static_cast<unsigned char>((*s_)[at_])) || (*s_)[at_] == '_' ||
-            (*s_)[at_] == '.'))
+    while (at_ < s_->size() && (std::isalnum(static_cast<unsigned char>((*s_)[at_])) ||
+                                (*s_)[at_] == '_' || (*s_)[at_] == '.'))
       ++at_;
     if (at_ == from) fail("expected a number, a name or '('");
     const std::string name = s_->substr(from, at_ - from);

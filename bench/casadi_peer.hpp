@@ -1,8 +1,8 @@
 #pragma once
 // What the CasADi peers of `lagrange optimize` share (bench/optimal_control_casadi.cpp, the
-// cart-pole; bench/optimal_control_casadi_panda.cpp, the Panda; bench/optimal_control_casadi_kite.cpp,
-// the point-mass power cycle): lagrange's Ipopt options, the timed solve, and the two lines
-// bench/optimal_control.sh reads.
+// cart-pole; bench/optimal_control_casadi_panda.cpp, the Panda;
+// bench/optimal_control_casadi_kite.cpp, the point-mass power cycle): lagrange's Ipopt options, the
+// timed solve, and the two lines bench/optimal_control.sh reads.
 #include <casadi/casadi.hpp>
 #include <chrono>
 #include <cstdio>
@@ -36,8 +36,8 @@ inline casadi::Dict ipopt_options(const std::string& hessian = "exact") {
 inline int solve_and_report(const casadi::Function& solver, const std::vector<double>& x0,
                             const std::vector<double>& lbx, const std::vector<double>& ubx,
                             double setup, int constraints, const std::string& extra = "",
-                            const std::vector<double>& lbg = {}, const std::vector<double>& ubg = {},
-                            double sign = 1.0) {
+                            const std::vector<double>& lbg = {},
+                            const std::vector<double>& ubg = {}, double sign = 1.0) {
   const auto solve_start = std::chrono::steady_clock::now();
   const casadi::DM lg = lbg.empty() ? casadi::DM(0) : casadi::DM(lbg),
                    ug = ubg.empty() ? casadi::DM(0) : casadi::DM(ubg);

@@ -42,7 +42,8 @@ using casadi_peer::seconds_since;
 constexpr int kQ = 4, kX = 2 * kQ, kControls = 3;  // (x, y, z, l), their rates; (ψ, C_L, τ)
 constexpr double kHorizon = 10.0, kWind = 10.0, kDrumRadius = 0.2;
 const char* const kControlNames[kControls] = {"psi", "CLc", "tau"};
-const double kControlLower[kControls] = {-0.7, 0.1, -360}, kControlUpper[kControls] = {0.7, 1.0, -10};
+const double kControlLower[kControls] = {-0.7, 0.1, -360},
+             kControlUpper[kControls] = {0.7, 1.0, -10};
 constexpr int kY = 1, kYRate = kQ + 1, kLength = 3, kLengthRate = kQ + 3, kZ = 2;
 constexpr double kLengthLower = 100, kLengthUpper = 400, kRateLower = -15, kRateUpper = 20;
 constexpr double kHeightLower = 50;
@@ -87,15 +88,17 @@ KiteEquations read_equations(const std::string& path, double alpha) {
   SX G = SX::zeros(m, kQ), dae = SX::zeros(m), C = SX::zeros(m), Cdot = SX::zeros(m);
   for (int k = 0; k < m; ++k) {
     const auto& row = constraints.at(static_cast<size_t>(k));
-    for (int c = 0; c < kQ; ++c) G(k, c) = reader.read(text(row.at("G").at(static_cast<size_t>(c))));
+    for (int c = 0; c < kQ; ++c)
+      G(k, c) = reader.read(text(row.at("G").at(static_cast<size_t>(c))));
     C(k) = reader.read(text(row.at("C")));
     Cdot(k) = reader.read(text(row.at("Cdot")));
-    dae(k) = SX::mtimes(G(k, casadi::Slice()), a) + reader.read(text(row.at("c"))) + 2 * alpha * Cdot(k) +
-             alpha * alpha * C(k);
+    dae(k) = SX::mtimes(G(k, casadi::Slice()), a) + reader.read(text(row.at("c"))) +
+             2 * alpha * Cdot(k) + alpha * alpha * C(k);
     eq.multiplier_names.push_back("lambda_" + row.at("name").get<std::string>());
   }
-  eq.residual = casadi::Function("kite_residual", {q, v, a, u, lambda},
-                                 {SX::vertcat({SX::mtimes(M, a) + SX::mtimes(G.T(), lambda) - rhs, dae})});
+  eq.residual =
+      casadi::Function("kite_residual", {q, v, a, u, lambda},
+                       {SX::vertcat({SX::mtimes(M, a) + SX::mtimes(G.T(), lambda) - rhs, dae})});
   const SX x = SX::vertcat({q, v}), invariants = SX::vertcat({C, Cdot});
   eq.invariants = casadi::Function("kite_invariants", {x}, {invariants});
   eq.invariant_jacobian =
@@ -205,8 +208,8 @@ casadi::Function transcribe(const KiteEquations& eq,
       for (int i = 0; i < m; ++i) {
         lbx.push_back(-inf);
         ubx.push_back(inf);
-        x0.push_back(column(eq.multiplier_names[static_cast<size_t>(i)])
-                         [static_cast<size_t>(node_row(k, j))]);
+        x0.push_back(column(
+            eq.multiplier_names[static_cast<size_t>(i)])[static_cast<size_t>(node_row(k, j))]);
       }
     }
     U[k] = T::sym("U", kControls);

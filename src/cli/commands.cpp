@@ -23,6 +23,7 @@
 #include "lagrange/reader.hpp"
 #include "lagrange/simulation.hpp"
 #include "lagrange/sweep.hpp"
+#include "support/seconds_since.hpp"
 
 namespace lagrange::cli {
 
@@ -31,10 +32,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 SimulationOptions simulation_options(const Model& model, const Options& opt) {
   return simulation_options(model, RunSettings{opt.t_end, opt.output_step, opt.rtol, opt.atol,

@@ -17,14 +17,14 @@ namespace lagrange::cli {
 namespace {
 
 /// Everything eval prints, at one state.
-struct Evaluation {
+struct StateEvaluation {
   Eigen::MatrixXd M;
   Eigen::VectorXd bias, forces, qddot, lambda, tau_inverse;
   bool given_tau = false, manipulator = false;
 };
 
 /// M (full), h and Q of `eq` at the dynamics tape inputs `in` (t, q, v, u, p).
-void mass_and_forces(const Equations& eq, const std::vector<double>& in, Evaluation& e) {
+void mass_and_forces(const Equations& eq, const std::vector<double>& in, StateEvaluation& e) {
   const size_t n = eq.nv;
   std::vector<GiNaC::ex> out;
   for (size_t i = 0; i < n; ++i)
@@ -58,10 +58,10 @@ Eigen::VectorXd given_forces(const CompiledModel& cm, const std::vector<std::str
   return tau;
 }
 
-Evaluation evaluate(Prepared& p, const Options& opt) {
+StateEvaluation evaluate(Prepared& p, const Options& opt) {
   const CompiledModel& cm = *p.compiled;
   const size_t n = cm.nv;
-  Evaluation e;
+  StateEvaluation e;
   std::vector<double> qdot(cm.nq), a(n), lambda(cm.m);
   p.dynamics->forward(0.0, p.q.data(), p.v.data(), qdot.data(), a.data(), lambda.data());
   mass_and_forces(p.equations, p.dynamics->last_inputs(), e);
@@ -86,7 +86,7 @@ std::vector<double> to_std(const Eigen::VectorXd& x) {
   return {x.data(), x.data() + x.size()};
 }
 
-std::string format_json(const Prepared& p, const Evaluation& e) {
+std::string format_json(const Prepared& p, const StateEvaluation& e) {
   const CompiledModel& cm = *p.compiled;
   nlohmann::json j;
   j["name"] = p.model->name;
@@ -107,7 +107,7 @@ std::string format_json(const Prepared& p, const Evaluation& e) {
   return j.dump(2) + "\n";
 }
 
-std::string format_text(const Prepared& p, const Evaluation& e) {
+std::string format_text(const Prepared& p, const StateEvaluation& e) {
   const CompiledModel& cm = *p.compiled;
   std::string out = fmt::format("{} at t = 0\n", p.model->name);
   auto column = [&](const std::string& title, const std::vector<std::string>& names,
@@ -143,7 +143,7 @@ std::string format_text(const Prepared& p, const Evaluation& e) {
 
 int run_eval(const Options& opt) {
   Prepared p = prepare(opt.model, opt.sets, opt.initial, "--state");
-  const Evaluation e = evaluate(p, opt);
+  const StateEvaluation e = evaluate(p, opt);
   fmt::print("{}", opt.format == "json" ? format_json(p, e) : format_text(p, e));
   return 0;
 }

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "lagrange/io.hpp"
+#include "support/seconds_since.hpp"
 
 namespace lagrange::cli {
 
@@ -53,10 +54,6 @@ std::vector<double> values_of(const sweep::Case& c) {
   std::vector<double> v;
   for (const auto& [name, value] : c.values) v.push_back(value);
   return v;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace

@@ -12,16 +12,13 @@
 #include "lagrange/error.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
+#include "support/seconds_since.hpp"
 
 namespace lagrange::cli {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // `--initial NAME=VALUE`: a coordinate (position) or `NAME_dot` (velocity) of the compiled model.
 // A free body's rotation entries are left to the model file: nine numbers that must stay a

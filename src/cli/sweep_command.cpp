@@ -37,6 +37,7 @@
 
 #ifdef LAGRANGE_HAVE_MPI
 #include "cli/sweep_mpi.hpp"
+#include "support/seconds_since.hpp"
 #endif
 
 namespace lagrange::cli {
@@ -45,10 +46,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Started by mpirun (OpenMPI's or a PMI launcher's environment) with more than one rank.
 bool started_by_mpirun() {

@@ -56,11 +56,6 @@ class RunningCompiler {
   std::atomic<pid_t>* slot_ = nullptr;
 };
 
-std::string env(const char* name) {
-  const char* v = std::getenv(name);
-  return v != nullptr ? std::string(v) : std::string();
-}
-
 /// The first lines of a compiler log, for the error message.
 std::string log_head(const std::string& path) {
   std::ifstream in(path);
@@ -71,16 +66,21 @@ std::string log_head(const std::string& path) {
 
 }  // namespace
 
+std::string environment_variable(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr ? std::string(v) : std::string();
+}
+
 std::string resolve_c_compiler(const std::string& preferred) {
   std::string name = preferred;
-  if (name.empty()) name = env("LAGRANGE_CC");
-  if (name.empty()) name = env("CC");
+  if (name.empty()) name = environment_variable("LAGRANGE_CC");
+  if (name.empty()) name = environment_variable("CC");
   if (name.empty()) name = "cc";
   if (name.find('/') != std::string::npos) {
     if (::access(name.c_str(), X_OK) == 0) return name;
     throw MachineCodeError(fmt::format("the C compiler '{}' is not an executable file", name));
   }
-  std::stringstream path(env("PATH"));
+  std::stringstream path(environment_variable("PATH"));
   for (std::string dir; std::getline(path, dir, ':');) {
     const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
     if (::access(candidate.c_str(), X_OK) == 0) return candidate;
@@ -95,7 +95,7 @@ void kill_running_c_compilers() {
 }
 
 double c_compiler_timeout() {
-  const std::string text = env("LAGRANGE_CC_TIMEOUT");
+  const std::string text = environment_variable("LAGRANGE_CC_TIMEOUT");
   char* end = nullptr;
   const double seconds = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
   const bool given =

@@ -8,6 +8,9 @@
 
 namespace lagrange {
 
+/// The environment variable `name`, or "" when it is not set.
+std::string environment_variable(const char* name);
+
 /// The compiler's full path: `preferred` when not empty, else $LAGRANGE_CC, else $CC, else `cc`;
 /// a name with a slash is taken as a path, others are looked up on PATH (MachineCodeError if none).
 std::string resolve_c_compiler(const std::string& preferred);

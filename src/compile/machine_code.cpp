@@ -41,16 +41,11 @@ constexpr const char* kFormat = "lagrange machine code 1";
 
 using Clock = std::chrono::steady_clock;
 
-std::string env(const char* name) {
-  const char* v = std::getenv(name);
-  return v != nullptr ? std::string(v) : std::string();
-}
-
 std::string cache_directory(const MachineCodeOptions& options) {
   if (!options.cache_dir.empty()) return options.cache_dir;
-  if (std::string d = env("LAGRANGE_CACHE_DIR"); !d.empty()) return d;
-  if (std::string d = env("XDG_CACHE_HOME"); !d.empty()) return d + "/lagrange";
-  if (std::string d = env("HOME"); !d.empty()) return d + "/.cache/lagrange";
+  if (std::string d = environment_variable("LAGRANGE_CACHE_DIR"); !d.empty()) return d;
+  if (std::string d = environment_variable("XDG_CACHE_HOME"); !d.empty()) return d + "/lagrange";
+  if (std::string d = environment_variable("HOME"); !d.empty()) return d + "/.cache/lagrange";
   throw MachineCodeError("no cache directory: set LAGRANGE_CACHE_DIR (HOME is not set)");
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "lagrange/tape.hpp"
@@ -151,6 +152,13 @@ void for_each_operand(const Instr& ins, const std::vector<std::uint32_t>& args, 
       p += k + 1;
     }
   }
+}
+
+/// Appends " + c" / " - |c|" when c ≠ 0, as eval adds it last; `write` prints |c| (the C and
+/// text emitters print numbers differently).
+template <class Write>
+void append_constant(std::string& s, double c, Write write) {
+  if (c != 0.0) s += (c < 0 ? " - " : " + ") + write(std::fabs(c));
 }
 
 }  // namespace lagrange::tape_detail

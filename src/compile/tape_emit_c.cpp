@@ -52,11 +52,6 @@ void append_term(std::string& s, bool first, double coef, const std::uint32_t* f
   }
 }
 
-/// Appends " + c" / " - |c|" when c ≠ 0, as eval adds it last.
-void append_constant(std::string& s, double c) {
-  if (c != 0.0) s += (c < 0 ? " - " : " + ") + literal(std::fabs(c));
-}
-
 /// Where a shared tape's constants are read (Tape::to_shared_c): `array[next]`, `next` counting
 /// up from the first constant's index in the order of Tape::constants().
 struct ConstantSlots {
@@ -129,7 +124,7 @@ void append_statement(std::string& s, const Tape::Instr& ins,
       for (std::uint32_t i = 0; i < ins.b; ++i) {
         append_term(s, i == 0, coeffs[ins.a + i], &args[ins.a + i], 1);
       }
-      append_constant(s, ins.c);
+      tape_detail::append_constant(s, ins.c, literal);
       break;
     case Op::SumProd: {
       std::uint32_t p = ins.a;
@@ -137,7 +132,7 @@ void append_statement(std::string& s, const Tape::Instr& ins,
         append_term(s, t == 0, coeffs[p], &args[p + 1], args[p]);
         p += args[p] + 1;
       }
-      append_constant(s, ins.c);
+      tape_detail::append_constant(s, ins.c, literal);
       break;
     }
     case Op::Prod:

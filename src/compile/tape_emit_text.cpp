@@ -36,10 +36,6 @@ void append_term(std::string& s, bool first, double coef, const std::vector<std:
   for (size_t j = 0; j < f.size(); ++j) s += (j ? "*" : "") + f[j];
 }
 
-void append_constant(std::string& s, double c) {
-  if (c != 0.0) s += (c < 0 ? " - " : " + ") + number(std::fabs(c));
-}
-
 }  // namespace
 
 Tape::Text Tape::to_text(const std::vector<std::string>& input_names,
@@ -92,7 +88,7 @@ Tape::Text Tape::to_text(const std::vector<std::string>& input_names,
       case Op::Sum:
         for (std::uint32_t i = 0; i < ins.b; ++i)
           append_term(s, i == 0, coeffs_[ins.a + i], {ops[i]});
-        append_constant(s, ins.c);
+        tape_detail::append_constant(s, ins.c, number);
         break;
       case Op::SumProd: {
         std::uint32_t p = ins.a;
@@ -103,7 +99,7 @@ Tape::Text Tape::to_text(const std::vector<std::string>& input_names,
           next += args_[p];
           p += args_[p] + 1;
         }
-        append_constant(s, ins.c);
+        tape_detail::append_constant(s, ins.c, number);
         break;
       }
       case Op::Prod:

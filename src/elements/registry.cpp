@@ -4,14 +4,6 @@
 
 namespace lagrange::elements {
 
-namespace {
-std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
-  YAML::Node n = root[key];
-  if (!n || n.IsNull()) return std::nullopt;
-  return n;
-}
-}  // namespace
-
 std::vector<ElementEntry> element_entries(model::ModelReader& r, const YAML::Node& section,
                                           const std::string& section_name, const std::string& kind,
                                           const std::vector<std::string>& keys,
@@ -36,22 +28,22 @@ const std::vector<std::string>& element_keys() {
 }
 
 void declare_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
-  if (auto n = section(root, "wind")) read_wind(reader, *n, ctx);
-  if (auto n = section(root, "winches")) declare_winches(reader, *n, ctx);
-  if (auto n = section(root, "bridles")) declare_bridles(reader, *n, ctx);
-  if (auto n = section(root, "tethers")) declare_tethers(reader, *n, ctx);
-  if (auto n = section(root, "kites")) declare_kites(reader, *n, ctx);
-  if (auto n = section(root, "links")) declare_links(reader, *n, ctx.links);
-  if (auto n = section(root, "urdf")) declare_urdf(reader, *n, ctx.urdf);
+  if (auto n = model::section(root, "wind")) read_wind(reader, *n, ctx);
+  if (auto n = model::section(root, "winches")) declare_winches(reader, *n, ctx);
+  if (auto n = model::section(root, "bridles")) declare_bridles(reader, *n, ctx);
+  if (auto n = model::section(root, "tethers")) declare_tethers(reader, *n, ctx);
+  if (auto n = model::section(root, "kites")) declare_kites(reader, *n, ctx);
+  if (auto n = model::section(root, "links")) declare_links(reader, *n, ctx.links);
+  if (auto n = model::section(root, "urdf")) declare_urdf(reader, *n, ctx.urdf);
 }
 
 void lower_elements(model::ModelReader& reader, const YAML::Node& root, ElementContext& ctx) {
-  if (auto n = section(root, "tethers")) lower_tethers(reader, *n, ctx);
-  if (auto n = section(root, "bridles")) lower_bridles(reader, *n, ctx);
+  if (auto n = model::section(root, "tethers")) lower_tethers(reader, *n, ctx);
+  if (auto n = model::section(root, "bridles")) lower_bridles(reader, *n, ctx);
   lower_winches(reader, ctx);
-  if (auto n = section(root, "kites")) lower_kites(reader, *n, ctx);
-  if (section(root, "links")) lower_links(reader, ctx.links);
-  if (section(root, "urdf")) lower_chain(reader, ctx.urdf);
+  if (auto n = model::section(root, "kites")) lower_kites(reader, *n, ctx);
+  if (model::section(root, "links")) lower_links(reader, ctx.links);
+  if (model::section(root, "urdf")) lower_chain(reader, ctx.urdf);
 }
 
 }  // namespace lagrange::elements

@@ -17,6 +17,13 @@
 
 namespace lagrange::model {
 
+/// A section's node, or nothing when the key is absent or has no value.
+inline std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
+  YAML::Node n = root[key];
+  if (!n || n.IsNull()) return std::nullopt;
+  return n;
+}
+
 /// What a user-chosen name denotes. Derived: NAME_dot / NAME_ddot of a coordinate or input;
 /// BodyPoint: `body.point`, a point declared in a body's `points`.
 enum class NameKind {

@@ -7,6 +7,11 @@
 
 namespace lagrange::model {
 
+/// Every component identically zero (as GiNaC's is_zero: no simplification).
+inline bool is_zero(const Vec3& v) {
+  return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
+}
+
 /// a + b.
 inline Vec3 add(const Vec3& a, const Vec3& b) {
   return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};

@@ -33,13 +33,6 @@ const std::vector<std::string>& top_level_keys() {
   return all;
 }
 
-/// A section's node, or nothing when the key is absent or has no value.
-std::optional<YAML::Node> section(const YAML::Node& root, const char* key) {
-  YAML::Node n = root[key];
-  if (!n || n.IsNull()) return std::nullopt;
-  return n;
-}
-
 }  // namespace
 
 ModelReader::ModelReader(const SourceText& src, const ParameterOverrides& overrides,

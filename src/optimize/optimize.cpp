@@ -17,6 +17,7 @@
 #include "optimize/ipopt_adapter.hpp"
 #include "optimize/transcription.hpp"
 #include "simulation/row_writer.hpp"
+#include "support/seconds_since.hpp"
 
 namespace lagrange {
 
@@ -108,10 +109,6 @@ std::vector<std::string> active_bounds(const collocation::Transcription& nlp, co
   std::vector<std::string> out;
   for (auto& [order, text] : ordered) out.push_back(std::move(text));
   return out;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 /// At t = 0 and every collocation point, simulate's row (trajectory_columns: t, q, v, energies,

@@ -4,16 +4,11 @@
 #include <cmath>
 
 #include "lagrange/simulation.hpp"
+#include "simulation/max_abs.hpp"
 
 namespace lagrange {
 
 namespace {
-
-double max_abs(const std::vector<double>& x) {
-  double r = 0.0;
-  for (double v : x) r = std::max(r, std::abs(v));
-  return r;
-}
 
 /// Gauss–Newton to well below `tol`, so that the state is consistent with a margin.
 constexpr double kProjectionTarget = 1e-13;

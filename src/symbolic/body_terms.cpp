@@ -15,10 +15,6 @@ using model::mat_vec;
 
 namespace {
 
-bool is_zero(const Vec3& v) {
-  return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
-}
-
 // ω = U(Ω) = ½(Ω₃₂ − Ω₂₃, Ω₁₃ − Ω₃₁, Ω₂₁ − Ω₁₂), each simplified (sin² + cos² = 1) within
 // kDerivationTerms (issue 37 item 12): the normal form of a rotation composed of many turns grows
 // exponentially; beyond, ω is kept as given.
@@ -167,7 +163,7 @@ void add_body_terms(const Kinematics& state_kin, MechanicalTerms& terms) {
 
     std::vector<size_t> active;
     for (size_t k = 0; k < nv; ++k)
-      if (!is_zero(Jc[k]) || !is_zero(Jw[k])) active.push_back(k);
+      if (!model::is_zero(Jc[k]) || !model::is_zero(Jw[k])) active.push_back(k);
     for (size_t a = 0; a < active.size(); ++a) {
       const size_t i = active[a];
       const Vec3 IJi = mat_vec(I, Jw[i]);

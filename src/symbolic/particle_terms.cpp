@@ -1,6 +1,7 @@
 #include <map>
 
 #include "lagrange/error.hpp"
+#include "model/vec3_algebra.hpp"
 #include "symbolic/gradient_cache.hpp"
 #include "symbolic/mechanical_terms.hpp"
 #include "symbolic/time_partials.hpp"
@@ -11,10 +12,6 @@ namespace {
 
 using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
 using ExVecMap = std::map<GiNaC::ex, Vec3, GiNaC::ex_is_less>;
-
-bool is_zero(const Vec3& v) {
-  return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
-}
 
 GiNaC::ex key_of(const Vec3& col) {
   return GiNaC::lst{col[0], col[1], col[2]};
@@ -53,7 +50,7 @@ void add_particle_terms(const Kinematics& kin, MechanicalTerms& terms) {
     terms.U -= m * dot(g_k, point->pos);
     std::vector<size_t> active;
     for (size_t i = 0; i < n; ++i)
-      if (!is_zero(J[i])) active.push_back(i);
+      if (!model::is_zero(J[i])) active.push_back(i);
     for (size_t a = 0; a < active.size(); ++a) {
       const size_t i = active[a];
       GiNaC::ex key_i = key_of(J[i]);
