@@ -42,7 +42,12 @@ elif [ "$case" = kite ]; then
   hessian=${HESSIAN:-exact}
   model=$root/examples/optimal/power_cycle_pointmass.yaml
   title="point-mass kite power cycle, N = $N, d = $degree, $hessian Hessian (CasADi: ${GRAPH:-sx} graph), tol 1e-8"
-  "$build/lagrange" derive "$model" --format json >"$work/kite.json"
+  # GiNaC orders terms by hashes seeded from load addresses (docs/errors.md, "Determinism"), so
+  # the printed equations' term order, and with it CasADi's round-off, changes from run to run
+  # unless address randomisation is off; lagrange's own tapes use a canonical order.
+  norandom=()
+  setarch "$(uname -m)" -R true 2>/dev/null && norandom=(setarch "$(uname -m)" -R)
+  "${norandom[@]}" "$build/lagrange" derive "$model" --format json >"$work/kite.json"
   # lagrange's starting point, as Ipopt receives it (stopped before its first iteration).
   "$build/lagrange" optimize "$model" --intervals "$N" --degree "$degree" --ipopt max_iter=0 \
     -o "$work/start.csv" >/dev/null 2>&1 || [ -s "$work/start.csv" ]
@@ -96,10 +101,13 @@ for ((r = 0; r < runs; ++r)); do
   run_casadi >>"$work/casadi"
 done
 
-# Both must reach the same optimum before any time means anything.
-paste -d' ' "$work/lagrange" "$work/casadi" | awk '
+# Both must reach the same optimum before any time means anything; the kite's orbit is
+# multi-modal and its optimum decided by round-off along Ipopt's path (docs/benchmarks.md, "a
+# kite's power cycle"), so there the two local optima are reported and the time per iteration
+# is the figure to compare.
+paste -d' ' "$work/lagrange" "$work/casadi" | awk -v kite="$([ "$case" = kite ] && echo 1)" '
   {d = $1 - $7; if (d < 0) d = -d; if (d > 1e-6 * $7) {
-     printf "objectives differ: lagrange %s, CasADi %s\n", $1, $7 > "/dev/stderr"; exit 1}}'
+     printf "objectives differ: lagrange %s, CasADi %s\n", $1, $7 > "/dev/stderr"; if (!kite) exit 1}}'
 
 echo "$title; median of $runs runs each (A B A B)"
 echo "lagrange's tapes: --compile $compile ($("$build/lagrange" optimize "$model" --intervals "$N" \
@@ -116,14 +124,15 @@ paste -d' ' "$work/lagrange" "$work/casadi" | awk -v runs="$runs" '
       o = 6 * s
       v[s, 1, NR] = $(o + 3); v[s, 2, NR] = $(o + 2); v[s, 3, NR] = $(o + 4)
       v[s, 4, NR] = $(o + 3) + $(o + 4); v[s, 5, NR] = $(o + 5); v[s, 6, NR] = $(o + 5) / $(o + 4)
-      v[s, 7, NR] = $(o + 6); v[s, 8, NR] = $(o + 1)
+      v[s, 7, NR] = $(o + 6); v[s, 8, NR] = $(o + 1); v[s, 9, NR] = 1000 * $(o + 5) / $(o + 2)
+      v[s, 10, NR] = 1000 * $(o + 4) / $(o + 2)
     }
   }
   END {
-    split("set-up s|Ipopt iterations|solve s|total (set-up + solve) s|time in NLP functions s|functions / solve|whole process wall s|objective", name, "|")
+    split("set-up s|Ipopt iterations|solve s|total (set-up + solve) s|time in NLP functions s|functions / solve|whole process wall s|objective|functions per iteration ms|solve per iteration ms", name, "|")
     printf "| %-26s | %10s | %10s | %16s |\n", "figure", "lagrange", "CasADi", "lagrange/CasADi"
     printf "|%s|%s|%s|%s|\n", "----------------------------", "------------", "------------", "------------------"
-    for (f = 1; f <= 8; ++f) {
+    for (f = 1; f <= 10; ++f) {
       for (r = 1; r <= NR; ++r) {a[r] = v[0, f, r]; b[r] = v[1, f, r]; q[r] = b[r] != 0 ? a[r] / b[r] : 0}
       ma = median(a, NR); mb = median(b, NR); mq = median(q, NR)
       if (f == 8) printf "| %-26s | %10.6f | %10.6f | %16s |\n", name[f], ma, mb, ""
