@@ -20,6 +20,7 @@
 #include "run.hpp"
 #include "stepper.hpp"
 #include "study.hpp"
+#include "support/seconds_since.hpp"
 
 namespace py = pybind11;
 
@@ -97,8 +98,7 @@ py::object simulate(const PyModel& m, std::optional<double> t_end,
     py::gil_scoped_release release;
     const auto start = std::chrono::steady_clock::now();
     run->trajectory = lagrange::simulate(dynamics, so, p.q, p.v);
-    run->wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run->wall_seconds = lagrange::seconds_since(start);
   }
   if (!p.initial.was_consistent)
     run->trajectory.notes.insert(run->trajectory.notes.begin(), p.initial.note());

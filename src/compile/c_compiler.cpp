@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "lagrange/machine_code.hpp"
+#include "support/seconds_since.hpp"
 
 extern char** environ;
 
@@ -142,8 +143,7 @@ void run_c_compiler(const std::string& compiler, const std::vector<std::string>&
       stop = "compilation cancelled";
     else if (watch.interrupted && watch.interrupted())
       stop = "compilation interrupted";
-    else if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-             limit)
+    else if (seconds_since(start) > limit)
       stop = fmt::format(
           "the C compiler '{}' ran for more than {:g} s and was stopped (the limit is "
           "$LAGRANGE_CC_TIMEOUT seconds, {:g} by default)",

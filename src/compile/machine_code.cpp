@@ -27,6 +27,7 @@
 
 #include "compile/c_compiler.hpp"
 #include "compile/sha256.hpp"
+#include "support/seconds_since.hpp"
 
 namespace lagrange {
 
@@ -242,7 +243,7 @@ std::shared_ptr<const MachineCode> MachineCode::cached(const std::vector<const T
   auto code = load(p.path, p.origin, tapes.size(), rejected);
   if (code) {
     code->from_cache_ = true;
-    code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+    code->seconds_ = seconds_since(start);
   }
   return code;
 }
@@ -255,7 +256,7 @@ std::shared_ptr<const MachineCode> MachineCode::build(const std::vector<const Ta
   std::string rejected;
   if (auto code = load(p.path, p.origin, tapes.size(), &rejected)) {
     code->from_cache_ = true;
-    code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+    code->seconds_ = seconds_since(start);
     return code;
   }
   make_directories(p.dir);
@@ -295,7 +296,7 @@ std::shared_ptr<const MachineCode> MachineCode::build(const std::vector<const Ta
     throw MachineCodeError(again.empty() ? fmt::format("'{}' vanished from the cache", p.path)
                                          : again);
   if (!rejected.empty()) code->note_ = rejected + "; recompiled";
-  code->seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  code->seconds_ = seconds_since(start);
   return code;
 }
 

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+
+#include "support/seconds_since.hpp"
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -205,8 +207,7 @@ class Adapter : public Ipopt::TNLP {
     } catch (const std::runtime_error&) {
       ok = false;
     }
-    out_.function_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out_.function_seconds += seconds_since(start);
     return ok;
   }
   /// Records where a value is not finite; the last such place is reported.

@@ -8,6 +8,7 @@
 
 #include "lagrange/dynamics.hpp"
 #include "lagrange/sweep.hpp"
+#include "support/seconds_since.hpp"
 
 namespace lagrange::sweep {
 
@@ -73,8 +74,7 @@ CaseResult run_case(Dynamics& dyn, const CaseInput& input, const std::vector<Met
       result.metrics.push_back(evaluate(m, traj, input.parameters, row_at));
   } else
     result.metrics.assign(metrics.size(), std::nan(""));
-  result.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_seconds = seconds_since(start);
   if (kept) *kept = std::move(traj);
   return result;
 }

@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "hardening/cli_runner.hpp"
 #include "lagrange/equations.hpp"
 #include "lagrange/io.hpp"
 #include "lagrange/reader.hpp"
@@ -25,8 +26,9 @@ namespace fs = std::filesystem;
 std::vector<double> run_exported(const CompiledModel& cm, const std::string& tag,
                                  const std::vector<double>& q, const std::vector<double>& v,
                                  double t, double alpha) {
-  const fs::path dir = fs::temp_directory_path() / ("lagrange_export_" + testing::model_label(tag));
-  fs::remove_all(dir);
+  // A folder of this process's own: two tests export the same example, and ctest runs them at once.
+  const hardening::ScratchDir scratch("export-" + testing::model_label(tag));
+  const fs::path& dir = scratch.path();
   export_c(cm, dir.string());
   std::ostringstream main;
   main << "#include <stdio.h>\n#include \"lagrange_model.h\"\nint main(void) {\n";

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "analysis/analysed.hpp"
+#include "hardening/cli_runner.hpp"
 #include "lagrange/io.hpp"
 
 namespace lagrange {
@@ -35,8 +36,8 @@ Exported run_exported(const DynamicsJacobian& jac, const std::string& tag,
                       const std::vector<double>& q, const std::vector<double>& v, double t,
                       double alpha) {
   const CompiledModel& cm = jac.model();
-  const fs::path dir = fs::temp_directory_path() / ("lagrange_export_jacobian_" + tag);
-  fs::remove_all(dir);
+  const hardening::ScratchDir scratch("export-jacobian-" + tag);  // this process's own folder
+  const fs::path& dir = scratch.path();
   export_c_jacobian(jac, dir.string());
   std::ostringstream main;
   main << std::setprecision(17) << "#include <stdio.h>\n#include \"lagrange_jacobian.h\"\n"
