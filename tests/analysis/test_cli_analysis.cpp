@@ -20,9 +20,7 @@ Result run(const std::string& args) {
   return lagrange::testing::run_shell(args);
 }
 
-std::string example(const std::string& name) {
-  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
-}
+using lagrange::test::example_path;
 
 fs::path write_model(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / "lagrange_cli_analysis_test";
@@ -32,7 +30,7 @@ fs::path write_model(const std::string& name, const std::string& text) {
 }
 
 TEST(CliLinearize, PendulumTextShowsStatesMatricesAndModes) {
-  const Result r = run("linearize " + example("pendulum.yaml") + " --at theta=0");
+  const Result r = run("linearize " + example_path("pendulum.yaml") + " --at theta=0");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("states (2): theta, theta_dot"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("-9.81"), std::string::npos) << r.output;
@@ -43,7 +41,7 @@ TEST(CliLinearize, PendulumTextShowsStatesMatricesAndModes) {
 
 TEST(CliLinearize, CartesianPendulumJsonOnTheManifold) {
   const Result r =
-      run("linearize " + example("cartesian_pendulum.yaml") + " --at x=0,y=-1 --format json");
+      run("linearize " + example_path("cartesian_pendulum.yaml") + " --at x=0,y=-1 --format json");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   EXPECT_EQ(j["states"], (std::vector<std::string>{"x", "x_dot"}));
@@ -54,7 +52,7 @@ TEST(CliLinearize, CartesianPendulumJsonOnTheManifold) {
 }
 
 TEST(CliLinearize, InputsOutputsDiscreteAndCsv) {
-  const Result r = run("linearize " + example("pendulum.yaml") +
+  const Result r = run("linearize " + example_path("pendulum.yaml") +
                        " --at theta=0 --inputs g --outputs x,theta --discrete 0.01 --format csv");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("B,g\n"), std::string::npos) << r.output;
@@ -67,23 +65,23 @@ TEST(CliLinearize, InputsOutputsDiscreteAndCsv) {
 }
 
 TEST(CliLinearize, BadNamesAreUsageErrors) {
-  Result r = run("linearize " + example("pendulum.yaml") + " --inputs torque");
+  Result r = run("linearize " + example_path("pendulum.yaml") + " --inputs torque");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--inputs: no input or parameter 'torque'"), std::string::npos)
       << r.output;
-  r = run("linearize " + example("pendulum.yaml") + " --outputs speed");
+  r = run("linearize " + example_path("pendulum.yaml") + " --outputs speed");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("no output 'speed'"), std::string::npos) << r.output;
-  r = run("linearize " + example("pendulum.yaml") + " --at phi=1");
+  r = run("linearize " + example_path("pendulum.yaml") + " --at phi=1");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("'phi'"), std::string::npos) << r.output;
-  r = run("linearize " + example("pendulum.yaml") + " --discrete -1");
+  r = run("linearize " + example_path("pendulum.yaml") + " --discrete -1");
   EXPECT_EQ(r.code, 2) << r.output;
 }
 
 // A control law with |azimuth| at azimuth 0 is not differentiable there: refused (exit 3).
 TEST(CliLinearize, NonDifferentiablePointIsRefused) {
-  const Result r = run("linearize " + example("figure_eight.yaml"));
+  const Result r = run("linearize " + example_path("figure_eight.yaml"));
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("not differentiable"), std::string::npos) << r.output;
 }
@@ -170,7 +168,7 @@ forces: [{point: bob, force: -c*norm(vel(bob))*vel(bob)}]
 }
 
 TEST(CliTrim, PendulumFromTwentyDegreesPrintsTheInitialBlock) {
-  const Result r = run("trim " + example("pendulum.yaml") + " --at theta=0.349");
+  const Result r = run("trim " + example_path("pendulum.yaml") + " --at theta=0.349");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("equilibrium found by Levenberg–Marquardt"), std::string::npos)
       << r.output;
@@ -182,7 +180,7 @@ TEST(CliTrim, PendulumFromTwentyDegreesPrintsTheInitialBlock) {
 }
 
 TEST(CliTrim, CartesianPendulumReportsTheConstraintResidual) {
-  const Result r = run("trim " + example("cartesian_pendulum.yaml"));
+  const Result r = run("trim " + example_path("cartesian_pendulum.yaml"));
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("max |C| ="), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("y: {initial: -1"), std::string::npos) << r.output;
@@ -222,10 +220,10 @@ potential: m*(x^3/3 + x)
 }
 
 TEST(CliTrim, UnknownOrNoFreeCoordinatesAreUsageErrors) {
-  Result r = run("trim " + example("pendulum.yaml") + " --free phi");
+  Result r = run("trim " + example_path("pendulum.yaml") + " --free phi");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--free: no coordinate 'phi'"), std::string::npos) << r.output;
-  r = run("trim " + example("pendulum.yaml") + " --fix theta");
+  r = run("trim " + example_path("pendulum.yaml") + " --fix theta");
   EXPECT_EQ(r.code, 2) << r.output;
 }
 
@@ -266,7 +264,8 @@ TEST(CliLinearize, AtTrimSaysWhereTheOperatingPointCameFrom) {
   EXPECT_NE(r.output.find("operating point from trim: steady state found"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("a steady motion (held rates)"), std::string::npos) << r.output;
-  r = run("linearize " + example("pendulum.yaml") + " --at-trim --at theta=0.349 --format json");
+  r = run("linearize " + example_path("pendulum.yaml") +
+          " --at-trim --at theta=0.349 --format json");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   EXPECT_FALSE(j["trim"]["steady"].get<bool>());
@@ -287,7 +286,7 @@ TEST(CliTrim, SteadyNamesAreChecked) {
   r = run("linearize " + model.string() + " --steady phi_dot");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("--at-trim"), std::string::npos) << r.output;
-  r = run("trim " + example("heavy_top.yaml") + " --steady top.omega_z");
+  r = run("trim " + example_path("heavy_top.yaml") + " --steady top.omega_z");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("free body"), std::string::npos) << r.output;
 }

@@ -15,7 +15,8 @@ namespace {
 using testing::Analysed;
 
 // F(y, y') of the DAE that ida integrates, y = (q, v, λ).
-Eigen::VectorXd residual(Analysed& s, const std::vector<double>& y, const std::vector<double>& yp) {
+Eigen::VectorXd dae_residual_at(Analysed& s, const std::vector<double>& y,
+                                const std::vector<double>& yp) {
   const CompiledModel& cm = *s.cm;
   const size_t nq = cm.nq, n = cm.nq + cm.nv;
   Eigen::VectorXd r(static_cast<long>(n + cm.m));
@@ -28,7 +29,7 @@ Eigen::VectorXd residual(Analysed& s, const std::vector<double>& y, const std::v
 // Richardson-extrapolated central differences of F in y and y': max error ≤ 1e-6 · max(1, |J|).
 // The state is the model's start with y' = (q̇, a) of the forward dynamics moved off by a
 // smooth pattern, and λ likewise: the matrix is exact at any (y, y'), not only on the solution.
-void check_against_differences(Analysed s, const std::string& example) {
+void check_newton_matrix_against_differences(Analysed s, const std::string& example) {
   const CompiledModel& cm = *s.cm;
   const size_t nq = cm.nq, nv = cm.nv, n = nq + nv, size = n + cm.m;
   std::vector<double> y(size), yp(size, 0.0);
@@ -57,7 +58,7 @@ void check_against_differences(Analysed s, const std::string& example) {
       const double x0 = x[j], h = 1e-4 * std::max(1.0, std::abs(x0));
       const auto F = [&](double d) {
         x[j] = x0 + d;
-        const Eigen::VectorXd r = residual(s, y, yp);
+        const Eigen::VectorXd r = dae_residual_at(s, y, yp);
         x[j] = x0;
         return r;
       };
@@ -72,11 +73,13 @@ void check_against_differences(Analysed s, const std::string& example) {
 }
 
 TEST(DaeJacobian, TetherInWindAgainstDifferences) {
-  check_against_differences(testing::analyse_example("tether_in_wind.yaml"), "tether_in_wind");
+  check_newton_matrix_against_differences(testing::analyse_example("tether_in_wind.yaml"),
+                                          "tether_in_wind");
 }
 // A free body: R's nine entries with Ṙ = R(Ω + Ξ), as ida integrates them.
 TEST(DaeJacobian, RigidKiteAgainstDifferences) {
-  check_against_differences(testing::analyse_example("rigid_kite_ap2.yaml"), "rigid AP2");
+  check_newton_matrix_against_differences(testing::analyse_example("rigid_kite_ap2.yaml"),
+                                          "rigid AP2");
 }
 
 // ida:jacobian at rtol 1e-10 against DOP853 at rtol 1e-12 over 1 s of the example: every

@@ -20,9 +20,7 @@ Result run(const std::string& args) {
   return lagrange::testing::run_shell(args);
 }
 
-std::string example(const std::string& name) {
-  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
-}
+using lagrange::test::example_path;
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / "lagrange_cli_test";
@@ -40,7 +38,7 @@ fs::path write_model(const std::string& name, const std::string& text) {
 
 TEST(Cli, SimulateWritesCsvSidecarAndPlot) {
   const fs::path csv = scratch("dp.csv"), svg = scratch("dp.svg");
-  const Result r = run("simulate " + example("double_pendulum.yaml") + " --t-end 1 -o " +
+  const Result r = run("simulate " + example_path("double_pendulum.yaml") + " --t-end 1 -o " +
                        csv.string() + " --plot " + svg.string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(csv);
@@ -60,8 +58,8 @@ TEST(Cli, PlotsPngAndCreatesMissingDirectories) {
   const fs::path dir = scratch("new_dir");
   fs::remove_all(dir);
   const fs::path csv = dir / "runs" / "p.csv", png = dir / "plots" / "p.png";
-  const Result r = run("simulate " + example("pendulum.yaml") + " --t-end 1 -q -o " + csv.string() +
-                       " --plot " + png.string());
+  const Result r = run("simulate " + example_path("pendulum.yaml") + " --t-end 1 -q -o " +
+                       csv.string() + " --plot " + png.string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(csv));
   EXPECT_TRUE(fs::exists(csv.string() + ".json"));
@@ -74,13 +72,13 @@ TEST(Cli, PlotsPngAndCreatesMissingDirectories) {
 
 TEST(Cli, PlotOptionsAreCheckedBeforeTheRun) {
   const fs::path csv = scratch("refused.csv");
-  const Result pdf = run("simulate " + example("pendulum.yaml") + " -o " + csv.string() +
+  const Result pdf = run("simulate " + example_path("pendulum.yaml") + " -o " + csv.string() +
                          " --plot " + scratch("p.pdf").string());
   EXPECT_EQ(pdf.code, 2);
   EXPECT_NE(pdf.output.find("--plot: expected a plot file ending in .svg or .png, got '"),
             std::string::npos)
       << pdf.output;
-  const Result column = run("simulate " + example("pendulum.yaml") + " -o " + csv.string() +
+  const Result column = run("simulate " + example_path("pendulum.yaml") + " -o " + csv.string() +
                             " --plot " + scratch("p.svg").string() + " --plot-columns nope");
   EXPECT_EQ(column.code, 2);
   EXPECT_NE(column.output.find("--plot-columns: no column 'nope'"), std::string::npos)
@@ -107,7 +105,7 @@ TEST(Cli, EnergyChangeIsAbsoluteWhenTheStartingEnergyIsZero) {
   const double absolute = change(zero.output, "absolute");
   EXPECT_GE(absolute, 0.0) << zero.output;
   EXPECT_LT(absolute, 1e-6) << zero.output;  // joules; rtol 1e-10 over one second
-  const Result nonzero = run("simulate " + example("pendulum.yaml") + " --t-end 1");
+  const Result nonzero = run("simulate " + example_path("pendulum.yaml") + " --t-end 1");
   ASSERT_EQ(nonzero.code, 0) << nonzero.output;
   EXPECT_EQ(nonzero.output.find("absolute change"), std::string::npos) << nonzero.output;
   const double relative = change(nonzero.output, "relative");
@@ -117,9 +115,11 @@ TEST(Cli, EnergyChangeIsAbsoluteWhenTheStartingEnergyIsZero) {
 
 TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
   const fs::path a = scratch("a.csv"), b = scratch("b.csv");
-  ASSERT_EQ(run("simulate " + example("pendulum.yaml") + " -q --t-end 1 -o " + a.string()).code, 0);
   ASSERT_EQ(
-      run("simulate " + example("pendulum.yaml") + " -q --t-end 2 --set l=4 -o " + b.string()).code,
+      run("simulate " + example_path("pendulum.yaml") + " -q --t-end 1 -o " + a.string()).code, 0);
+  ASSERT_EQ(
+      run("simulate " + example_path("pendulum.yaml") + " -q --t-end 2 --set l=4 -o " + b.string())
+          .code,
       0);
   auto last_theta = [](const fs::path& p) {
     std::ifstream in(p);
@@ -128,26 +128,26 @@ TEST(Cli, SetChangesParameterWithoutEditingTheFile) {
     return std::stod(last.substr(last.find(',') + 1));
   };
   EXPECT_NEAR(last_theta(a), last_theta(b), 1e-6);  // l → 4l doubles the time scale
-  const Result bad = run("simulate " + example("pendulum.yaml") + " --set nope=1");
+  const Result bad = run("simulate " + example_path("pendulum.yaml") + " --set nope=1");
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.output.find("unknown parameter 'nope'"), std::string::npos) << bad.output;
 }
 
 TEST(Cli, DeriveShowsSeedEquation) {
-  const Result r = run("derive " + example("pendulum.yaml"));
+  const Result r = run("derive " + example_path("pendulum.yaml"));
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("Mass matrix"), std::string::npos);
-  const Result tex = run("derive " + example("cartesian_pendulum.yaml") + " --format latex");
+  const Result tex = run("derive " + example_path("cartesian_pendulum.yaml") + " --format latex");
   ASSERT_EQ(tex.code, 0) << tex.output;
   EXPECT_NE(tex.output.find("\\begin{align*}"), std::string::npos);
-  const Result json = run("derive " + example("elastic_pendulum.yaml") + " --format json");
+  const Result json = run("derive " + example_path("elastic_pendulum.yaml") + " --format json");
   ASSERT_EQ(json.code, 0) << json.output;
   EXPECT_NE(json.output.find("\"M\""), std::string::npos);
 }
 
 // docs/theory.md §4.4: a free body's equations in the seed's form, a posed body's ω and T.
 TEST(Cli, DeriveShowsBodyEquations) {
-  const Result top = run("derive " + example("heavy_top.yaml"));
+  const Result top = run("derive " + example_path("heavy_top.yaml"));
   ASSERT_EQ(top.code, 0) << top.output;
   for (const char* s :
        {"Rigid body 'top': free in SO(3)", "m r'' + dV/dr = F_r",
@@ -161,11 +161,11 @@ TEST(Cli, DeriveShowsBodyEquations) {
   EXPECT_NE(line.find("top.az"), std::string::npos) << line;
   EXPECT_TRUE(line.find("m*g") != std::string::npos || line.find("g*m") != std::string::npos)
       << line;
-  const Result bar = run("derive " + example("compound_pendulum_planar.yaml"));
+  const Result bar = run("derive " + example_path("compound_pendulum_planar.yaml"));
   ASSERT_EQ(bar.code, 0) << bar.output;
   EXPECT_NE(bar.output.find("w_bar = unskew(R^T R') = [0, 0, theta_dot]"), std::string::npos)
       << bar.output;
-  const Result tex = run("derive " + example("tumbling_brick.yaml") + " --format latex");
+  const Result tex = run("derive " + example_path("tumbling_brick.yaml") + " --format latex");
   ASSERT_EQ(tex.code, 0) << tex.output;
   EXPECT_NE(tex.output.find("J_{\\mathrm{brick}}"), std::string::npos) << tex.output;
 }
@@ -287,7 +287,7 @@ constraints: {rod: (x^2 + y^2 - l^2)/2}
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("inconsistent"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("x: 0.9 ->"), std::string::npos) << r.output;
-  EXPECT_EQ(run("check " + example("cartesian_pendulum.yaml")).code, 0);
+  EXPECT_EQ(run("check " + example_path("cartesian_pendulum.yaml")).code, 0);
 }
 
 }  // namespace
@@ -297,7 +297,7 @@ constraints: {rod: (x^2 + y^2 - l^2)/2}
 TEST(Cli, ExportFmu) {
   const fs::path fmu = scratch("pendulum.fmu"), c_dir = fmu.parent_path() / "pendulum_c";
   fs::remove_all(c_dir);
-  const Result ok = run("export " + example("pendulum.yaml") + " --fmu " + fmu.string() +
+  const Result ok = run("export " + example_path("pendulum.yaml") + " --fmu " + fmu.string() +
                         " --fmi-type cs --c " + c_dir.string());
   ASSERT_EQ(ok.code, 0) << ok.output;
   EXPECT_NE(ok.output.find("FMI 2.0 Co-Simulation, 2 states"), std::string::npos) << ok.output;
@@ -313,7 +313,7 @@ TEST(Cli, ExportFmu) {
       {" --fmu " + fmu.string() + " --jacobian", "drop --jacobian"},
       {" --fmu " + fmu.string() + " --fmi-type cosim", "--fmi-type"}};
   for (const auto& [args, reason] : mistakes) {
-    const Result r = run("export " + example("pendulum.yaml") + args);
+    const Result r = run("export " + example_path("pendulum.yaml") + args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find(reason), std::string::npos) << r.output;
   }

@@ -24,7 +24,7 @@ const std::string kUr5 = std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots/ur
 const std::string kElbow = std::string(LAGRANGE_SOURCE_DIR) + "/examples/elbow_manipulator.yaml";
 
 /// The header and first data row of a CSV.
-std::pair<std::vector<std::string>, std::vector<double>> first_row(const fs::path& csv) {
+std::pair<std::vector<std::string>, std::vector<double>> header_and_first_row(const fs::path& csv) {
   std::istringstream in(slurp(csv));
   std::string line, field;
   std::vector<std::string> header;
@@ -52,7 +52,7 @@ TEST(SimulateInitial, UrdfRobotStartsAtTheGivenJointValuesAndRates) {
                                 "shoulder_lift_joint=-1.2,elbow_joint_dot=0.5", "--initial",
                                 "wrist_1_joint=0.3"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto row = first_row(csv);
+  const auto row = header_and_first_row(csv);
   EXPECT_DOUBLE_EQ(column(row, "shoulder_lift_joint"), -1.2);
   EXPECT_DOUBLE_EQ(column(row, "elbow_joint_dot"), 0.5);
   EXPECT_DOUBLE_EQ(column(row, "wrist_1_joint"), 0.3);
@@ -65,7 +65,7 @@ TEST(SimulateInitial, YamlModelTakesItToo) {
   const RunResult r = run_lagrange(dir.path(), {"simulate", kElbow, "--t-end", "0.1", "-o",
                                                 csv.string(), "--initial", "q2=1.5,q1_dot=-2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto row = first_row(csv);
+  const auto row = header_and_first_row(csv);
   EXPECT_DOUBLE_EQ(column(row, "q1"), 0.3);  // the file's
   EXPECT_DOUBLE_EQ(column(row, "q2"), 1.5);
   EXPECT_DOUBLE_EQ(column(row, "q1_dot"), -2.0);

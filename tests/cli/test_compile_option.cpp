@@ -13,9 +13,7 @@
 namespace lagrange::hardening {
 namespace {
 
-std::string example(const std::string& name) {
-  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
-}
+using lagrange::test::example_path;
 
 /// Runs lagrange with LAGRANGE_CACHE_DIR (and optionally LAGRANGE_CC) set for the child only.
 RunResult run_with(const ScratchDir& dir, const std::vector<std::string>& args,
@@ -36,7 +34,7 @@ size_t count(const std::string& text, const std::string& what) {
 
 TEST(CompileOption, MachineCodeWritesTheSameCsvAsTheInterpreter) {
   const ScratchDir dir("compile-same-csv");
-  const std::string model = example("five_bar.yaml");
+  const std::string model = example_path("five_bar.yaml");
   const RunResult off = run_with(dir, {"simulate", model, "--t-end", "2", "--compile", "off", "-o",
                                        (dir.path() / "off.csv").string()});
   const RunResult on = run_with(dir, {"simulate", model, "--t-end", "2", "--compile", "on", "-o",
@@ -57,7 +55,7 @@ TEST(CompileOption, MachineCodeWritesTheSameCsvAsTheInterpreter) {
 TEST(CompileOption, MissingCompilerIsSaidOnceAndTheRunGoesOn) {
   const ScratchDir dir("compile-no-cc");
   const RunResult r = run_with(dir,
-                               {"simulate", example("double_pendulum.yaml"), "--t-end", "1",
+                               {"simulate", example_path("double_pendulum.yaml"), "--t-end", "1",
                                 "--compile", "on", "-o", (dir.path() / "dp.csv").string()},
                                "no-such-compiler-for-lagrange");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -70,7 +68,7 @@ TEST(CompileOption, MissingCompilerIsSaidOnceAndTheRunGoesOn) {
 TEST(CompileOption, TamperedCacheEntriesAreRecompiledAndTheAnswerIsRight) {
   const ScratchDir dir("compile-tampered");
   const auto run = [&](const std::string& model, const std::string& csv) {
-    return run_with(dir, {"simulate", example(model), "--t-end", "1", "--compile", "on", "-o",
+    return run_with(dir, {"simulate", example_path(model), "--t-end", "1", "--compile", "on", "-o",
                           (dir.path() / csv).string()});
   };
   const auto library = [&] {
@@ -109,8 +107,9 @@ TEST(CompileOption, CacheDirectoryOthersCanWriteIsNotUsed) {
   const ScratchDir dir("compile-open-cache");
   fs::create_directory(dir.path() / "cache");
   fs::permissions(dir.path() / "cache", fs::perms::all);
-  const RunResult r = run_with(dir, {"simulate", example("double_pendulum.yaml"), "--t-end", "1",
-                                     "--compile", "on", "-o", (dir.path() / "dp.csv").string()});
+  const RunResult r =
+      run_with(dir, {"simulate", example_path("double_pendulum.yaml"), "--t-end", "1", "--compile",
+                     "on", "-o", (dir.path() / "dp.csv").string()});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("is writable by group or others (mode 0777): code in it is not loaded"),
             std::string::npos)
@@ -122,7 +121,7 @@ TEST(CompileOption, CacheDirectoryOthersCanWriteIsNotUsed) {
 TEST(CompileOption, UnknownValueIsAUsageError) {
   const ScratchDir dir("compile-bad-value");
   const RunResult r =
-      run_with(dir, {"simulate", example("pendulum.yaml"), "--compile", "sometimes"});
+      run_with(dir, {"simulate", example_path("pendulum.yaml"), "--compile", "sometimes"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--compile"), std::string::npos) << r.err;
 }

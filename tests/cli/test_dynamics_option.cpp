@@ -15,9 +15,7 @@
 namespace lagrange::hardening {
 namespace {
 
-std::string example(const std::string& name) {
-  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
-}
+using lagrange::test::example_path;
 
 /// The last row of a CSV trajectory as numbers.
 std::vector<double> last_row(const std::string& csv) {
@@ -46,7 +44,7 @@ std::string chain(size_t n) {
 
 TEST(DynamicsOption, BothFormulationsGiveTheSameTrajectory) {
   const ScratchDir dir("dynamics-same");
-  const std::string model = example("planar_arm_pd.yaml");
+  const std::string model = example_path("planar_arm_pd.yaml");
   const auto run = [&](const std::string& form) {
     return run_lagrange(dir.path(),
                         {"simulate", model, "--t-end", "2", "--rtol", "1e-11", "--atol", "1e-12",
@@ -83,13 +81,13 @@ TEST(DynamicsOption, AutoTakesTheRecursiveFormAndTheReportSaysSo) {
             std::string::npos);
   // A small arm's report shows its mass matrix; a model without a tree stays Lagrangian.
   const RunResult arm =
-      run_lagrange(dir.path(), {"simulate", example("elbow_manipulator.yaml"), "--t-end", "0.2",
-                                "-o", at("arm.csv"), "--report", at("arm.html")});
+      run_lagrange(dir.path(), {"simulate", example_path("elbow_manipulator.yaml"), "--t-end",
+                                "0.2", "-o", at("arm.csv"), "--report", at("arm.html")});
   ASSERT_EQ(arm.exit_code, 0) << arm.err;
   EXPECT_NE(arm.out.find("recursive"), std::string::npos) << arm.out;
   EXPECT_NE(slurp(dir.path() / "arm.html").find("Mass matrix"), std::string::npos);
   const RunResult p = run_lagrange(
-      dir.path(), {"simulate", example("pendulum.yaml"), "--t-end", "0.1", "-o", at("p.csv")});
+      dir.path(), {"simulate", example_path("pendulum.yaml"), "--t-end", "0.1", "-o", at("p.csv")});
   ASSERT_EQ(p.exit_code, 0) << p.err;
   EXPECT_EQ(p.out.find("recursive"), std::string::npos) << p.out;
 }
@@ -97,8 +95,8 @@ TEST(DynamicsOption, AutoTakesTheRecursiveFormAndTheReportSaysSo) {
 TEST(DynamicsOption, RecursiveWhereItDoesNotApplyIsAUsageErrorSayingWhy) {
   const ScratchDir dir("dynamics-refused");
   const RunResult r =
-      run_lagrange(dir.path(), {"simulate", example("pendulum.yaml"), "--dynamics", "recursive",
-                                "-o", (dir.path() / "p.csv").string()});
+      run_lagrange(dir.path(), {"simulate", example_path("pendulum.yaml"), "--dynamics",
+                                "recursive", "-o", (dir.path() / "p.csv").string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--dynamics recursive: the articulated-body algorithm does not apply"),
             std::string::npos)
@@ -106,24 +104,24 @@ TEST(DynamicsOption, RecursiveWhereItDoesNotApplyIsAUsageErrorSayingWhy) {
   EXPECT_NE(r.err.find("it has no joint tree"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "p.csv"));
   const RunResult bad = run_lagrange(
-      dir.path(), {"simulate", example("pendulum.yaml"), "--dynamics", "fast", "-o", "p.csv"});
+      dir.path(), {"simulate", example_path("pendulum.yaml"), "--dynamics", "fast", "-o", "p.csv"});
   EXPECT_EQ(bad.exit_code, 2);
 }
 
 TEST(DynamicsOption, DeriveFormRecursivePrintsTheAlgorithm) {
   const ScratchDir dir("derive-recursive");
   const RunResult r = run_lagrange(
-      dir.path(), {"derive", example("elbow_manipulator.yaml"), "--form", "recursive"});
+      dir.path(), {"derive", example_path("elbow_manipulator.yaml"), "--form", "recursive"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("Articulated-body algorithm"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("L2.invD = L2.IA33^(-1)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("q2_ddot = "), std::string::npos) << r.out;
-  const RunResult json = run_lagrange(dir.path(), {"derive", example("elbow_manipulator.yaml"),
+  const RunResult json = run_lagrange(dir.path(), {"derive", example_path("elbow_manipulator.yaml"),
                                                    "--form", "recursive", "--format", "json"});
   ASSERT_EQ(json.exit_code, 0) << json.err;
   EXPECT_NE(json.out.find("\"definitions\""), std::string::npos);
   const RunResult refused =
-      run_lagrange(dir.path(), {"derive", example("pendulum.yaml"), "--form", "recursive"});
+      run_lagrange(dir.path(), {"derive", example_path("pendulum.yaml"), "--form", "recursive"});
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("it has no joint tree"), std::string::npos) << refused.err;
 }
@@ -137,27 +135,27 @@ TEST(DynamicsOption, ExportTakesTheFormulationToo) {
     std::ifstream in(dir.path() / sub / "lagrange_model.c");
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   };
-  const RunResult r = run_lagrange(
-      dir.path(), {"export", example("robots/ur5.urdf"), "--c", (dir.path() / "auto").string()});
+  const RunResult r = run_lagrange(dir.path(), {"export", example_path("robots/ur5.urdf"), "--c",
+                                                (dir.path() / "auto").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("recursive"), std::string::npos) << r.out;
   EXPECT_NE(c_source("auto").find("#define LAGRANGE_DIAGONAL_M 1"), std::string::npos);
   EXPECT_EQ(c_source("auto").find("static int lg_chol("), std::string::npos)
       << "M = 1 needs no Cholesky";
   const RunResult l =
-      run_lagrange(dir.path(), {"export", example("robots/ur5.urdf"), "--c",
+      run_lagrange(dir.path(), {"export", example_path("robots/ur5.urdf"), "--c",
                                 (dir.path() / "lagrangian").string(), "--dynamics", "lagrangian"});
   ASSERT_EQ(l.exit_code, 0) << l.err;
   EXPECT_NE(l.out.find("lagrangian"), std::string::npos) << l.out;
   EXPECT_NE(c_source("lagrangian").find("static int lg_chol("), std::string::npos);
   const RunResult refused =
-      run_lagrange(dir.path(), {"export", example("pendulum.yaml"), "--c",
+      run_lagrange(dir.path(), {"export", example_path("pendulum.yaml"), "--c",
                                 (dir.path() / "refused").string(), "--dynamics", "recursive"});
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("it has no joint tree"), std::string::npos) << refused.err;
   EXPECT_FALSE(fs::exists(dir.path() / "refused"));
   const RunResult manipulator = run_lagrange(
-      dir.path(), {"export", example("robots/ur5.urdf"), "--c", (dir.path() / "m").string(),
+      dir.path(), {"export", example_path("robots/ur5.urdf"), "--c", (dir.path() / "m").string(),
                    "--form", "manipulator", "--dynamics", "recursive"});
   EXPECT_EQ(manipulator.exit_code, 2);
   EXPECT_NE(manipulator.err.find("drop --dynamics recursive"), std::string::npos)

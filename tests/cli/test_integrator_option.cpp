@@ -20,15 +20,12 @@ namespace {
 namespace fs = std::filesystem;
 
 using Result = lagrange::testing::ShellResult;
-
-Result run(const std::string& args) {
-  return lagrange::testing::run_shell(args);
-}
+using lagrange::testing::run_shell;
 
 const std::string kPendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/double_pendulum.yaml";
 
 TEST(IntegratorOption, ANamedTableRunsAndIsReported) {
-  const Result r = run("simulate " + kPendulum + " --t-end 1 --integrator arkode:verner65");
+  const Result r = run_shell("simulate " + kPendulum + " --t-end 1 --integrator arkode:verner65");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("arkode:verner65"), std::string::npos) << r.output;
 }
@@ -37,7 +34,7 @@ TEST(IntegratorOption, AnUnknownNameExitsTwoListingTheValidOnes) {
   const fs::path csv = fs::temp_directory_path() / "lagrange_integrator_option.csv";
   fs::remove(csv);
   const Result r =
-      run("simulate " + kPendulum + " --integrator arkode:verner56 -o " + csv.string());
+      run_shell("simulate " + kPendulum + " --integrator arkode:verner56 -o " + csv.string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("arkode:verner56"), std::string::npos) << r.output;
   for (const char* name : {"arkode:dormand-prince", "arkode:verner65", "cvode", "midpoint"})
@@ -50,7 +47,7 @@ TEST(IntegratorOption, AnUnknownNameInTheModelFileIsAModelError) {
   std::ofstream(model) << "name: p\nparameters: {g: 9.81}\ncoordinates:\n  x: {initial: 1}\n"
                           "kinetic: der(x)^2/2\npotential: g*x^2/2\n"
                           "simulate: {integrator: arkode:rk45}\n";
-  const Result r = run("simulate " + model.string());
+  const Result r = run_shell("simulate " + model.string());
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find(":7:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("unknown integrator 'arkode:rk45'"), std::string::npos) << r.output;
@@ -91,7 +88,7 @@ TEST(IntegratorOption, MaxOrderReachesTheBdfMethods) {
   const auto simulate = [&](const std::string& model, const std::string& extra,
                             const std::string& csv) {
     const Result r =
-        run("simulate " + (dir / model).string() + " -q -o " + (dir / csv).string() + extra);
+        run_shell("simulate " + (dir / model).string() + " -q -o " + (dir / csv).string() + extra);
     EXPECT_EQ(r.code, 0) << r.output;
   };
   simulate("osc.yaml", "", "default.csv");
@@ -107,8 +104,8 @@ TEST(IntegratorOption, MaxOrderReachesTheBdfMethods) {
   EXPECT_GT(lost1, 0.05 * e0) << "backward Euler's numerical damping";
   EXPECT_LT(std::abs(lost5), 0.2 * lost1);
 
-  const Result bad = run("simulate " + (dir / "osc.yaml").string() + " --max-order 6 -o " +
-                         (dir / "bad.csv").string());
+  const Result bad = run_shell("simulate " + (dir / "osc.yaml").string() + " --max-order 6 -o " +
+                               (dir / "bad.csv").string());
   EXPECT_EQ(bad.code, 2) << bad.output;
   EXPECT_NE(bad.output.find("--max-order must be from 1 to 5"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "bad.csv"));

@@ -11,41 +11,13 @@
 #include <vector>
 
 #include "hardening/cli_runner.hpp"
+#include "support/csv_table.hpp"
 
 namespace lagrange::hardening {
 namespace {
 
-// The header and the first and last rows of a CSV, split into fields.
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<double> first, last;
-  double at(const std::vector<double>& row, const std::string& column) const {
-    for (size_t i = 0; i < header.size(); ++i)
-      if (header[i] == column) return row.at(i);
-    ADD_FAILURE() << "no column " << column;
-    return 0.0;
-  }
-};
-
-Csv read_csv(const fs::path& path) {
-  std::istringstream in(slurp(path));
-  Csv csv;
-  std::string line, field;
-  std::getline(in, line);
-  for (std::istringstream h(line); std::getline(h, field, ',');) csv.header.push_back(field);
-  auto row = [&](const std::string& text) {
-    std::vector<double> out;
-    for (std::istringstream r(text); std::getline(r, field, ',');) out.push_back(std::stod(field));
-    return out;
-  };
-  std::getline(in, line);
-  csv.first = row(line);
-  std::string last = line;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  csv.last = row(last);
-  return csv;
-}
+using lagrange::test::CsvTable;
+using lagrange::test::read_csv_table;
 
 const std::string kPendulum = R"(parameters: {m: 1, g: 9.81, l: 1, th0: 0.3}
 coordinates:
@@ -64,10 +36,10 @@ TEST(SetOption, InitialValuesRatesAndSettingsFollowTheParameter) {
   const RunResult r = run_lagrange(
       dir.path(), {"simulate", model.string(), "--set", "th0=1.0", "-q", "-o", csv.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Csv out = read_csv(csv);
-  EXPECT_EQ(out.at(out.first, "theta"), 1.0);
-  EXPECT_DOUBLE_EQ(out.at(out.first, "theta_dot"), 0.1);
-  EXPECT_DOUBLE_EQ(out.at(out.last, "t"), 0.5);  // t_end: th0/2
+  const CsvTable out = read_csv_table(csv);
+  EXPECT_EQ(out.at(0, "theta"), 1.0);
+  EXPECT_DOUBLE_EQ(out.at(0, "theta_dot"), 0.1);
+  EXPECT_DOUBLE_EQ(out.last("t"), 0.5);  // t_end: th0/2
 }
 
 TEST(SetOption, FreeBodyInitialStateFollowsTheParameter) {
@@ -88,10 +60,10 @@ simulate: {t_end: 0.1}
   const RunResult r = run_lagrange(dir.path(), {"simulate", model.string(), "--set", "spin=2",
                                                 "--set", "h=0.5", "-q", "-o", csv.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Csv out = read_csv(csv);
-  EXPECT_EQ(out.at(out.first, "brick.wy"), 2.0);
-  EXPECT_EQ(out.at(out.first, "brick.z"), 0.5);
-  EXPECT_NEAR(out.at(out.first, "brick.R11"), std::cos(0.5), 1e-15);
+  const CsvTable out = read_csv_table(csv);
+  EXPECT_EQ(out.at(0, "brick.wy"), 2.0);
+  EXPECT_EQ(out.at(0, "brick.z"), 0.5);
+  EXPECT_NEAR(out.at(0, "brick.R11"), std::cos(0.5), 1e-15);
 }
 
 TEST(SetOption, AValueTheModelRejectsIsACommandLineError) {

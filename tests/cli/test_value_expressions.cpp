@@ -13,14 +13,18 @@
 
 #include "hardening/cli_runner.hpp"
 #include "lagrange/reader.hpp"
+#include "support/csv_table.hpp"
 
 namespace lagrange::hardening {
 namespace {
 
+using lagrange::test::CsvTable;
+using lagrange::test::read_csv_table;
+
 constexpr double kPi = 3.14159265358979323846;
 
 // t_end is d, so the last row's time shows a --set value exactly.
-const std::string kPendulum = R"(parameters: {m: 1, g: 9.81, l: 1, d: 0.1}
+const std::string kPendulumEndingAtD = R"(parameters: {m: 1, g: 9.81, l: 1, d: 0.1}
 coordinates:
   theta: {initial: 0.3}
 points:
@@ -29,34 +33,6 @@ particles: {bob: m}
 gravity: [0, -g, 0]
 simulate: {t_end: d, output_step: 0.05}
 )";
-
-// The header and rows of a CSV file as numbers.
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  double at(size_t row, const std::string& column) const {
-    for (size_t i = 0; i < header.size(); ++i)
-      if (header[i] == column) return rows.at(row).at(i);
-    ADD_FAILURE() << "no column " << column;
-    return NAN;
-  }
-};
-
-Csv read_csv(const fs::path& path) {
-  std::istringstream in(slurp(path));
-  Csv csv;
-  std::string line, field;
-  std::getline(in, line);
-  for (std::istringstream h(line); std::getline(h, field, ',');) csv.header.push_back(field);
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::vector<double> row;
-    for (std::istringstream r(line); std::getline(r, field, ',');)
-      row.push_back(std::strtod(field.c_str(), nullptr));  // a word (status) reads as 0
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
 
 TEST(ValueExpressions, EvaluatedAsTheFileEvaluatesThem) {
   EXPECT_EQ(evaluate_value_text("pi"), kPi);
@@ -76,9 +52,9 @@ TEST(ValueExpressions, EvaluatedAsTheFileEvaluatesThem) {
 TEST(ValueExpressions, InitialEqualsTheSameValueWrittenInTheFile) {
   ScratchDir dir("values-initial");
   const GivenAndWritten runs =
-      run_given_and_written(dir, kPendulum, "initial: 0.3", "initial: pi/3", "theta=pi/3");
+      run_given_and_written(dir, kPendulumEndingAtD, "initial: 0.3", "initial: pi/3", "theta=pi/3");
   const fs::path model = dir.path() / "model.yaml";
-  const Csv ca = read_csv(runs.given), cb = read_csv(runs.written);
+  const CsvTable ca = read_csv_table(runs.given), cb = read_csv_table(runs.written);
   EXPECT_DOUBLE_EQ(ca.at(0, "theta"), kPi / 3);
   // A function of two arguments survives the option's split at commas.
   const fs::path c = dir.path() / "c.csv";
@@ -86,8 +62,8 @@ TEST(ValueExpressions, InitialEqualsTheSameValueWrittenInTheFile) {
       dir.path(), {"simulate", model.string(), "--initial",
                    "theta=atan2(sqrt(3),1),theta_dot=4*atan2(1,1)", "-q", "-o", c.string()});
   ASSERT_EQ(two.exit_code, 0) << two.err;
-  EXPECT_DOUBLE_EQ(read_csv(c).at(0, "theta"), kPi / 3);
-  EXPECT_DOUBLE_EQ(read_csv(c).at(0, "theta_dot"), kPi);
+  EXPECT_DOUBLE_EQ(read_csv_table(c).at(0, "theta"), kPi / 3);
+  EXPECT_DOUBLE_EQ(read_csv_table(c).at(0, "theta_dot"), kPi);
   ASSERT_EQ(ca.rows.size(), cb.rows.size());
   for (size_t i = 0; i < ca.rows.size(); ++i) EXPECT_EQ(ca.rows[i], cb.rows[i]) << "row " << i;
 }
@@ -95,13 +71,13 @@ TEST(ValueExpressions, InitialEqualsTheSameValueWrittenInTheFile) {
 TEST(ValueExpressions, SetAndInitialUseParametersAfterSet) {
   ScratchDir dir("values-set");
   const fs::path model = dir.path() / "pendulum.yaml", csv = dir.path() / "out.csv";
-  spit(model, kPendulum);
+  spit(model, kPendulumEndingAtD);
   // --set d=pi/10 sets t_end; --initial theta=l/4 sees l = 2 from --set.
   const RunResult r =
       run_lagrange(dir.path(), {"simulate", model.string(), "--set", "d=pi/10", "--set", "l=2",
                                 "--initial", "theta=l/4", "-q", "-o", csv.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Csv out = read_csv(csv);
+  const CsvTable out = read_csv_table(csv);
   EXPECT_EQ(out.at(0, "theta"), 0.5);
   EXPECT_DOUBLE_EQ(out.at(out.rows.size() - 1, "t"), kPi / 10);
 }
@@ -109,7 +85,7 @@ TEST(ValueExpressions, SetAndInitialUseParametersAfterSet) {
 TEST(ValueExpressions, LinearizeAtPiIsTheUprightPendulum) {
   ScratchDir dir("values-at");
   const fs::path model = dir.path() / "pendulum.yaml";
-  spit(model, kPendulum);
+  spit(model, kPendulumEndingAtD);
   const RunResult r = run_lagrange(
       dir.path(), {"linearize", model.string(), "--at", "theta=pi", "--format", "json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -122,11 +98,11 @@ TEST(ValueExpressions, LinearizeAtPiIsTheUprightPendulum) {
 TEST(ValueExpressions, VaryTakesExpressions) {
   ScratchDir dir("values-vary");
   const fs::path model = dir.path() / "pendulum.yaml", study = dir.path() / "study";
-  spit(model, kPendulum);
+  spit(model, kPendulumEndingAtD);
   const RunResult grid = run_lagrange(
       dir.path(), {"sweep", model.string(), "--vary", "d=pi/4:pi/2:3", "-q", "-o", study.string()});
   ASSERT_EQ(grid.exit_code, 0) << grid.err;
-  const Csv summary = read_csv(study / "summary.csv");
+  const CsvTable summary = read_csv_table(study / "summary.csv");
   ASSERT_EQ(summary.rows.size(), 3u);
   EXPECT_DOUBLE_EQ(summary.at(0, "d"), kPi / 4);
   EXPECT_DOUBLE_EQ(summary.at(1, "d"), 3 * kPi / 8);
@@ -136,7 +112,7 @@ TEST(ValueExpressions, VaryTakesExpressions) {
 TEST(ValueExpressions, MistakesAreLocatedUsageErrors) {
   ScratchDir dir("values-bad");
   const fs::path model = dir.path() / "pendulum.yaml", csv = dir.path() / "out.csv";
-  spit(model, kPendulum);
+  spit(model, kPendulumEndingAtD);
   const RunResult cut = run_lagrange(
       dir.path(), {"simulate", model.string(), "--initial", "theta=pi/", "-o", csv.string()});
   EXPECT_EQ(cut.exit_code, 2);

@@ -16,7 +16,7 @@
 namespace lagrange {
 namespace {
 
-constexpr double kM = 20, kG = 9.81, kL = 100, kMu = 0.0046;
+constexpr double kM = 20, kGravity = 9.81, kL = 100, kLineDensity = 0.0046;
 constexpr double kEA = 314159.0;  // E = 100 GPa, d = 2 mm (awebox's AP2 tether)
 
 /// A load M on an elastic line of length L hung from the origin along −z.
@@ -40,7 +40,7 @@ tethers:
     mass_per_length: mu
     elasticity: {{EA: EA, damping: D}}
 )",
-                     kM, kG, kL, kMu, ea, damping, xdot, z0, zdot, segments);
+                     kM, kGravity, kL, kLineDensity, ea, damping, xdot, z0, zdot, segments);
 }
 
 /// The trajectory's first row from state (q, v): every output at that state.
@@ -72,12 +72,12 @@ TEST(ElasticTether, StaticStretchOfAHangingLineIsTheHeavyRopes) {
     auto s = testing::analyse_string(hanging_load(n, kEA, 0, -kL - 0.01, 0, 0));
     const TrimResult r = stiff_trim(s, s.q);
     const double stretch = -r.q[coordinate(s, "z")] - kL;
-    const double closed = kG * kL * (kM + kMu * kL / 2) / kEA;
+    const double closed = kGravity * kL * (kM + kLineDensity * kL / 2) / kEA;
     EXPECT_NEAR(stretch, closed, 1e-9 * closed) << "N = " << n;
     const Trajectory tr = at_state(s, r.q);
-    const double node_mass = kMu * kL / (n + 1);
+    const double node_mass = kLineDensity * kL / (n + 1);
     for (int j = 1; j <= n; ++j) {
-      const double tension = kG * (kM + (n - j + 1) * node_mass);
+      const double tension = kGravity * (kM + (n - j + 1) * node_mass);
       EXPECT_NEAR(tr.at(0, fmt::format("line.tension_{}", j)), tension, 1e-8 * tension);
       EXPECT_NEAR(tr.at(0, fmt::format("line.strain_{}", j)), tension / kEA, 1e-9);
     }
@@ -100,9 +100,9 @@ tethers:
     mass_per_length: mu
     elasticity: {{EA: EA}}
 )",
-                                               kL, kMu, kEA, span, n));
+                                               kL, kLineDensity, kEA, span, n));
   const std::vector<Mode> all = modes(s.linear());
-  const double k = kEA / (kL / n), m = kMu * kL / (n + 1);
+  const double k = kEA / (kL / n), m = kLineDensity * kL / (n + 1);
   for (int i = 1; i < n; ++i) {
     const double omega = 2 * std::sqrt(k / m) * std::sin(i * M_PI / (2 * n));
     double nearest = 1e300;
@@ -111,7 +111,7 @@ tethers:
     EXPECT_LT(nearest, 1e-8 * omega) << "mode " << i;
   }
   const double omega1 = 2 * std::sqrt(k / m) * std::sin(M_PI / (2 * n));
-  const double c = std::sqrt(kEA / kMu);
+  const double c = std::sqrt(kEA / kLineDensity);
   EXPECT_NEAR(omega1 * kL / M_PI, c, 0.03 * c);  // (N + 1)/N and the sine: about 2.5 %
 }
 

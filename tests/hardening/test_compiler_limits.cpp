@@ -18,7 +18,7 @@
 namespace lagrange::hardening {
 namespace {
 
-const std::string kPendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml";
+using lagrange::test::example_path;
 
 /// A "compiler" that writes its process id to `pid_file` and then waits forever on a child of
 /// its own (so that killing only the compiler would leave the child running).
@@ -103,8 +103,8 @@ TEST(CompilerLimits, AHungCompilerIsStoppedAndTheInterpreterRuns) {
   ScratchDir dir("cc-timeout");
   const CompilerEnvironment env(dir, hung_compiler(dir), "1");
   const RunResult r = run_lagrange(dir.path(),
-                                   {"simulate", kPendulum, "--compile", "on", "--t-end", "1", "-o",
-                                    (dir.path() / "out.csv").string()},
+                                   {"simulate", example_path("pendulum.yaml"), "--compile", "on",
+                                    "--t-end", "1", "-o", (dir.path() / "out.csv").string()},
                                    std::chrono::seconds(60));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_LT(r.seconds, 30.0);
@@ -137,17 +137,18 @@ RunResult interrupted_while_compiling(const ScratchDir& dir, const std::vector<s
 
 TEST(CompilerLimits, CtrlCWhileSimulateCompilesEndsAt130) {
   ScratchDir dir("cc-sigint-simulate");
-  const RunResult r = interrupted_while_compiling(
-      dir, {"simulate", kPendulum, "--compile", "on", "-o", (dir.path() / "out.csv").string()});
+  const RunResult r =
+      interrupted_while_compiling(dir, {"simulate", example_path("pendulum.yaml"), "--compile",
+                                        "on", "-o", (dir.path() / "out.csv").string()});
   EXPECT_NE(r.err.find("lagrange: interrupted"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "out.csv"));
 }
 
 TEST(CompilerLimits, CtrlCWhileASweepCompilesEndsAt130) {
   ScratchDir dir("cc-sigint-sweep");
-  const RunResult r =
-      interrupted_while_compiling(dir, {"sweep", kPendulum, "--vary", "m=1,2", "--compile", "on",
-                                        "-q", "-o", (dir.path() / "study").string()});
+  const RunResult r = interrupted_while_compiling(
+      dir, {"sweep", example_path("pendulum.yaml"), "--vary", "m=1,2", "--compile", "on", "-q",
+            "-o", (dir.path() / "study").string()});
   EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
 }
 
@@ -157,7 +158,8 @@ TEST(CompilerLimits, CtrlCWhileASweepCompilesEndsAt130) {
 TEST(CompilerLimits, CtrlCWhileAnFmuCompilesLeavesNoCompiler) {
   ScratchDir dir("cc-sigint-fmu");
   const CompilerEnvironment env(dir, hung_compiler(dir), nullptr);
-  Child child(dir.path(), {"export", kPendulum, "--fmu", (dir.path() / "p.fmu").string()});
+  Child child(dir.path(),
+              {"export", example_path("pendulum.yaml"), "--fmu", (dir.path() / "p.fmu").string()});
   const pid_t group = compiler_group(dir, std::chrono::seconds(60));
   ASSERT_GT(group, 0) << "the compiler never started";
   child.signal(SIGINT);

@@ -19,29 +19,29 @@
 namespace lagrange::hardening {
 namespace {
 
-const std::string kPendulum =
+const std::string kPendulumText =
     "parameters: {m: 1.0, l: 1.0, g: 9.81}\ncoordinates:\n  theta: {initial: 1.0}\n"
     "points:\n  bob: [l*sin(theta), -l*cos(theta), 0]\nparticles: {bob: m}\n"
     "gravity: [0, -g, 0]\nsimulate: {t_end: 1, output_step: 0.01}\n";
 
 std::vector<BadModel> bad_visuals() {
   return {
-      {"visual as a number", kPendulum + "visual: 5\n", "expected a map for visual"},
-      {"unknown visual key", kPendulum + "visual: {colour: {bob: red}}\n", "'colour'"},
-      {"colour as a list", kPendulum + "visual: {color: {bob: [1, 2]}}\n", "colour of 'bob'"},
-      {"colour of nothing", kPendulum + "visual: {color: {nobody: red}}\n", "'nobody'"},
-      {"short hex colour", kPendulum + "visual: {color: {bob: '#12345'}}\n", "'#12345'"},
-      {"hex colour with a non-digit", kPendulum + "visual: {color: {bob: '#12345g'}}\n",
+      {"visual as a number", kPendulumText + "visual: 5\n", "expected a map for visual"},
+      {"unknown visual key", kPendulumText + "visual: {colour: {bob: red}}\n", "'colour'"},
+      {"colour as a list", kPendulumText + "visual: {color: {bob: [1, 2]}}\n", "colour of 'bob'"},
+      {"colour of nothing", kPendulumText + "visual: {color: {nobody: red}}\n", "'nobody'"},
+      {"short hex colour", kPendulumText + "visual: {color: {bob: '#12345'}}\n", "'#12345'"},
+      {"hex colour with a non-digit", kPendulumText + "visual: {color: {bob: '#12345g'}}\n",
        "'#12345g'"},
-      {"unknown colour name", kPendulum + "visual: {color: {bob: redd}}\n", "'redd'"},
+      {"unknown colour name", kPendulumText + "visual: {color: {bob: redd}}\n", "'redd'"},
       // once a SIGSEGV (exit 139) in the report's regular expression
       {"50000-letter colour name",
-       kPendulum + "visual: {color: {bob: " + std::string(50000, 'a') + "}}\n", "colour"},
-      {"negative size", kPendulum + "visual: {size: {bob: -1}}\n", "positive number"},
-      {"NaN size", kPendulum + "visual: {size: {bob: .nan}}\n", "positive number"},
-      {"size as text", kPendulum + "visual: {size: {bob: big}}\n", "positive number"},
-      {"hide as a name", kPendulum + "visual: {hide: bob}\n", "visual.hide"},
-      {"trail of nothing", kPendulum + "visual: {trail: [nobody]}\n", "'nobody'"},
+       kPendulumText + "visual: {color: {bob: " + std::string(50000, 'a') + "}}\n", "colour"},
+      {"negative size", kPendulumText + "visual: {size: {bob: -1}}\n", "positive number"},
+      {"NaN size", kPendulumText + "visual: {size: {bob: .nan}}\n", "positive number"},
+      {"size as text", kPendulumText + "visual: {size: {bob: big}}\n", "positive number"},
+      {"hide as a name", kPendulumText + "visual: {hide: bob}\n", "visual.hide"},
+      {"trail of nothing", kPendulumText + "visual: {trail: [nobody]}\n", "'nobody'"},
   };
 }
 
@@ -56,15 +56,15 @@ INSTANTIATE_TEST_SUITE_P(Cli, BadVisual, ::testing::ValuesIn(bad_visuals()), lab
 TEST(Visual, CheckFindsTheMistakeAndAcceptsAGoodSection) {
   ScratchDir dir("visual-check");
   const fs::path bad = dir.path() / "bad.yaml", good = dir.path() / "good.yaml";
-  spit(bad, kPendulum + "visual:\n  size: {bob: -0.1}\n");
+  spit(bad, kPendulumText + "visual:\n  size: {bob: -0.1}\n");
   const RunResult r = run_lagrange(dir.path(), {"check", bad.string()});
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE(r.err.find("bad.yaml:10:15: error: expected a positive number (metres) as the size "
                        "of 'bob', got '-0.1'"),
             std::string::npos)
       << r.err;
-  spit(good,
-       kPendulum + "visual: {color: {bob: DarkRed}, size: {bob: 0.1}, trail: [bob], hide: []}\n");
+  spit(good, kPendulumText +
+                 "visual: {color: {bob: DarkRed}, size: {bob: 0.1}, trail: [bob], hide: []}\n");
   const RunResult ok = run_lagrange(dir.path(), {"check", good.string()});
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
@@ -362,7 +362,7 @@ TEST(HostileCommands, EachGivesItsExitCodeAndMessageAndWritesNothing) {
 // overwrite that column (issue 37 item 7): `simulate` and `check` (item 17) refuse it, located.
 TEST(HostileCommands, AMetricCannotShadowASummaryColumn) {
   for (const std::string name : {"m", "status", "case"}) {
-    const std::string yaml = kPendulum + "metrics:\n  " + name + ": final(theta)\n";
+    const std::string yaml = kPendulumText + "metrics:\n  " + name + ": final(theta)\n";
     expect_model_error({"metric named like a column", yaml, "is named like"}, "metric-" + name);
     ScratchDir dir("metric-check-" + name);
     spit(dir.path() / "bad.yaml", yaml);
@@ -379,7 +379,7 @@ TEST(HostileCommands, AMetricCannotShadowASummaryColumn) {
 // of infinite extent (issue 37, the double-to-integer audit: log10 of it was cast to int).
 TEST(HostileCommands, AReportOfANonFiniteTrajectoryIsRefused) {
   ScratchDir dir("report-inf");
-  spit(dir.path() / "model.yaml", kPendulum);
+  spit(dir.path() / "model.yaml", kPendulumText);
   for (const std::string value : {"inf", "-1e999", "nan"}) {
     spit(dir.path() / "traj.csv", "t,theta,theta_dot\n0,1,0\n0.01," + value + ",0\n");
     const RunResult r = run_lagrange(
@@ -397,7 +397,7 @@ TEST(HostileCommands, AReportOfANonFiniteTrajectoryIsRefused) {
 // before (exit 0, every row) and says so once.
 TEST(HostileCommands, AStopConditionThatIsNeverANumberIsWarnedOnce) {
   ScratchDir dir("stop-nan");
-  spit(dir.path() / "model.yaml", kPendulum + "stop_when:\n  never: sqrt(theta - 100) > 1\n");
+  spit(dir.path() / "model.yaml", kPendulumText + "stop_when:\n  never: sqrt(theta - 100) > 1\n");
   const RunResult r = run_lagrange(
       dir.path(), {"simulate", (dir.path() / "model.yaml").string(), "--compile", "off", "-q"});
   EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -19,12 +19,21 @@
 namespace lagrange::hardening {
 namespace {
 
-const std::string kPendulum = std::string(LAGRANGE_SOURCE_DIR) + "/examples/pendulum.yaml";
+using lagrange::test::example_path;
 
 std::vector<std::string> simulate(const fs::path& csv, const std::string& t_end,
                                   const std::string& step = "0.01") {
-  return {"simulate",      kPendulum, "-o",        csv.string(), "--t-end", t_end,
-          "--output-step", step,      "--compile", "off",        "-q"};
+  return {"simulate",
+          example_path("pendulum.yaml"),
+          "-o",
+          csv.string(),
+          "--t-end",
+          t_end,
+          "--output-step",
+          step,
+          "--compile",
+          "off",
+          "-q"};
 }
 
 /// Size of `path` in bytes, -1 when it does not exist.
@@ -183,8 +192,9 @@ TEST(OutputFiles, AnEntryThatIsNotARegularFileIsRefusedAndKept) {
     report[3] = html.string();  // the -o value becomes --report's
     report[2] = "--report";
     refused(report, "--report", html, kind);
-    refused({"report", kPendulum, (d / "missing.csv").string(), "-o", html.string()}, "-o", html,
-            kind);
+    refused({"report", example_path("pendulum.yaml"), (d / "missing.csv").string(), "-o",
+             html.string()},
+            "-o", html, kind);
   }
   refused(simulate(d / "plain.csv", "2000", "0.0002"), "-o", d / "plain.csv.json", "a FIFO");
   struct stat null_device {};
@@ -240,9 +250,10 @@ TEST(OutputFiles, AStudyOnAFullDiskSaysSo) {
   ScratchDir dir("full-disk-study");
   const SmallDisk disk(dir.path() / "small");
   if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
-  const RunResult r = run_lagrange(
-      dir.path(), {"sweep", kPendulum, "--vary", "m=1:2:3000", "--t-end", "0.01", "--compile",
-                   "off", "-j", "1", "-q", "-o", (dir.path() / "small" / "study").string()});
+  const RunResult r =
+      run_lagrange(dir.path(), {"sweep", example_path("pendulum.yaml"), "--vary", "m=1:2:3000",
+                                "--t-end", "0.01", "--compile", "off", "-j", "1", "-q", "-o",
+                                (dir.path() / "small" / "study").string()});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
 }

@@ -18,9 +18,7 @@
 namespace lagrange::hardening {
 namespace {
 
-std::string example(const std::string& name) {
-  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
-}
+using lagrange::test::example_path;
 
 /// The CSV parsed into rows of numbers; fails the test on a malformed line.
 std::vector<std::vector<double>> parse_csv(const std::string& text, size_t* columns) {
@@ -309,8 +307,9 @@ TEST(RuntimeFailure, MidpointNamesAStepThatConvergesOnATautTether) {
   // message names the step that makes the sweeps contract, and that step runs.
   ScratchDir dir("midpoint-step");
   const auto run = [&](const std::string& step) {
-    return run_lagrange(dir.path(), {"simulate", example("elastic_tether.yaml"), "--integrator",
-                                     "midpoint", "--step", step, "--t-end", "0.3", "-q"});
+    return run_lagrange(
+        dir.path(), {"simulate", example_path("elastic_tether.yaml"), "--integrator", "midpoint",
+                     "--step", step, "--t-end", "0.3", "-q"});
   };
   const RunResult failed = run("1e-3");
   ASSERT_EQ(failed.exit_code, 3) << failed.err;
@@ -329,8 +328,8 @@ TEST(RuntimeFailure, MidpointNamesAStepThatConvergesOnATautTether) {
 TEST(RuntimeFailure, SuccessWritesACompleteSidecarWithStatistics) {
   ScratchDir dir("complete");
   const fs::path csv = dir.path() / "out.csv";
-  const RunResult r = run_lagrange(
-      dir.path(), {"simulate", example("pendulum.yaml"), "-o", csv.string(), "--t-end", "1", "-q"});
+  const RunResult r = run_lagrange(dir.path(), {"simulate", example_path("pendulum.yaml"), "-o",
+                                                csv.string(), "--t-end", "1", "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(dir.files(), (std::vector<std::string>{"out.csv", "out.csv.json"}));
   const auto side = nlohmann::json::parse(slurp(dir.path() / "out.csv.json"));
@@ -343,7 +342,7 @@ TEST(RuntimeFailure, SuccessWritesACompleteSidecarWithStatistics) {
 TEST(Interruption, SigintKeepsACompleteCsvMarkedInterrupted) {
   ScratchDir dir("sigint");
   const fs::path csv = dir.path() / "out.csv";
-  Child child(dir.path(), {"simulate", example("double_pendulum.yaml"), "-o", csv.string(),
+  Child child(dir.path(), {"simulate", example_path("double_pendulum.yaml"), "-o", csv.string(),
                            "--t-end", "1e5", "-q"});
   std::this_thread::sleep_for(std::chrono::seconds(1));
   child.signal(SIGINT);
@@ -367,7 +366,7 @@ TEST(Interruption, SigintBeforeAnyFileLeavesNoPartFile) {
   ScratchDir dir("sigint-early");
   const fs::path csv = dir.path() / "out.csv";
   Child child(dir.path(),
-              {"simulate", example("n_link_pendulum_5.yaml"), "-o", csv.string(), "-q"});
+              {"simulate", example_path("n_link_pendulum_5.yaml"), "-o", csv.string(), "-q"});
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   child.signal(SIGINT);
   const RunResult r = child.wait(std::chrono::seconds(120));
@@ -396,12 +395,12 @@ void expect_bit_identical(const std::string& label, const std::string& model,
 }
 
 TEST(Determinism, SameModelAndOptionsGiveTheSameBytes) {
-  expect_bit_identical("arkode", example("double_pendulum.yaml"), {"--t-end", "5"});
-  expect_bit_identical("cvode", example("five_bar.yaml"),
+  expect_bit_identical("arkode", example_path("double_pendulum.yaml"), {"--t-end", "5"});
+  expect_bit_identical("cvode", example_path("five_bar.yaml"),
                        {"--t-end", "2", "--integrator", "cvode"});
-  expect_bit_identical("ida", example("constrained_pendulum.yaml"),
+  expect_bit_identical("ida", example_path("constrained_pendulum.yaml"),
                        {"--t-end", "2", "--integrator", "ida"});
-  expect_bit_identical("rk4", example("crane.yaml"),
+  expect_bit_identical("rk4", example_path("crane.yaml"),
                        {"--t-end", "2", "--integrator", "rk4", "--set", "g=9.7"});
 }
 

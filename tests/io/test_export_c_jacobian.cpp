@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Exported {
+struct ExportedJacobian {
   // (block 0 = a_q, 1 = a_v, 2 = a_u; row; column; value) per pattern entry.
   struct Value {
     int block, row, col;
@@ -32,9 +32,9 @@ struct Exported {
   std::vector<Value> values;
 };
 
-Exported run_exported(const DynamicsJacobian& jac, const std::string& tag,
-                      const std::vector<double>& q, const std::vector<double>& v, double t,
-                      double alpha) {
+ExportedJacobian run_exported(const DynamicsJacobian& jac, const std::string& tag,
+                              const std::vector<double>& q, const std::vector<double>& v, double t,
+                              double alpha) {
   const CompiledModel& cm = jac.model();
   const hardening::ScratchDir scratch("export-jacobian-" + tag);  // this process's own folder
   const fs::path& dir = scratch.path();
@@ -71,8 +71,8 @@ Exported run_exported(const DynamicsJacobian& jac, const std::string& tag,
                           (dir / "lagrange_jacobian.c").string() + " -lm 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   FILE* pipe = popen(exe.c_str(), "r");
-  Exported out;
-  Exported::Value x{};
+  ExportedJacobian out;
+  ExportedJacobian::Value x{};
   while (std::fscanf(pipe, "%d %d %d %lf", &x.block, &x.row, &x.col, &x.value) == 4)
     out.values.push_back(x);
   EXPECT_EQ(pclose(pipe), 0);
@@ -81,7 +81,7 @@ Exported run_exported(const DynamicsJacobian& jac, const std::string& tag,
 
 // The exported derivatives of `yaml`'s model at its initial state moved by a random amount and
 // given random rates, against DynamicsJacobian::evaluate there.
-Exported expect_exported_jacobian_matches(const std::string& tag, testing::Analysed s) {
+ExportedJacobian expect_exported_jacobian_matches(const std::string& tag, testing::Analysed s) {
   const CompiledModel& cm = *s.cm;
   const DynamicsJacobian jac(s.eq, s.cm, cm.input_names);
   std::mt19937 rng(7);
@@ -92,7 +92,7 @@ Exported expect_exported_jacobian_matches(const std::string& tag, testing::Analy
   const double t = 0.7, alpha = 5.0;
   s.dyn->set_baumgarte(alpha);
   const StateJacobian J = jac.evaluate(*s.dyn, t, q.data(), v.data());
-  const Exported c = run_exported(jac, tag, q, v, t, alpha);
+  const ExportedJacobian c = run_exported(jac, tag, q, v, t, alpha);
   const Eigen::MatrixXd* blocks[3] = {&J.a_q, &J.a_v, &J.a_w};
   std::vector<Eigen::MatrixXd> seen;
   for (const Eigen::MatrixXd* b : blocks)
@@ -146,7 +146,8 @@ tethers:
 // column in row x only and y's and z's in rows y, z (5 entries, not 9); ∂a/∂v only the damping of
 // x (1 entry).
 TEST(ExportCJacobian, IndependentSubsystemsGiveASparsePattern) {
-  const Exported c = expect_exported_jacobian_matches("two_oscillators", testing::analyse_string(R"(
+  const ExportedJacobian c =
+      expect_exported_jacobian_matches("two_oscillators", testing::analyse_string(R"(
 name: two oscillators
 parameters: {m1: 1.0, m2: 2.0, k1: 3.0, k2: 5.0, c: 0.4}
 coordinates:

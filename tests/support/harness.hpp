@@ -20,9 +20,7 @@
 
 namespace lagrange::testing {
 
-inline std::string example_path(const std::string& name) {
-  return std::string(LAGRANGE_SOURCE_DIR) + "/examples/" + name;
-}
+using lagrange::test::example_path;
 
 /// Symbol of a parameter, coordinate (q, or v with suffix "_dot", a with "_ddot") or input.
 inline GiNaC::symbol sym(const Model& m, const std::string& name) {

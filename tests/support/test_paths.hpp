@@ -3,11 +3,18 @@
 // (tests/CMakeLists.txt), not in every test source, so that no test object embeds the clone's
 // folder and a compiler cache serves them to a clone anywhere (docs/errors.md, "CI").
 
+#include <string>
+
 namespace lagrange::test {
 
 const char* source_dir();          ///< the source tree: examples/, docs/, fuzz/, tests/
 const char* command();             ///< this build's `lagrange` executable
 const char* machine_code_cache();  ///< the build tree's machine-code cache for the tests
+
+/// examples/NAME in the source tree.
+inline std::string example_path(const std::string& name) {
+  return std::string(source_dir()) + "/examples/" + name;
+}
 
 }  // namespace lagrange::test
 

@@ -20,7 +20,7 @@
 namespace lagrange::sweep {
 namespace {
 
-const std::string kModel = R"(
+const std::string kPoolModel = R"(
 parameters: {l: 1, m: 1}
 coordinates:
   th: {initial: 0.8}
@@ -40,12 +40,12 @@ struct Study {
 
 // Eight pendulums of lengths 0.5 … 1.55 for 1 s: the final angle and the least after 0.5 s.
 Study pendulums() {
-  const Model model = read_model_string(kModel, "pendulum.yaml");
+  const Model model = read_model_string(kPoolModel, "pendulum.yaml");
   Study s;
   s.compiled = compile(derive(model));
   s.metrics = study_metrics(model, *s.compiled, {"final(th)", "min(th, t > 0.5)"});
   for (size_t i = 0; i < 8; ++i) {
-    const Model m = read_model_string(kModel, "pendulum.yaml", {{"l", 0.5 + 0.15 * i}});
+    const Model m = read_model_string(kPoolModel, "pendulum.yaml", {{"l", 0.5 + 0.15 * i}});
     SimulationOptions so;
     so.t_end = 1.0;
     s.inputs.push_back(case_input(m, *s.compiled, so));

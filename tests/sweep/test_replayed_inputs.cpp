@@ -16,7 +16,7 @@ namespace {
 
 // Initial values and rates written as expressions of the varied a and c, a mass m that must be
 // positive, an angle-only parameter th that warns beyond a turn.
-const std::string kModel = R"(
+const std::string kReplayedModel = R"(
 parameters: {a: 0.7, m: 2, c: 0.3, th: 0.5}
 coordinates:
   x: {initial: a*sin(a) + 1/3, rate: -a/7}
@@ -52,7 +52,7 @@ TEST(ReplayedInputs, EqualAReadWithTheCaseValuesBitForBit) {
   ReadTrace trace;
   trace.watched = {"a", "m", "c", "th"};
   const Values first{{"a", 0.7}, {"m", 2}, {"c", 0.3}, {"th", 0.5}};
-  const Model m = read_model_string(kModel, "replay.yaml", overrides(first), &trace);
+  const Model m = read_model_string(kReplayedModel, "replay.yaml", overrides(first), &trace);
   ASSERT_TRUE(trace.opaque.empty()) << trace.opaque;
   EXPECT_EQ(trace.initials.size(), 3u);  // x and its rate, y
   EXPECT_EQ(trace.checks.size(), 2u);    // m > 0, |th| within a turn
@@ -61,14 +61,15 @@ TEST(ReplayedInputs, EqualAReadWithTheCaseValuesBitForBit) {
                           Values{{"a", -0.3}, {"m", 7}, {"c", 1e-3}, {"th", 6.2}}}) {
     const std::optional<CaseInput> in = replay(v);
     ASSERT_TRUE(in) << v[0].second;
-    const CaseInput read = inputs_of(read_model_string(kModel, "replay.yaml", overrides(v)));
+    const CaseInput read =
+        inputs_of(read_model_string(kReplayedModel, "replay.yaml", overrides(v)));
     EXPECT_TRUE(same_bits(in->q0, read.q0)) << v[0].second;
     EXPECT_TRUE(same_bits(in->v0, read.v0)) << v[0].second;
     EXPECT_TRUE(same_bits(in->parameters, read.parameters)) << v[0].second;
   }
   // A mass the model refuses, an angle it warns about: only the file says what follows.
   EXPECT_FALSE(replay({{"a", 0.7}, {"m", -1}, {"c", 0.3}, {"th", 0.5}}));
-  EXPECT_THROW(read_model_string(kModel, "replay.yaml", {{"m", -1}}), ModelError);
+  EXPECT_THROW(read_model_string(kReplayedModel, "replay.yaml", {{"m", -1}}), ModelError);
   EXPECT_FALSE(replay({{"a", 0.7}, {"m", 2}, {"c", 0.3}, {"th", 7}}));
   // Not a number at all (log of a negative x): the file's read refuses it.
   EXPECT_FALSE(replay({{"a", 0.7}, {"m", 2}, {"c", 1e300}, {"th", 0.5}}));
