@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -55,7 +56,7 @@ constexpr bool kUnderAddressSanitizer = false;
 struct RunResult {
   int exit_code = -1;      ///< exit status, or 128 + signal number when killed
   double seconds = 0;      ///< wall time from start to exit (or to the kill at the limit)
-  long max_rss_kb = 0;     ///< the child's peak resident memory
+  long max_rss_kb = 0;     ///< the child's own peak resident memory (Child::wait says how)
   double cpu_seconds = 0;  ///< the child's user and system time (steadier than wall time)
   std::string out, err;
 };
@@ -75,6 +76,9 @@ class Child {
     const std::string out = (dir_ / "stdout.txt").string(), err = (dir_ / "stderr.txt").string();
     posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    struct rusage self {};
+    getrusage(RUSAGE_SELF, &self);
+    parent_peak_kb_ = self.ru_maxrss;
     const int rc = posix_spawn(&pid_, cargv[0], &fa, nullptr, cargv.data(), environ);
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0) throw std::runtime_error("posix_spawn failed for " + argv[0]);
@@ -104,11 +108,20 @@ class Child {
   }
 
   /// Waits for the child (killing it after `limit`) and collects its output.
+  ///
+  /// The child's peak memory: the kernel's figure for a child (wait4's ru_maxrss) is the larger
+  /// of the child's own peak and this process's peak when it started the child (posix_spawn
+  /// shares this process's memory until the exec, whose high-water mark the child keeps). When
+  /// it exceeds this process's peak it is the child's own; otherwise (a test process grown past
+  /// the child's size, as in the sanitizer build's shards) the child's own high-water mark
+  /// sampled from /proc every 5 ms while it runs (VmHWM, which only grows) stands instead.
   RunResult wait(std::chrono::seconds limit = std::chrono::seconds(300)) {
     const auto deadline = std::chrono::steady_clock::now() + limit;
     int status = 0;
     struct rusage usage {};
+    long sampled_peak_kb = 0;
     while (wait4(pid_, &status, WNOHANG, &usage) == 0) {
+      sampled_peak_kb = std::max(sampled_peak_kb, high_water_mark_kb(pid_));
       if (std::chrono::steady_clock::now() > deadline) {
         kill(pid_, SIGKILL);
         wait4(pid_, &status, 0, &usage);
@@ -119,7 +132,7 @@ class Child {
     pid_ = -1;
     RunResult r;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    r.max_rss_kb = usage.ru_maxrss;
+    r.max_rss_kb = usage.ru_maxrss > parent_peak_kb_ ? usage.ru_maxrss : sampled_peak_kb;
     r.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                     1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -131,9 +144,18 @@ class Child {
   }
 
  private:
+  /// VmHWM of a running process from /proc/PID/status, in KiB (0 once it has exited).
+  static long high_water_mark_kb(pid_t pid) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("VmHWM:", 0) == 0) return std::strtol(line.c_str() + 6, nullptr, 10);
+    return 0;
+  }
+
   fs::path dir_;
   std::chrono::steady_clock::time_point start_;
   pid_t pid_ = -1;
+  long parent_peak_kb_ = 0;  ///< this process's peak when it started the child
 };
 
 /// Runs `lagrange args...` to completion.
