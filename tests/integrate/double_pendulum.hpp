@@ -28,7 +28,8 @@ struct DoublePendulum {
                   (-p.m2 * p.l2 * w2 * w2 * s * c +
                    M * (p.g * std::sin(y[0]) * c - p.l1 * w1 * w1 * s - p.g * std::sin(y[1]))) /
                   den2;
-            }};
+            },
+            {}};  // no Jacobian: Newton matrices from difference quotients
   }
   /// T + U at y.
   double energy(const double* y) const {

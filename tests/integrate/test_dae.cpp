@@ -24,7 +24,8 @@ DaeProblem sine_dae() {
             r[0] = yp[0] - y[1];
             r[1] = y[1] - std::cos(t);
           },
-          {true, false}};
+          {true, false},
+          {}};  // no Jacobian: Newton matrices from difference quotients
 }
 
 /// IDA options with the given tolerances.

@@ -107,7 +107,9 @@ ExportedJacobian expect_exported_jacobian_matches(const std::string& tag, testin
   for (size_t b = 0; b < 3; ++b)  // every non-zero of the library's derivatives is in a pattern
     for (long i = 0; i < blocks[b]->rows(); ++i)
       for (long k = 0; k < blocks[b]->cols(); ++k)
-        if (seen[b](i, k) == 0.0) EXPECT_EQ((*blocks[b])(i, k), 0.0) << tag << " block " << b;
+        if (seen[b](i, k) == 0.0) {
+          EXPECT_EQ((*blocks[b])(i, k), 0.0) << tag << " block " << b;
+        }
   EXPECT_GT(c.values.size(), 0u);
   return c;
 }
@@ -162,7 +164,9 @@ generalized_forces: {x: -c*der(x)}
   for (const auto& x : c.values) {
     in_q += x.block == 0;
     in_v += x.block == 1;
-    if (x.block == 0) EXPECT_EQ(x.row == 0, x.col == 0) << x.row << ", " << x.col;
+    if (x.block == 0) {
+      EXPECT_EQ(x.row == 0, x.col == 0) << x.row << ", " << x.col;
+    }
   }
   EXPECT_EQ(in_q, 5u);
   EXPECT_EQ(in_v, 1u);

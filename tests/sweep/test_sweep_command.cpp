@@ -305,9 +305,10 @@ TEST(SweepCommand, AKilledWorkerProcessLosesNoFinishedCase) {
   EXPECT_NE(r.err.find(std::to_string(kept) + " of 30 cases are in"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
   EXPECT_LT(kept, 30u);
-  if (!running.empty())
+  if (!running.empty()) {
     EXPECT_EQ(slurp(stopped / "summary.csv").find("\n" + running[1].str() + ","),
               std::string::npos);
+  }
   const RunResult resumed = run_lagrange(dir.path(), args(stopped, "2", true));
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_EQ(without_wall_time(stopped / "summary.csv"), without_wall_time(whole / "summary.csv"));
