@@ -15,34 +15,17 @@
 #include <vector>
 
 #include "hardening/cli_runner.hpp"
+#include "support/csv_table.hpp"
 #include "support/test_paths.hpp"
 
 namespace lagrange::hardening {
 namespace {
 
+using lagrange::test::CsvTable;
+using lagrange::test::read_csv_table;
+
 const std::string kUr5 = std::string(LAGRANGE_SOURCE_DIR) + "/examples/robots/ur5.urdf";
 const std::string kElbow = std::string(LAGRANGE_SOURCE_DIR) + "/examples/elbow_manipulator.yaml";
-
-/// The header and first data row of a CSV.
-std::pair<std::vector<std::string>, std::vector<double>> header_and_first_row(const fs::path& csv) {
-  std::istringstream in(slurp(csv));
-  std::string line, field;
-  std::vector<std::string> header;
-  std::vector<double> row;
-  std::getline(in, line);
-  for (std::istringstream h(line); std::getline(h, field, ',');) header.push_back(field);
-  std::getline(in, line);
-  for (std::istringstream r(line); std::getline(r, field, ',');) row.push_back(std::stod(field));
-  return {header, row};
-}
-
-double column(const std::pair<std::vector<std::string>, std::vector<double>>& csv,
-              const std::string& name) {
-  for (size_t i = 0; i < csv.first.size(); ++i)
-    if (csv.first[i] == name) return csv.second.at(i);
-  ADD_FAILURE() << "no column " << name;
-  return 0;
-}
 
 TEST(SimulateInitial, UrdfRobotStartsAtTheGivenJointValuesAndRates) {
   ScratchDir dir("robots-initial");
@@ -52,11 +35,11 @@ TEST(SimulateInitial, UrdfRobotStartsAtTheGivenJointValuesAndRates) {
                                 "shoulder_lift_joint=-1.2,elbow_joint_dot=0.5", "--initial",
                                 "wrist_1_joint=0.3"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto row = header_and_first_row(csv);
-  EXPECT_DOUBLE_EQ(column(row, "shoulder_lift_joint"), -1.2);
-  EXPECT_DOUBLE_EQ(column(row, "elbow_joint_dot"), 0.5);
-  EXPECT_DOUBLE_EQ(column(row, "wrist_1_joint"), 0.3);
-  EXPECT_DOUBLE_EQ(column(row, "shoulder_pan_joint"), 0.0);
+  const CsvTable table = read_csv_table(csv);
+  EXPECT_DOUBLE_EQ(table.at(0, "shoulder_lift_joint"), -1.2);
+  EXPECT_DOUBLE_EQ(table.at(0, "elbow_joint_dot"), 0.5);
+  EXPECT_DOUBLE_EQ(table.at(0, "wrist_1_joint"), 0.3);
+  EXPECT_DOUBLE_EQ(table.at(0, "shoulder_pan_joint"), 0.0);
 }
 
 TEST(SimulateInitial, YamlModelTakesItToo) {
@@ -65,10 +48,10 @@ TEST(SimulateInitial, YamlModelTakesItToo) {
   const RunResult r = run_lagrange(dir.path(), {"simulate", kElbow, "--t-end", "0.1", "-o",
                                                 csv.string(), "--initial", "q2=1.5,q1_dot=-2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto row = header_and_first_row(csv);
-  EXPECT_DOUBLE_EQ(column(row, "q1"), 0.3);  // the file's
-  EXPECT_DOUBLE_EQ(column(row, "q2"), 1.5);
-  EXPECT_DOUBLE_EQ(column(row, "q1_dot"), -2.0);
+  const CsvTable table = read_csv_table(csv);
+  EXPECT_DOUBLE_EQ(table.at(0, "q1"), 0.3);  // the file's
+  EXPECT_DOUBLE_EQ(table.at(0, "q2"), 1.5);
+  EXPECT_DOUBLE_EQ(table.at(0, "q1_dot"), -2.0);
 }
 
 TEST(SimulateInitial, UnknownNameExitsTwoNamingItAndWritesNothing) {

@@ -11,23 +11,14 @@
 
 #include "support/test_paths.hpp"
 #include "hardening/cli_runner.hpp"
+#include "support/csv_table.hpp"
 
 namespace lagrange::hardening {
 namespace {
 
-using lagrange::test::example_path;
+using lagrange::test::read_csv_table;
 
-/// The last row of a CSV trajectory as numbers.
-std::vector<double> last_row(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::vector<double> row;
-  std::istringstream cells(last);
-  for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-  return row;
-}
+using lagrange::test::example_path;
 
 /// A planar chain of n links written as `links:`.
 std::string chain(size_t n) {
@@ -60,8 +51,8 @@ TEST(DynamicsOption, BothFormulationsGiveTheSameTrajectory) {
   EXPECT_EQ(lagrangian.out.find("recursive"), std::string::npos) << lagrangian.out;
   EXPECT_NE(automatic.out.find("recursive (articulated-body algorithm)"), std::string::npos)
       << automatic.out;
-  const auto a = last_row(slurp(dir.path() / "lagrangian.csv"));
-  const auto b = last_row(slurp(dir.path() / "recursive.csv"));
+  const auto a = read_csv_table(dir.path() / "lagrangian.csv").rows.back();
+  const auto b = read_csv_table(dir.path() / "recursive.csv").rows.back();
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 4u);
   for (size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-8 * (1 + std::abs(a[i]))) << i;
