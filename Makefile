@@ -99,7 +99,8 @@ asan: asan-configure
 
 # libFuzzer targets of the model reader (fuzz/), in the sanitizer build; each runs FUZZ_SECONDS
 # (or exactly FUZZ_RUNS inputs from a fixed seed, reproducibly, as CI does) on its corpus (seeded
-# from examples/ and fuzz/corpus/). Findings land in $(ASAN_BUILD)/fuzz/artifacts/.
+# from examples/ and fuzz/corpus/), JOBS targets at a time. Findings land in
+# $(ASAN_BUILD)/fuzz/artifacts/.
 FUZZ_SECONDS ?= 600
 FUZZ_RUNS ?=
 FUZZ_RUNS_MODEL ?=
@@ -112,7 +113,7 @@ fuzz: asan-configure
 	  fuzz_sweep_spec fuzz_metric
 	@FUZZ_RUNS=$(FUZZ_RUNS) FUZZ_RUNS_MODEL=$(FUZZ_RUNS_MODEL) FUZZ_RUNS_EXPRESSION=$(FUZZ_RUNS_EXPRESSION) \
 	  FUZZ_RUNS_URDF=$(FUZZ_RUNS_URDF) FUZZ_RUNS_SWEEP_SPEC=$(FUZZ_RUNS_SWEEP_SPEC) \
-	  FUZZ_RUNS_METRIC=$(FUZZ_RUNS_METRIC) \
+	  FUZZ_RUNS_METRIC=$(FUZZ_RUNS_METRIC) FUZZ_JOBS=$(JOBS) \
 	  ./fuzz/run.sh $(ASAN_BUILD) $(FUZZ_SECONDS)
 
 clean:
