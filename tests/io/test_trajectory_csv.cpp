@@ -1,11 +1,13 @@
 // The CSV contract: header, column order, 17 significant digits, status sidecar.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 
 #include "lagrange/io.hpp"
 #include "support/harness.hpp"
@@ -18,7 +20,10 @@ TEST(TrajectoryCsv, HeaderOrderAndRoundTrip) {
   SimulationOptions so = sys.options();
   so.t_end = 0.5;
   const Trajectory tr = sys.run(so);
-  const auto path = (std::filesystem::temp_directory_path() / "lagrange_csv_test.csv").string();
+  // the process id keeps two suites run side by side (two clones' CI) off each other's file
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("lagrange_csv_test_" + std::to_string(::getpid()) + ".csv"))
+                        .string();
   write_trajectory_csv(tr, path);
   std::ifstream in(path);
   std::string header;
@@ -40,6 +45,9 @@ TEST(TrajectoryCsv, HeaderOrderAndRoundTrip) {
   EXPECT_EQ(side["status"], "complete");
   EXPECT_EQ(side["rows"], tr.rows());
   EXPECT_FALSE(std::filesystem::exists(path + ".part"));
+  in.close();
+  std::filesystem::remove(path);
+  std::filesystem::remove(path + ".json");
 }
 
 }  // namespace
