@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 MAKEFLAGS += --no-print-directory
 
-.PHONY: deps configure build demo install test bench docs asan-configure asan fuzz clean
+.PHONY: deps configure build demo install test bench-build bench docs asan-configure asan fuzz clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -29,10 +29,13 @@ install: configure
 	@cmake --build $(BUILD) -j $(JOBS) --target lagrange_installables
 	@cmake --install $(BUILD) --prefix $(PREFIX)
 
-# The benchmarks are built too (not run), so that API changes cannot leave them broken.
 test: build
-	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The benchmarks, built and not run: CI builds them after the tests, so that an API change cannot
+# leave them broken (`make bench` builds and runs them).
+bench-build: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 
 # The HTML manual (docs/: Sphinx, furo, myst-parser, all Debian's) into $(BUILD)/docs/html,
 # offline; a Sphinx warning is an error. It needs the command (the command-line reference is
