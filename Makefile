@@ -9,8 +9,13 @@ MAKEFLAGS += --no-print-directory
 deps:
 	@./scripts/install-deps.sh
 
+# A new build folder is made for Ninja: it compiles a stage's sources while the stages it links
+# against are still compiling, where Make finishes each library first (a cold `make demo` on 2
+# cores: 149 s instead of 200 s, the same CPU). A folder keeps the generator it was made with.
+generator = $(if $(wildcard $(1)/CMakeCache.txt),,-G Ninja)
+
 configure: deps
-	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) >/dev/null
+	@cmake -S . -B $(BUILD) $(call generator,$(BUILD)) $(CMAKE_FLAGS) >/dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
@@ -88,7 +93,8 @@ ASAN_CTEST_SKIP ?= ^Docs\.
 
 asan-configure:
 	@LAGRANGE_FUZZ=1 ./scripts/install-deps.sh
-	@CC=clang CXX=clang++ cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug \
+	@CC=clang CXX=clang++ cmake -S . -B $(ASAN_BUILD) $(call generator,$(ASAN_BUILD)) \
+	  -DCMAKE_BUILD_TYPE=Debug \
 	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" -DCMAKE_C_FLAGS_DEBUG="-O1 -gline-tables-only" \
 	  -DLAGRANGE_SANITIZE=ON -DLAGRANGE_FUZZ=ON -DLAGRANGE_BUILD_BENCH=OFF -DLAGRANGE_BUILD_PYTHON=OFF >/dev/null
 

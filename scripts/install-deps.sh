@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Installs exactly the Debian packages lagrange needs that are not yet present (ccache and mold
-# for fast rebuilds and links, time for the per-stage figures).
+# Installs exactly the Debian packages lagrange needs that are not yet present (Ninja, ccache and
+# mold for fast builds, rebuilds and links, time for the per-stage figures).
 # Idempotent: when everything is installed it only runs dpkg-query and exits.
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config ccache mold time
+  build-essential cmake ninja-build pkg-config ccache mold time
   libginac-dev libcln-dev libeigen3-dev libsundials-dev libsuitesparse-dev libyaml-cpp-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libtinyxml2-dev libssl-dev coinor-libipopt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
