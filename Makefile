@@ -54,9 +54,8 @@ docs: configure
 	  -d $(BUILD)/docs/doctrees docs $(BUILD)/docs/html
 	@echo "docs: $(BUILD)/docs/html/index.html"
 
-bench: build
+bench: build bench-build
 	@LAGRANGE_BENCH=1 ./scripts/install-deps.sh
-	@cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	@./bench/run.sh $(BUILD)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer: clang, Debug at -O1 (sanitized -O0 GiNaC code is

@@ -9,6 +9,7 @@
 
 #include "analysis/euler_top.hpp"
 #include "cli/shell_run.hpp"
+#include "support/scratch_dir.hpp"
 #include "support/test_paths.hpp"
 
 namespace {
@@ -23,8 +24,8 @@ Result run(const std::string& args) {
 using lagrange::test::example_path;
 
 fs::path write_model(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "lagrange_cli_analysis_test";
-  fs::create_directories(dir);
+  static const lagrange::test::ScratchDir folder("cli-analysis");
+  const fs::path& dir = folder.path();
   std::ofstream(dir / name) << text;
   return dir / name;
 }

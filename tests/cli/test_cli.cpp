@@ -7,8 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "support/test_paths.hpp"
 #include "cli/shell_run.hpp"
+#include "support/scratch_dir.hpp"
+#include "support/test_paths.hpp"
 
 namespace {
 
@@ -23,8 +24,8 @@ Result run(const std::string& args) {
 using lagrange::test::example_path;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "lagrange_cli_test";
-  fs::create_directories(dir);
+  static const lagrange::test::ScratchDir folder("cli");
+  const fs::path& dir = folder.path();
   fs::remove(dir / name);
   fs::remove(dir / (name + ".json"));
   return dir / name;

@@ -12,8 +12,9 @@
 #include <sstream>
 #include <string>
 
-#include "support/test_paths.hpp"
 #include "cli/shell_run.hpp"
+#include "support/scratch_dir.hpp"
+#include "support/test_paths.hpp"
 
 namespace {
 
@@ -31,8 +32,8 @@ TEST(IntegratorOption, ANamedTableRunsAndIsReported) {
 }
 
 TEST(IntegratorOption, AnUnknownNameExitsTwoListingTheValidOnes) {
-  const fs::path csv = fs::temp_directory_path() / "lagrange_integrator_option.csv";
-  fs::remove(csv);
+  const lagrange::test::ScratchDir dir("unknown-integrator");
+  const fs::path csv = dir.path() / "run.csv";
   const Result r =
       run_shell("simulate " + kPendulum + " --integrator arkode:verner56 -o " + csv.string());
   EXPECT_EQ(r.code, 2) << r.output;
@@ -43,7 +44,8 @@ TEST(IntegratorOption, AnUnknownNameExitsTwoListingTheValidOnes) {
 }
 
 TEST(IntegratorOption, AnUnknownNameInTheModelFileIsAModelError) {
-  const fs::path model = fs::temp_directory_path() / "lagrange_integrator_option.yaml";
+  const lagrange::test::ScratchDir dir("integrator-in-model");
+  const fs::path model = dir.path() / "model.yaml";
   std::ofstream(model) << "name: p\nparameters: {g: 9.81}\ncoordinates:\n  x: {initial: 1}\n"
                           "kinetic: der(x)^2/2\npotential: g*x^2/2\n"
                           "simulate: {integrator: arkode:rk45}\n";
@@ -76,8 +78,8 @@ double last_value(const fs::path& csv, const std::string& name) {
 // every oscillation numerically) it loses far more energy than at BDF's default orders up to 5;
 // the flag and the model file's key give the same run bit for bit; 6 is refused before any work.
 TEST(IntegratorOption, MaxOrderReachesTheBdfMethods) {
-  const fs::path dir = fs::temp_directory_path() / "lagrange_max_order";
-  fs::create_directories(dir);
+  const lagrange::test::ScratchDir folder("max-order");
+  const fs::path& dir = folder.path();
   const std::string base =
       "name: osc\nparameters: {g: 9.81}\ncoordinates:\n  x: {initial: 1}\n"
       "kinetic: der(x)^2/2\npotential: g*x^2/2\n";

@@ -1,6 +1,6 @@
 #pragma once
 // Runs the `lagrange` binary in a child process (posix_spawn), with stdout and stderr captured
-// to files, and a scratch directory per test that is removed afterwards.
+// to files, and a scratch directory per test (support/scratch_dir.hpp) that is removed afterwards.
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "support/file_text.hpp"
+#include "support/scratch_dir.hpp"
 #include "support/test_paths.hpp"
 
 extern char** environ;
@@ -164,32 +165,7 @@ inline RunResult run_lagrange(const fs::path& dir, const std::vector<std::string
   return Child(dir, args).wait(limit);
 }
 
-/// A fresh scratch directory under the build tree, removed by the destructor.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name)
-      : path_(fs::temp_directory_path() /
-              ("lagrange-hardening-" + std::to_string(getpid()) + "-" + name)) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  /// Names of the files in the directory, sorted.
-  std::vector<std::string> files() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path_))
-      names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
+using lagrange::test::ScratchDir;
 
 /// A model file with a mistake, and a fragment (usually the offending name) its message must
 /// contain.

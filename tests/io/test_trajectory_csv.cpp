@@ -1,16 +1,15 @@
 // The CSV contract: header, column order, 17 significant digits, status sidecar.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <string>
 
 #include "lagrange/io.hpp"
 #include "support/harness.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace lagrange {
 namespace {
@@ -20,10 +19,8 @@ TEST(TrajectoryCsv, HeaderOrderAndRoundTrip) {
   SimulationOptions so = sys.options();
   so.t_end = 0.5;
   const Trajectory tr = sys.run(so);
-  // the process id keeps two suites run side by side (two clones' CI) off each other's file
-  const auto path = (std::filesystem::temp_directory_path() /
-                     ("lagrange_csv_test_" + std::to_string(::getpid()) + ".csv"))
-                        .string();
+  const test::ScratchDir dir("trajectory-csv");
+  const auto path = (dir.path() / "run.csv").string();
   write_trajectory_csv(tr, path);
   std::ifstream in(path);
   std::string header;
@@ -45,9 +42,6 @@ TEST(TrajectoryCsv, HeaderOrderAndRoundTrip) {
   EXPECT_EQ(side["status"], "complete");
   EXPECT_EQ(side["rows"], tr.rows());
   EXPECT_FALSE(std::filesystem::exists(path + ".part"));
-  in.close();
-  std::filesystem::remove(path);
-  std::filesystem::remove(path + ".json");
 }
 
 }  // namespace
